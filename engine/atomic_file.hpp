@@ -1,0 +1,20 @@
+// Whole-file writes that are either fully done or not done at all, so a run killed at any moment
+// (or a full disk) never leaves a truncated checkpoint, summary or frame index behind.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+namespace gf {
+
+// Writes `bytes` to `path.tmp`, fsyncs it, renames it over `path` (atomic on POSIX) and fsyncs the
+// folder so the rename itself survives a crash. Readers see either the old file or the new one.
+// Throws std::runtime_error naming the path and the system's reason on any failure; the old
+// `path`, if any, is then left untouched.
+void write_file_atomic(const std::filesystem::path& path, std::string_view bytes);
+
+// Creates `dir` and its parents if missing. Throws std::runtime_error naming the folder if it
+// cannot be created or exists as something other than a folder.
+void ensure_directory(const std::filesystem::path& dir);
+
+}  // namespace gf

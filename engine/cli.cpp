@@ -1,0 +1,54 @@
+#include "engine/cli.hpp"
+
+#include <charconv>
+#include <stdexcept>
+
+namespace gf {
+
+std::string usage() {
+  return "usage:\n"
+         "  grainflow run SCENE [--out DIR] [--threads N] [--steps N] [--set key=value]... [--quiet]\n"
+         "  grainflow check SCENE [--set key=value]...\n";
+}
+
+namespace {
+std::int64_t to_int(const std::string& flag, const std::string& v, std::int64_t lo) {
+  std::int64_t x = 0;
+  auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+  if (ec != std::errc() || p != v.data() + v.size() || x < lo)
+    throw std::invalid_argument(flag + " needs an integer >= " + std::to_string(lo) + ", got '" + v + "'");
+  return x;
+}
+}  // namespace
+
+CliOptions parse_cli(int argc, char** argv) {
+  CliOptions o;
+  if (argc < 3) throw std::invalid_argument("missing command or scene");
+  o.command = argv[1];
+  if (o.command != "run" && o.command != "check") throw std::invalid_argument("unknown command '" + o.command + "'");
+  o.scene = argv[2];
+  for (int a = 3; a < argc; ++a) {
+    const std::string flag = argv[a];
+    auto value = [&]() -> std::string {
+      if (a + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
+      return argv[++a];
+    };
+    if (flag == "--out" && o.command == "run")
+      o.out = value();
+    else if (flag == "--threads" && o.command == "run")
+      o.threads = static_cast<int>(to_int(flag, value(), 1));
+    else if (flag == "--steps" && o.command == "run")
+      o.steps = to_int(flag, value(), 0);
+    else if (flag == "--set") {
+      std::string kv = value();
+      if (kv.find('=') == std::string::npos) throw std::invalid_argument("--set needs key=value, got '" + kv + "'");
+      o.overrides.push_back(kv);
+    } else if (flag == "--quiet")
+      o.quiet = true;
+    else
+      throw std::invalid_argument("unknown option '" + flag + "' for '" + o.command + "'");
+  }
+  return o;
+}
+
+}  // namespace gf

@@ -1,0 +1,31 @@
+// Command-line interface: `grainflow run SCENE ...` and `grainflow check SCENE`.
+// The engine parses the command line; the commands themselves are provided by the model layer
+// (systems/setup), which knows which systems a scene needs.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gf {
+
+struct CliOptions {
+  std::string command;  // "run" or "check"
+  std::filesystem::path scene;
+  std::optional<std::filesystem::path> out;  // default: runs/<scene name>
+  int threads = 0;                           // 0: all cores
+  std::optional<std::int64_t> steps;         // main-stage steps instead of the scene's duration
+  std::vector<std::string> overrides;        // key=value
+  bool quiet = false;                        // no progress lines
+};
+
+// Parses argv; throws std::invalid_argument with a usage hint on bad arguments.
+CliOptions parse_cli(int argc, char** argv);
+std::string usage();
+
+int run_command(const CliOptions& opt);    // defined by the model layer
+int check_command(const CliOptions& opt);  // defined by the model layer
+
+}  // namespace gf

@@ -1,0 +1,29 @@
+// grainflow: the command-line entry. Thread count is fixed here, once, for the whole process.
+#include <cstdio>
+#include <exception>
+#include <memory>
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include "engine/cli.hpp"
+#include "engine/run_loop.hpp"
+
+int main(int argc, char** argv) {
+  gf::CliOptions opt;
+  try {
+    opt = gf::parse_cli(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "grainflow: %s\n%s", e.what(), gf::usage().c_str());
+    return 2;
+  }
+  const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  gf::install_stop_handlers();
+  try {
+    return opt.command == "run" ? gf::run_command(opt) : gf::check_command(opt);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "grainflow: error: %s\n", e.what());
+    return 1;
+  }
+}

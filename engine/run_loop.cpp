@@ -1,0 +1,68 @@
+#include "engine/run_loop.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+
+namespace gf {
+
+namespace {
+std::atomic<bool> g_stop{false};
+extern "C" void on_stop_signal(int) { g_stop.store(true); }
+
+std::string human_seconds(double s) {
+  char buf[64];
+  if (s < 90)
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 5400)
+    std::snprintf(buf, sizeof buf, "%.1f min", s / 60);
+  else
+    std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
+  return buf;
+}
+}  // namespace
+
+void install_stop_handlers() {
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+}
+bool stop_requested() { return g_stop.load(); }
+
+StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
+  using clock = std::chrono::steady_clock;
+  StageReport rep;
+  const auto t0 = clock::now();
+  auto last_print = t0;
+  const double t_start = world.clock.t;
+  const std::int64_t step_start = world.clock.step;
+  if (opt.observe) opt.observe->run_step();
+  for (std::int64_t k = 0; k < opt.steps; ++k) {
+    if (stop_requested()) {
+      rep.interrupted = true;
+      break;
+    }
+    step.run_step();
+    world.clock.step = step_start + k + 1;
+    world.clock.t = t_start + static_cast<double>(k + 1) * world.clock.dt;
+    if (opt.observe) opt.observe->run_step();
+    ++rep.steps;
+    if (opt.progress_seconds > 0) {
+      const auto now = clock::now();
+      if (std::chrono::duration<double>(now - last_print).count() >= opt.progress_seconds || k + 1 == opt.steps) {
+        last_print = now;
+        const double el = std::chrono::duration<double>(now - t0).count();
+        const double sps = static_cast<double>(k + 1) / el;
+        const double eta = static_cast<double>(opt.steps - k - 1) / sps;
+        std::fprintf(stderr, "[%s] t = %.6g s  step %lld/%lld (%.1f%%)  %.3g steps/s  %.3g particle-steps/s  ETA %s\n",
+                     opt.label.c_str(), world.clock.t, static_cast<long long>(k + 1),
+                     static_cast<long long>(opt.steps), 100.0 * static_cast<double>(k + 1) / opt.steps, sps,
+                     sps * static_cast<double>(world.grains.n_owned), human_seconds(eta).c_str());
+      }
+    }
+  }
+  rep.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  return rep;
+}
+
+}  // namespace gf

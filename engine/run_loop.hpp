@@ -1,0 +1,34 @@
+// The stepping loop: triggers the step graph, advances the clock, runs the observers (outputs and
+// analyses, which decide themselves whether they are due), and reports progress on stderr.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "engine/schedule.hpp"
+#include "engine/world.hpp"
+
+namespace gf {
+
+struct StageReport {
+  std::int64_t steps = 0;     // steps completed in this stage
+  double wall_seconds = 0.0;  // s
+  bool interrupted = false;   // stopped early by SIGINT/SIGTERM (results so far are on disk)
+};
+
+struct StageOptions {
+  std::string label = "run";
+  std::int64_t steps = 0;
+  Schedule* observe = nullptr;   // run after every step and once before the first
+  double progress_seconds = 2.0;  // wall seconds between progress lines; <= 0 for none
+};
+
+// Runs `opt.steps` steps. The clock is t = t_start + k dt (no accumulated round-off).
+StageReport run_stage(World& world, Schedule& step, const StageOptions& opt);
+
+// SIGINT/SIGTERM stop the stage after the step in flight, so a killed run still closes its files
+// and writes its summary. Installed once by the CLI.
+void install_stop_handlers();
+bool stop_requested();
+
+}  // namespace gf

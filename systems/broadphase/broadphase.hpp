@@ -1,0 +1,43 @@
+// Broadphase: uniform grid by counting sort, rows re-sorted in cell order at every rebuild
+// (ties broken by particle id, so the row order depends on positions only, never on input order),
+// Verlet skin, rebuild when some row moved more than half the skin since the last rebuild.
+// Contact history moves with the pair key through rebuilds and re-sorting.
+//
+// Reads:  Position, Radius, ParticleId.  Writes: every Grains column (rows are permuted; attached
+// components move with them), NeighborList, PairHistory, BroadphaseState.
+#pragma once
+
+#include <cstdint>
+
+#include "engine/grains.hpp"
+#include "engine/system.hpp"
+#include "systems/broadphase/cell_grid.hpp"
+#include "systems/broadphase/neighbor_list.hpp"
+
+namespace gf {
+
+struct BroadphaseState {
+  double skin = 0.0;  // m
+  bool valid = false;
+  bool force_rebuild = false;
+  std::int64_t rebuilds = 0;
+  std::int64_t checks = 0;
+  CellGrid grid;
+  ColumnD ref_x, ref_y, ref_z;  // positions at the last rebuild
+};
+
+// One full rebuild: sort rows, find pairs within r_i + r_j + skin, carry history over.
+void rebuild_neighbors(Grains& g, BroadphaseState& state, NeighborList& list, PairHistory& history);
+// True when some row moved more than skin/2 since the last rebuild (or the list is invalid).
+bool needs_rebuild(const Grains& g, const BroadphaseState& state);
+
+class Broadphase : public SystemBase<Broadphase> {
+ public:
+  using Reads = gf::Reads<>;
+  using Writes = gf::Writes<Position, Velocity, AngularVelocity, Force, Torque, WallForce, WallTorque, Radius, Mass,
+                            Species, ParticleId, NeighborList, PairHistory, BroadphaseState>;
+  std::string_view name() const override { return "broadphase"; }
+  void run(World& world) override;
+};
+
+}  // namespace gf

@@ -1,0 +1,38 @@
+// Verlet neighbour list of particle pairs and the contact history aligned with it.
+// Half list: each pair appears once, owned by its lower row i (j > i), stored row by row (CSR).
+// `incoming` is the transposed incidence (for row r, the pairs where r is the j side, in pair
+// order), so forces are summed per particle in a fixed order without atomics: results do not
+// depend on thread scheduling.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/column.hpp"
+
+namespace gf {
+
+struct NeighborList {
+  std::vector<std::uint32_t> offsets;   // size n_owned + 1
+  std::vector<std::uint32_t> i;         // owner row of each pair
+  std::vector<std::uint32_t> j;         // partner row of each pair
+  std::vector<std::uint64_t> key;       // (min id << 32 | max id): identifies a pair across rebuilds
+  std::vector<std::uint32_t> in_offsets;  // size n + 1
+  std::vector<std::uint32_t> in_pairs;    // pair indices whose j is the row
+  std::size_t pairs() const { return j.size(); }
+};
+
+// Contact history per pair of the list (seed 000 Table 1 springs), kept in columns for SIMD.
+struct PairHistory {
+  ColumnD sx, sy, sz;  // tangential spring, m
+  ColumnD rx, ry, rz;  // rolling angle, rad
+  auto columns() { return std::tie(sx, sy, sz, rx, ry, rz); }
+};
+
+inline std::uint64_t pair_key(std::int64_t a, std::int64_t b) {
+  const auto lo = static_cast<std::uint64_t>(a < b ? a : b);
+  const auto hi = static_cast<std::uint64_t>(a < b ? b : a);
+  return lo << 32 | hi;
+}
+
+}  // namespace gf

@@ -1,0 +1,82 @@
+#include "systems/output/dem_observers.hpp"
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+namespace gf {
+
+namespace {
+// Due at t >= next, up to round-off of the clock (t = k dt).
+bool due(double t, double next, double dt) { return t >= next - 1e-6 * dt; }
+}  // namespace
+
+SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
+  if (s_.csv)
+    csv_ = std::make_unique<SeriesCsv>(*s_.csv,
+                                       std::vector<std::string>{"time", "angle", "ke_translational", "ke_rotational",
+                                                                "contacts", "wall_contacts", "max_overlap_ratio",
+                                                                "segregation_index"});
+}
+
+void SeriesOutput::run(World& world) {
+  const double t = world.clock.t;
+  if (!due(t, next_, world.clock.dt)) return;
+  next_ = t + s_.interval;
+  const Grains& g = world.grains;
+  const Walls& walls = world.resources.get<Walls>();
+  SeriesRow& row = world.resources.get<SeriesRow>();
+  const Energies e = kinetic_energy(g);
+  const ContactStats cs = contact_stats(g, world.resources.get<NeighborList>(), walls);
+  row.time = t;
+  row.angle = 0;
+  for (std::size_t w = 0; w < walls.list.size(); ++w)
+    if (walls.list[w].omega != 0.0) {
+      row.angle = walls.angle(w, t);
+      break;
+    }
+  row.ke_translational = e.translational;
+  row.ke_rotational = e.rotational;
+  row.pair_contacts = cs.pair_contacts;
+  row.wall_contacts = cs.wall_contacts;
+  row.max_overlap_ratio = cs.max_overlap_ratio;
+  row.segregation_index =
+      s_.segregation_type >= 0 ? segregation_index(g, s_.segregation_type, s_.segregation_cell) : 0.0;
+  row.valid = true;
+  if (csv_) {
+    const std::array<double, 8> v{row.time,
+                                  row.angle,
+                                  row.ke_translational,
+                                  row.ke_rotational,
+                                  static_cast<double>(row.pair_contacts),
+                                  static_cast<double>(row.wall_contacts),
+                                  row.max_overlap_ratio,
+                                  row.segregation_index};
+    csv_->append(v);
+  }
+  char buf[256];
+  if (!cs.finite || !std::isfinite(e.translational) || !std::isfinite(e.rotational)) {
+    std::snprintf(buf, sizeof buf, "at t = %.6g s a position or velocity is not finite", t);
+    throw StabilityError(std::string(buf) +
+                         ": the run blew up. Fix: reduce run.dt (see the critical step from `grainflow check`)");
+  }
+  if (cs.max_overlap_ratio > s_.max_overlap) {
+    std::snprintf(buf, sizeof buf, "at t = %.6g s an overlap reached %.3g of the smaller diameter (limit %.3g)", t,
+                  cs.max_overlap_ratio, s_.max_overlap);
+    throw StabilityError(std::string(buf) +
+                         ". Fix: reduce run.dt, raise the stiffness kn, or raise run.max_overlap if such overlaps "
+                         "are intended");
+  }
+}
+
+FrameOutput::FrameOutput(std::filesystem::path dir, double interval, FrameFields fields)
+    : series_(std::move(dir)), interval_(interval), fields_(fields) {}
+
+void FrameOutput::run(World& world) {
+  const double t = world.clock.t;
+  if (!due(t, next_, world.clock.dt)) return;
+  next_ = t + interval_;
+  series_.write(world.grains, t, fields_);
+}
+
+}  // namespace gf

@@ -1,0 +1,63 @@
+#include "systems/output/series_csv.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <stdexcept>
+#include <system_error>
+
+namespace gf {
+
+SeriesCsv::SeriesCsv(std::filesystem::path file, std::vector<std::string> columns)
+    : file_(std::move(file)), columns_(std::move(columns)) {
+  if (columns_.empty())
+    throw std::invalid_argument("time series '" + file_.string() + "' needs at least one column");
+  for (const std::string& c : columns_)
+    if (c.empty() || c.find_first_of(",\"\r\n") != std::string::npos)
+      throw std::invalid_argument("time series '" + file_.string() + "': column name '" + c +
+                                  "' must be non-empty and contain no comma, quote or line break");
+
+  out_.reset(std::fopen(file_.c_str(), "w"));
+  if (!out_)
+    throw std::runtime_error("cannot open time series '" + file_.string() +
+                             "' for writing: " + std::system_category().message(errno));
+
+  std::string header;
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    if (i) header += ',';
+    header += columns_[i];
+  }
+  header += '\n';
+  put(header);
+}
+
+void SeriesCsv::append(std::span<const double> values) {
+  if (values.size() != columns_.size())
+    throw std::invalid_argument("time series '" + file_.string() + "': got " +
+                                std::to_string(values.size()) + " values for " +
+                                std::to_string(columns_.size()) + " columns");
+  line_.clear();
+  char buf[32];  // the longest shortest-round-trip double is 24 characters
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i) line_ += ',';
+    // Plain to_chars is the shortest text that parses back to the same double: exact, and
+    // shorter than %.17g. NaN and infinities come out as nan/inf, which strtod and numpy read.
+    const auto res = std::to_chars(buf, buf + sizeof buf, values[i]);
+    line_.append(buf, res.ptr);
+  }
+  line_ += '\n';
+  put(line_);
+}
+
+void SeriesCsv::put(const std::string& line) {
+  // Flush per line: stdio would otherwise hold up to a buffer's worth of rows that a killed
+  // run loses. Rows are one per sampling interval, so the syscall is noise.
+  errno = 0;
+  if (std::fwrite(line.data(), 1, line.size(), out_.get()) != line.size() ||
+      std::fflush(out_.get()) != 0) {
+    const int err = errno;
+    throw std::runtime_error("cannot write time series '" + file_.string() +
+                             "': " + (err ? std::system_category().message(err) : "write failed"));
+  }
+}
+
+}  // namespace gf

@@ -1,0 +1,41 @@
+// The run's time series: one CSV row per sample, flushed as it is written, so a run that is
+// killed keeps every row it produced and the file can be plotted while the run goes on.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace gf {
+
+class SeriesCsv {
+ public:
+  // Creates (truncating) `file` and writes the header line. Column names may not contain a
+  // comma, quote or line break, since they would need CSV quoting that plotting tools
+  // handle unevenly: std::invalid_argument. std::runtime_error naming the file if it
+  // cannot be opened or written.
+  SeriesCsv(std::filesystem::path file, std::vector<std::string> columns);
+
+  // Writes one row in the columns' order, in the shortest form that reads back as the same
+  // double, then flushes. std::invalid_argument if values.size() != columns().size().
+  void append(std::span<const double> values);
+
+  const std::vector<std::string>& columns() const { return columns_; }
+  const std::filesystem::path& path() const { return file_; }
+
+ private:
+  struct Closer {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+  };
+  void put(const std::string& line);
+
+  std::filesystem::path file_;
+  std::vector<std::string> columns_;
+  std::unique_ptr<std::FILE, Closer> out_;
+  std::string line_;  // reused, so a sample allocates nothing once warm
+};
+
+}  // namespace gf

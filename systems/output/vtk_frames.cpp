@@ -1,0 +1,204 @@
+#include "systems/output/vtk_frames.hpp"
+
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+
+#include "engine/atomic_file.hpp"
+
+namespace gf {
+namespace {
+
+// The data are written in the machine's own byte order and the header says which, so no
+// per-value swapping is needed and readers on either kind of machine convert if they must.
+constexpr const char* kByteOrder =
+    std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
+
+template <class T>
+constexpr const char* vtk_type();
+template <>
+constexpr const char* vtk_type<double>() { return "Float64"; }
+template <>
+constexpr const char* vtk_type<std::int64_t>() { return "Int64"; }
+template <>
+constexpr const char* vtk_type<std::int32_t>() { return "Int32"; }
+
+// Shortest text that reads back as the same double, so .pvd times are exact.
+std::string shortest(double v) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
+
+// Collects the appended binary block while emitting the matching DataArray elements. Each
+// array's block is a UInt64 byte count then the values; `offset` counts from the byte after
+// the '_' that opens the appended data.
+class AppendedArrays {
+ public:
+  // `get(i, c)` gives component c of tuple i.
+  template <class T, class Get>
+  void add(std::string& xml, std::string_view indent, std::string_view name, int components,
+           std::size_t tuples, Get&& get) {
+    xml += indent;
+    xml += "<DataArray type=\"";
+    xml += vtk_type<T>();
+    xml += "\" Name=\"";
+    xml += name;
+    xml += "\" NumberOfComponents=\"";
+    xml += std::to_string(components);
+    xml += "\" format=\"appended\" offset=\"";
+    xml += std::to_string(blob_.size());
+    xml += "\"/>\n";
+
+    const auto ncomp = static_cast<std::size_t>(components);
+    const std::uint64_t nbytes = tuples * ncomp * sizeof(T);
+    const std::size_t start = blob_.size();
+    // One resize and memcpy per value rather than string appends: frames of millions of
+    // grains are written during the run, and this loop is their whole cost.
+    blob_.resize(start + sizeof nbytes + nbytes);
+    char* p = blob_.data() + start;
+    std::memcpy(p, &nbytes, sizeof nbytes);
+    p += sizeof nbytes;
+    for (std::size_t i = 0; i < tuples; ++i)
+      for (std::size_t c = 0; c < ncomp; ++c) {
+        const T v = get(i, c);
+        std::memcpy(p, &v, sizeof v);
+        p += sizeof v;
+      }
+  }
+  const std::string& blob() const { return blob_; }
+
+ private:
+  std::string blob_;
+};
+
+}  // namespace
+
+std::string vtp_bytes(const Grains& g, const FrameFields& fields) {
+  const std::size_t n = g.n_owned;
+  AppendedArrays data;
+  std::string xml;
+  xml.reserve(2048);
+
+  xml += "<?xml version=\"1.0\"?>\n";
+  xml += "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"";
+  xml += kByteOrder;
+  xml += "\" header_type=\"UInt64\">\n";
+  xml += "  <PolyData>\n";
+  const std::string ns = std::to_string(n);
+  xml += "    <Piece NumberOfPoints=\"" + ns + "\" NumberOfVerts=\"" + ns +
+         "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
+
+  // Scalars/Vectors pick what ParaView colours by and feeds to Glyph when the file opens.
+  xml += "      <PointData Scalars=\"radius\"";
+  if (fields.velocity) xml += " Vectors=\"velocity\"";
+  xml += ">\n";
+  const std::string_view in = "        ";
+  data.add<std::int64_t>(xml, in, "id", 1, n, [&](std::size_t i, std::size_t) { return g.pid.id[i]; });
+  data.add<std::int32_t>(xml, in, "type", 1, n,
+                         [&](std::size_t i, std::size_t) { return g.species.type[i]; });
+  data.add<double>(xml, in, "radius", 1, n, [&](std::size_t i, std::size_t) { return g.radius.r[i]; });
+  // Diameter too, because ParaView's Glyph filter scales a unit sphere by diameter, not radius.
+  data.add<double>(xml, in, "diameter", 1, n,
+                   [&](std::size_t i, std::size_t) { return 2.0 * g.radius.r[i]; });
+  if (fields.velocity) {
+    const double* v[3] = {g.vel.x.data(), g.vel.y.data(), g.vel.z.data()};
+    data.add<double>(xml, in, "velocity", 3, n, [&](std::size_t i, std::size_t c) { return v[c][i]; });
+    data.add<double>(xml, in, "speed", 1, n, [&](std::size_t i, std::size_t) {
+      return std::sqrt(v[0][i] * v[0][i] + v[1][i] * v[1][i] + v[2][i] * v[2][i]);
+    });
+  }
+  if (fields.angular_velocity) {
+    const double* w[3] = {g.omega.x.data(), g.omega.y.data(), g.omega.z.data()};
+    data.add<double>(xml, in, "angular_velocity", 3, n,
+                     [&](std::size_t i, std::size_t c) { return w[c][i]; });
+  }
+  if (fields.force) {
+    const double* f[3] = {g.force.x.data(), g.force.y.data(), g.force.z.data()};
+    const double* fw[3] = {g.wall_force.x.data(), g.wall_force.y.data(), g.wall_force.z.data()};
+    data.add<double>(xml, in, "force", 3, n,
+                     [&](std::size_t i, std::size_t c) { return f[c][i] + fw[c][i]; });
+  }
+  xml += "      </PointData>\n";
+
+  xml += "      <Points>\n";
+  {
+    const double* p[3] = {g.pos.x.data(), g.pos.y.data(), g.pos.z.data()};
+    data.add<double>(xml, in, "Points", 3, n, [&](std::size_t i, std::size_t c) { return p[c][i]; });
+  }
+  xml += "      </Points>\n";
+
+  // One vertex cell per point: without cells ParaView loads the points but renders nothing
+  // until a filter is applied.
+  xml += "      <Verts>\n";
+  data.add<std::int64_t>(xml, in, "connectivity", 1, n,
+                         [](std::size_t i, std::size_t) { return static_cast<std::int64_t>(i); });
+  data.add<std::int64_t>(xml, in, "offsets", 1, n,
+                         [](std::size_t i, std::size_t) { return static_cast<std::int64_t>(i + 1); });
+  xml += "      </Verts>\n";
+
+  xml += "    </Piece>\n";
+  xml += "  </PolyData>\n";
+  xml += "  <AppendedData encoding=\"raw\">\n   _";
+  xml += data.blob();
+  xml += "\n  </AppendedData>\n";
+  xml += "</VTKFile>\n";
+  return xml;
+}
+
+FrameSeries::FrameSeries(std::filesystem::path out_dir) : dir_(std::move(out_dir)) {
+  ensure_directory(dir_ / "frames");
+}
+
+std::filesystem::path FrameSeries::write(const Grains& g, double time, const FrameFields& fields) {
+  // A NaN time would make the .pvd unreadable ("nan" is not a number to ParaView).
+  if (!std::isfinite(time))
+    throw std::invalid_argument("frame time must be finite, got " + shortest(time));
+
+  // Six digits sort correctly in file browsers up to a million frames; past that the name
+  // simply grows a digit and stays unique.
+  char name[40];
+  std::snprintf(name, sizeof name, "frame_%06zu.vtp", frames_.size());
+  const std::string rel = std::string("frames/") + name;
+  const std::filesystem::path path = dir_ / "frames" / name;
+
+  // Frame first, index second: the .pvd never names a frame that is not complete on disk.
+  write_file_atomic(path, vtp_bytes(g, fields));
+  frames_.push_back({time, rel});
+  try {
+    write_file_atomic(pvd_path(), pvd_bytes());
+  } catch (...) {
+    // Keep count() and the on-disk index in step, so a retry writes the same frame again.
+    frames_.pop_back();
+    throw;
+  }
+  return path;
+}
+
+std::string FrameSeries::pvd_bytes() const {
+  std::string s;
+  s.reserve(160 + frames_.size() * 80);
+  s += "<?xml version=\"1.0\"?>\n";
+  s += "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"";
+  s += kByteOrder;
+  s += "\" header_type=\"UInt64\">\n";
+  s += "  <Collection>\n";
+  for (const Entry& e : frames_) {
+    s += "    <DataSet timestep=\"";
+    s += shortest(e.time);
+    s += "\" group=\"\" part=\"0\" file=\"";
+    s += e.file;
+    s += "\"/>\n";
+  }
+  s += "  </Collection>\n";
+  s += "</VTKFile>\n";
+  return s;
+}
+
+}  // namespace gf

@@ -1,0 +1,437 @@
+#include "systems/setup/dem_scene.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "systems/analysis/metrics.hpp"
+#include "systems/broadphase/broadphase.hpp"
+#include "systems/contact/pair_contact.hpp"
+#include "systems/fill/random_fill.hpp"
+#include "systems/fill/state_csv.hpp"
+#include "systems/walls/wall_contact.hpp"
+
+namespace gf {
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(4);
+  os << v;
+  return os.str();
+}
+
+Vec3d to_v(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+Vec3d unit_vector(const SceneNode& node, std::string_view key, std::array<double, 3> fallback, bool required) {
+  const std::array<double, 3> a = required ? node.get_vec3(key) : node.get_vec3(key, fallback);
+  const double len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  if (!(len > 0.0)) node.fail(key, "a direction must not be the zero vector", "give a non-zero vector, e.g. [0, 0, 1]");
+  return {a[0] / len, a[1] / len, a[2] / len};
+}
+
+std::int32_t species_index(const DemScene& s, const SceneNode& node, std::string_view key, const std::string& name) {
+  for (std::size_t i = 0; i < s.species.size(); ++i)
+    if (s.species[i].name == name) return static_cast<std::int32_t>(i);
+  std::string names;
+  for (auto& sp : s.species) names += (names.empty() ? "'" : ", '") + sp.name + "'";
+  node.fail(key, "no species is named '" + name + "'", "use one of the [[species]] names: " + names);
+}
+
+ContactParams read_contact(const SceneNode& node, const ContactParams* base) {
+  ContactParams p;
+  auto num = [&](std::string_view key, double fallback_value, bool has_fallback, Range r) {
+    return has_fallback ? node.get_double(key, fallback_value, r) : node.get_double(key, r);
+  };
+  const bool b = base != nullptr;
+  p.kn = num("kn", b ? base->kn : 0, b, Range::positive());
+  p.kt = num("kt", b ? base->kt : 0, b, Range::non_negative());
+  p.en = num("en", b ? base->en : 0, b, Range::closed(0, 1));
+  p.et = num("et", b ? base->et : 0, b, Range::closed(0, 1));
+  p.friction = num("friction", b ? base->friction : 0, b, Range::non_negative());
+  p.kr = node.get_double("kr", b ? base->kr : 0.0, Range::non_negative());
+  p.er = node.get_double("er", b ? base->er : p.en, Range::closed(0, 1));
+  p.rolling_friction = node.get_double("rolling_friction", b ? base->rolling_friction : 0.0, Range::non_negative());
+  return p;
+}
+
+void read_walls(DemScene& s, const SceneNode& root) {
+  for (const SceneNode& w : root.tables("wall")) {
+    const std::string type = w.get_choice("type", {"plane", "box", "cylinder", "drum"});
+    const std::string name = w.get_string("name", type);
+    if (type == "plane") {
+      Wall p;
+      p.kind = Wall::Kind::Plane;
+      p.name = name;
+      p.point = to_v(w.get_vec3("point"));
+      p.normal = unit_vector(w, "normal", {0, 0, 1}, true);
+      p.omega = w.get_double("omega", 0.0, Range::any());
+      p.rot_point = to_v(w.get_vec3("rotation_point", {p.point.x, p.point.y, p.point.z}));
+      p.rot_axis = unit_vector(w, "rotation_axis", {p.normal.x, p.normal.y, p.normal.z}, false);
+      s.walls.push_back(p);
+    } else if (type == "box") {
+      const auto lo = w.get_vec3("lo");
+      const auto hi = w.get_vec3("hi");
+      for (int d = 0; d < 3; ++d)
+        if (!(hi[d] > lo[d])) w.fail("hi", "each component of hi must exceed lo's", "swap or correct lo and hi");
+      const char* faces[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
+      for (int f = 0; f < 6; ++f) {
+        Wall p;
+        p.kind = Wall::Kind::Plane;
+        p.name = name + faces[f];
+        const int d = f / 2;
+        const bool upper = f % 2 == 1;
+        std::array<double, 3> pt = upper ? hi : lo;
+        std::array<double, 3> nm{0, 0, 0};
+        nm[d] = upper ? -1.0 : 1.0;
+        p.point = to_v(pt);
+        p.normal = to_v(nm);
+        p.rot_point = p.point;
+        p.rot_axis = p.normal;
+        s.walls.push_back(p);
+      }
+    } else {
+      Wall c;
+      c.kind = Wall::Kind::CylinderInner;
+      c.name = name;
+      c.center = to_v(w.get_vec3("center"));
+      c.axis = unit_vector(w, "axis", {0, 0, 1}, true);
+      c.radius = w.get_double("radius", Range::positive());
+      c.omega = w.get_double("omega", 0.0, Range::any());
+      c.rot_point = c.center;
+      c.rot_axis = c.axis;
+      if (type == "drum") {
+        const double length = w.get_double("length", Range::positive());
+        s.walls.push_back(c);
+        for (int side = 0; side < 2; ++side) {
+          Wall e;
+          e.kind = Wall::Kind::Plane;
+          e.name = name + (side == 0 ? "-end-" : "-end+");
+          const double sgn = side == 0 ? -1.0 : 1.0;
+          e.point = c.center + (sgn * 0.5 * length) * c.axis;
+          e.normal = (-sgn) * c.axis;
+          e.omega = c.omega;
+          e.rot_point = c.center;
+          e.rot_axis = c.axis;
+          s.walls.push_back(e);
+        }
+      } else {
+        s.walls.push_back(c);
+      }
+    }
+  }
+  for (Wall& w : s.walls) {
+    w.cur_point = w.point;
+    w.cur_normal = w.normal;
+    w.cur_center = w.center;
+    w.cur_axis = w.axis;
+  }
+}
+
+Region read_region(const SceneNode& f, const Gravity& g) {
+  const SceneNode r = f.table("region");
+  const std::string shape = r.get_choice("shape", {"box", "cylinder"});
+  Region region;
+  if (shape == "box") {
+    region = Region::box(r.get_vec3("lo"), r.get_vec3("hi"));
+  } else {
+    const double glen = std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
+    const std::array<double, 3> up =
+        glen > 0 ? std::array<double, 3>{-g.x / glen, -g.y / glen, -g.z / glen} : std::array<double, 3>{0, 1, 0};
+    const Vec3d axis = unit_vector(r, "axis", {0, 0, 1}, true);
+    region = Region::cylinder(r.get_vec3("center"), {axis.x, axis.y, axis.z}, r.get_double("radius", Range::positive()),
+                              r.get_double("length", Range::positive()),
+                              r.get_double("max_height", std::numeric_limits<double>::infinity(), Range::any()), up);
+  }
+  if (const std::string why = region.problem(); !why.empty()) r.fail("shape", why, "correct the region's geometry");
+  return region;
+}
+
+void read_fills(DemScene& s, const SceneNode& root) {
+  const auto fills = root.tables("fill");
+  if (fills.empty())
+    root.fail("fill", "the scene places no grains",
+              "add a [[fill]] table: kind = \"random\" with a region and counts, or kind = \"file\" with a path");
+  int index = 0;
+  for (const SceneNode& f : fills) {
+    FillSpec spec;
+    spec.line = f.line();
+    spec.where = "fill[" + std::to_string(index) + "]";
+    const std::string kind = f.get_choice("kind", {"random", "file"});
+    if (kind == "random") {
+      spec.kind = FillSpec::Kind::Random;
+      spec.region = read_region(f, s.gravity);
+      spec.seed = static_cast<std::uint64_t>(f.get_int("seed", static_cast<std::int64_t>(s.seed) + index, 0,
+                                                       std::numeric_limits<std::int64_t>::max()));
+      const bool by_count = f.has("count");
+      const bool by_fraction = f.has("volume_fraction");
+      if (by_count == by_fraction)
+        f.fail("count", "give exactly one of 'count' and 'volume_fraction'",
+               "e.g. count = { small = 1000 } or volume_fraction = { small = 0.3 }");
+      const SceneNode m = f.table(by_count ? "count" : "volume_fraction");
+      for (const std::string& name : m.keys()) {
+        const std::int32_t sp = species_index(s, m, name, name);
+        std::size_t n;
+        if (by_count) {
+          n = static_cast<std::size_t>(m.get_int(name, 0, 100000000));
+        } else {
+          const double frac = m.get_double(name, Range::open_closed(0, 0.74));
+          n = count_for_volume_fraction(spec.region, frac, 0.5 * s.species[sp].diameter);
+        }
+        spec.counts.emplace_back(sp, n);
+      }
+    } else {
+      spec.kind = FillSpec::Kind::File;
+      spec.path = root.doc().resolve(f.get_string("path"));
+      const SceneNode m = f.table("types");
+      for (const std::string& key : m.keys()) {
+        char* end = nullptr;
+        const long t = std::strtol(key.c_str(), &end, 10);
+        if (end == key.c_str() || *end != '\0')
+          m.fail(key, "a key of 'types' must be the integer type used in the file",
+                 "write e.g. types = { 1 = \"small\", 2 = \"large\" }");
+        spec.type_map.emplace_back(static_cast<std::int32_t>(t), species_index(s, m, key, m.get_string(key)));
+      }
+      if (spec.type_map.empty()) f.fail("types", "no type mapping given", "map every type in the file to a species");
+    }
+    s.fills.push_back(std::move(spec));
+    ++index;
+  }
+}
+
+}  // namespace
+
+std::int64_t DemScene::main_steps() const { return static_cast<std::int64_t>(std::llround(duration / dt)); }
+std::int64_t DemScene::settle_steps() const { return static_cast<std::int64_t>(std::llround(settle_time / dt)); }
+
+DemScene load_dem_scene(const SceneDoc& doc) {
+  DemScene s;
+  s.file = doc.file();
+  const SceneNode root = doc.root();
+
+  const SceneNode run = root.table("run");
+  s.dt = run.get_double("dt", Range::positive());
+  s.dt_safety = run.get_double("dt_safety", 0.1, Range::open_closed(0, 1));
+  s.allow_unstable_dt = run.get_bool("allow_unstable_dt", false);
+  s.skin = run.get_double("skin", Range::positive());
+  s.seed = static_cast<std::uint64_t>(run.get_int("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+  s.max_overlap = run.get_double("max_overlap", 0.1, Range::open_closed(0, 1));
+  const auto g = run.get_vec3("gravity", {0, -9.81, 0});
+  s.gravity = {g[0], g[1], g[2]};
+
+  for (const SceneNode& sp : root.tables("species")) {
+    SpeciesSpec spec;
+    spec.name = sp.get_string("name");
+    for (auto& other : s.species)
+      if (other.name == spec.name) sp.fail("name", "species '" + spec.name + "' is defined twice", "rename one");
+    spec.diameter = sp.get_double("diameter", Range::positive());
+    spec.density = sp.get_double("density", Range::positive());
+    const double r = 0.5 * spec.diameter;
+    spec.mass = spec.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    spec.inertia = 0.4 * spec.mass * r * r;
+    s.species.push_back(spec);
+  }
+  if (s.species.empty())
+    root.fail("species", "the scene defines no species",
+              "add [[species]] with name, diameter (m) and density (kg/m^3)");
+  if (s.species.size() > 64) root.fail("species", "more than 64 species", "merge species");
+
+  // Contacts: [contact] for every pair; [contact.wall] and [[contact.pair]] override single keys.
+  const SceneNode ct = root.table("contact");
+  ct.get_choice("model", {"linear_spring_dashpot"});
+  const ContactParams base = read_contact(ct, nullptr);
+  const std::size_t n = s.species.size();
+  std::vector<ContactParams> pp(n * n, base);
+  std::vector<ContactParams> pw(n, base);
+  if (auto w = ct.maybe_table("wall")) {
+    const ContactParams wall = read_contact(*w, &base);
+    std::fill(pw.begin(), pw.end(), wall);
+  }
+  for (const SceneNode& pr : ct.tables("pair")) {
+    const std::string a = pr.get_string("species_a"), b = pr.get_string("species_b");
+    const std::int32_t ia = species_index(s, pr, "species_a", a), ib = species_index(s, pr, "species_b", b);
+    const ContactParams p = read_contact(pr, &base);
+    pp[ia * n + ib] = p;
+    pp[ib * n + ia] = p;
+  }
+  std::vector<SpeciesMass> masses;
+  std::vector<std::string> names;
+  for (auto& sp : s.species) {
+    masses.push_back({sp.mass, sp.inertia});
+    names.push_back(sp.name);
+  }
+  s.contacts = std::make_shared<ContactTable>(masses, pp, pw, names);
+  s.critical = s.contacts->critical_period();
+
+  const double limit = s.dt_safety * s.critical.period;
+  if (s.dt > limit && !s.allow_unstable_dt)
+    run.fail("dt",
+             "time step " + fmt(s.dt) + " s exceeds " + fmt(s.dt_safety) + " of the smallest collision period " +
+                 fmt(s.critical.period) + " s (" + s.critical.term + "): the limit is " + fmt(limit) + " s",
+             "set dt <= " + fmt(limit) + ", or stiffen less, or set allow_unstable_dt = true to run anyway");
+
+  read_walls(s, root);
+
+  if (auto settle = root.maybe_table("settle")) s.settle_time = settle->get_double("time", Range::non_negative());
+  read_fills(s, root);
+
+  const bool has_duration = run.has("duration"), has_angle = run.has("end_angle");
+  if (has_duration == has_angle)
+    run.fail("duration", "give exactly one of 'duration' (s) and 'end_angle' (rad of drum rotation)",
+             "e.g. duration = 2.0 or end_angle = 30.0");
+  if (has_duration) {
+    s.duration = run.get_double("duration", Range::non_negative());
+  } else {
+    s.end_angle = run.get_double("end_angle", Range::non_negative());
+    double omega = 0.0;
+    for (const Wall& w : s.walls)
+      if (w.omega != 0.0) {
+        omega = std::abs(w.omega);
+        break;
+      }
+    if (omega == 0.0)
+      run.fail("end_angle", "no wall rotates, so a rotation angle does not define a duration",
+               "give duration (s) instead, or a wall with omega != 0");
+    s.duration = *s.end_angle / omega;
+  }
+
+  if (auto out = root.maybe_table("output")) {
+    s.output.series_interval = out->get_double("series_interval", 0.0, Range::non_negative());
+    s.output.frame_interval = out->get_double("frame_interval", 0.0, Range::non_negative());
+    s.output.fields.velocity = out->get_bool("frame_velocity", true);
+    s.output.fields.angular_velocity = out->get_bool("frame_angular_velocity", true);
+    s.output.fields.force = out->get_bool("frame_force", false);
+    if (s.output.series_interval > 0 && s.output.series_interval < s.dt)
+      out->fail("series_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no series");
+    if (s.output.frame_interval > 0 && s.output.frame_interval < s.dt)
+      out->fail("frame_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no frames");
+  }
+
+  // A binary mixture reports the segregation of its larger species.
+  if (s.species.size() == 2) {
+    s.segregation_type = s.species[0].diameter >= s.species[1].diameter ? 0 : 1;
+    s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
+  }
+  doc.check_all_used();
+  return s;
+}
+
+void schedule_dem_step(Schedule& step) {
+  step.emplace<IntegratePositions>();
+  step.emplace<Broadphase>();
+  step.emplace<PairContact>();
+  step.emplace<WallContact>();
+  step.emplace<IntegrateVelocities>();
+}
+
+std::size_t planned_grain_count(const DemScene& scene) {
+  std::size_t n = 0;
+  for (const FillSpec& f : scene.fills) {
+    if (f.kind == FillSpec::Kind::Random)
+      for (auto& [sp, c] : f.counts) n += c;
+  }
+  return n;
+}
+
+std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n) {
+  // Core columns: 25 doubles + type + id; walls: 6 doubles each; pairs: about 7 candidates per
+  // grain in a dense pack, each with i, j, key, 6 history and 9 force doubles, plus incidence.
+  const std::size_t per_grain = 25 * 8 + 4 + 8 + 6 * 8 * scene.walls.size() + 3 * 8 /*skin reference*/;
+  const std::size_t per_pair = 4 + 4 + 8 + 6 * 8 + 9 * 8 + 4;
+  return n * (per_grain + 7 * per_pair);
+}
+
+namespace {
+
+[[noreturn]] void fill_error(const DemScene& s, const FillSpec& f, const std::string& what) {
+  throw SceneError(s.file.string() + ":" + std::to_string(f.line) + ": " + f.where + ": " + what);
+}
+
+}  // namespace
+
+void build_dem_world(const DemScene& s, World& world) {
+  Grains& g = world.grains;
+  std::vector<PlacedGrain> placed;
+  for (const FillSpec& f : s.fills) {
+    if (f.kind == FillSpec::Kind::Random) {
+      std::vector<FillSpecies> req;
+      for (auto& [sp, c] : f.counts) req.push_back({sp, 0.5 * s.species[sp].diameter, c});
+      std::vector<PlacedGrain> added;
+      try {
+        added = place_random(f.region, req, f.seed, placed);
+      } catch (const FillError& e) {
+        fill_error(s, f, e.what());
+      }
+      // Grains must start clear of every wall; a region reaching through a wall is a scene error.
+      for (const PlacedGrain& p : added) {
+        for (const Wall& w : s.walls) {
+          Vec3d n;
+          if (wall_gap(w, to_v(p.x), n) < p.radius)
+            fill_error(s, f,
+                       "the region reaches through wall '" + w.name + "' (a grain at (" + fmt(p.x[0]) + ", " +
+                           fmt(p.x[1]) + ", " + fmt(p.x[2]) + ") m overlaps it). Fix: shrink the region to lie "
+                           "inside the walls by at least the largest radius");
+        }
+      }
+      placed.insert(placed.end(), added.begin(), added.end());
+    } else {
+      std::vector<StateRow> rows;
+      try {
+        rows = read_state_csv(f.path);
+      } catch (const StateCsvError& e) {
+        fill_error(s, f, e.what());
+      }
+      for (const StateRow& r : rows) {
+        std::int32_t sp = -1;
+        for (auto& [t, idx] : f.type_map)
+          if (t == r.type) sp = idx;
+        if (sp < 0)
+          fill_error(s, f,
+                     f.path.string() + ":" + std::to_string(r.line) + ": type " + std::to_string(r.type) +
+                         " is not mapped to a species. Fix: add it to the fill's 'types' table");
+        const double d = s.species[sp].diameter;
+        if (std::abs(r.diameter - d) > 1e-9 * d)
+          fill_error(s, f,
+                     f.path.string() + ":" + std::to_string(r.line) + ": diameter " + fmt(r.diameter) +
+                         " m does not match species '" + s.species[sp].name + "' (" + fmt(d) +
+                         " m). Fix: map the type to a species of that diameter");
+        placed.push_back({r.x, sp, 0.5 * r.diameter});
+      }
+    }
+  }
+
+  const std::size_t n = placed.size();
+  g.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const PlacedGrain& p = placed[i];
+    const SpeciesSpec& sp = s.species[p.type];
+    g.pos.x[i] = p.x[0];
+    g.pos.y[i] = p.x[1];
+    g.pos.z[i] = p.x[2];
+    g.radius.r[i] = p.radius;
+    g.mass.m[i] = sp.mass;
+    g.mass.inv_m[i] = 1.0 / sp.mass;
+    g.mass.inv_inertia[i] = 1.0 / sp.inertia;
+    g.species.type[i] = p.type;
+    g.pid.id[i] = static_cast<std::int64_t>(i);
+  }
+  WallHistory& wh = g.extras.attach<WallHistory>(n);
+  wh.cols.resize(6 * s.walls.size());
+  for (auto& c : wh.cols) c.resize(n);
+
+  world.clock = Clock{0.0, s.dt, 0};
+  world.resources.emplace<Gravity>(s.gravity);
+  world.resources.emplace<StepMode>();
+  world.resources.emplace<ContactTable>(*s.contacts);
+  Walls& walls = world.resources.emplace<Walls>();
+  walls.list = s.walls;
+  BroadphaseState& bp = world.resources.emplace<BroadphaseState>();
+  bp.skin = s.skin;
+  world.resources.emplace<NeighborList>();
+  world.resources.emplace<PairHistory>();
+  world.resources.emplace<PairForces>();
+}
+
+}  // namespace gf

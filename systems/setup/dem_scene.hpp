@@ -1,0 +1,89 @@
+// A dry soft-sphere DEM scene: the validated model read from a scene file, and the world and
+// schedules built from it. Only the systems the scene needs are scheduled.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/scene.hpp"
+#include "engine/schedule.hpp"
+#include "engine/world.hpp"
+#include "systems/contact/contact_params.hpp"
+#include "systems/fill/region.hpp"
+#include "systems/integrate/integrate.hpp"
+#include "systems/output/vtk_frames.hpp"
+#include "systems/walls/walls.hpp"
+
+namespace gf {
+
+struct SpeciesSpec {
+  std::string name;
+  double diameter = 0;  // m
+  double density = 0;   // kg/m^3
+  double mass = 0;      // kg
+  double inertia = 0;   // kg m^2 (solid sphere)
+};
+
+struct FillSpec {
+  enum class Kind { Random, File } kind = Kind::Random;
+  int line = 0;
+  std::string where;  // "fill[0]" for messages
+  // random
+  Region region;
+  std::vector<std::pair<std::int32_t, std::size_t>> counts;  // species index, count
+  std::uint64_t seed = 0;
+  // file
+  std::filesystem::path path;
+  std::vector<std::pair<std::int32_t, std::int32_t>> type_map;  // csv type -> species index
+};
+
+struct OutputSpec {
+  double series_interval = 0;  // s, 0 = no series
+  double frame_interval = 0;   // s, 0 = no frames
+  FrameFields fields;
+};
+
+struct DemScene {
+  std::filesystem::path file;
+  double dt = 0;              // s
+  double dt_safety = 0.1;     // dt <= dt_safety * smallest collision period
+  bool allow_unstable_dt = false;
+  double duration = 0;        // s of the main stage
+  std::optional<double> end_angle;  // rad, when the duration was given as a rotation angle
+  double skin = 0;            // m
+  std::uint64_t seed = 1;
+  double max_overlap = 0.1;   // stop when an overlap exceeds this fraction of the smaller diameter
+  double settle_time = 0;     // s of settling before the main stage, rotation off
+  Gravity gravity;
+  std::vector<SpeciesSpec> species;
+  std::shared_ptr<ContactTable> contacts;
+  CriticalStep critical;
+  std::vector<Wall> walls;
+  std::vector<FillSpec> fills;
+  OutputSpec output;
+  int segregation_type = -1;  // the larger species of a binary mixture, else -1
+  double segregation_cell = 0;  // m
+
+  std::int64_t main_steps() const;
+  std::int64_t settle_steps() const;
+};
+
+// Reads and validates everything; throws SceneError naming file, line, key and fix.
+DemScene load_dem_scene(const SceneDoc& doc);
+
+// The DEM systems of one step in phase order, and the observers (outputs, monitors).
+void schedule_dem_step(Schedule& step);
+
+// Creates the grains of every fill (random placement, state files) and the resources.
+// Random fills that cannot be placed, or a state file that does not match the scene, are errors
+// naming the scene file and the fill.
+void build_dem_world(const DemScene& scene, World& world);
+
+// Estimated bytes for n grains (columns, neighbour list and history at a typical coordination).
+std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n);
+std::size_t planned_grain_count(const DemScene& scene);
+
+}  // namespace gf
