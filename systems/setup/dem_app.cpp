@@ -12,7 +12,7 @@
 #include "systems/fill/state_csv.hpp"
 #include "systems/output/dem_observers.hpp"
 #include "systems/output/summary_json.hpp"
-#include "systems/setup/dem_scene.hpp"
+#include "systems/setup/dem_simulation.hpp"
 
 namespace gf {
 
@@ -79,17 +79,12 @@ int run_command(const CliOptions& opt) {
   const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
   ensure_directory(out);
 
-  World world;
-  build_dem_world(s, world);
+  DemSimulation sim(s);
+  World& world = sim.world();
+  Schedule& step = sim.step();
   const std::size_t n = world.grains.n_owned;
   std::fprintf(stderr, "grainflow: %s: %zu grains, dt = %.3g s (%.3f of the critical period), %zu threads -> %s\n",
                s.file.string().c_str(), n, s.dt, s.dt / s.critical.period, threads_in_use(), out.string().c_str());
-
-  Schedule step;
-  schedule_dem_step(step);
-  step.build(world);
-  Walls& walls = world.resources.get<Walls>();
-  StepMode& mode = world.resources.get<StepMode>();
 
   nlohmann::json summary;
   summary["scene"] = s.file.string();
@@ -102,24 +97,7 @@ int run_command(const CliOptions& opt) {
   summary["status"] = "running";
   write_summary_json(out / "summary.json", summary);
 
-  // Forces of the initial state, so the first half-kick is exact.
-  mode.prime = true;
-  step.run_step();
-  mode.prime = false;
-
-  StageOptions so;
-  so.progress_seconds = opt.quiet ? 0.0 : 2.0;
-  StageReport settle;
-  if (s.settle_steps() > 0) {
-    walls.rotation_enabled = false;
-    so.label = "settle";
-    so.steps = s.settle_steps();
-    settle = run_stage(world, step, so);
-    walls.rotation_enabled = true;
-    world.clock.t = 0.0;
-    world.clock.step = 0;
-  }
-  const double settle_seconds = step.timings().empty() ? 0.0 : settle.wall_seconds;
+  const StageReport settle = sim.settle(opt.quiet ? 0.0 : 2.0);
   step.reset_timings();
 
   Schedule observe;
@@ -135,6 +113,8 @@ int run_command(const CliOptions& opt) {
   if (s.output.frame_interval > 0) frames = &observe.emplace<FrameOutput>(out, s.output.frame_interval, s.output.fields);
   observe.build(world);
 
+  StageOptions so;
+  so.progress_seconds = opt.quiet ? 0.0 : 2.0;
   so.label = "run";
   so.steps = opt.steps ? *opt.steps : s.main_steps();
   so.observe = &observe;
@@ -158,7 +138,7 @@ int run_command(const CliOptions& opt) {
   const auto& row = world.resources.get<SeriesRow>();
   summary["status"] = status;
   if (!failure.empty()) summary["failure"] = failure;
-  summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle_seconds}};
+  summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle.wall_seconds}};
   summary["steps"] = main.steps;
   summary["simulated_time"] = world.clock.t;
   summary["wall_seconds"] = main.wall_seconds;

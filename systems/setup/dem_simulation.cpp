@@ -1,0 +1,53 @@
+#include "systems/setup/dem_simulation.hpp"
+
+namespace gf {
+
+DemSimulation::DemSimulation(DemScene scene)
+    : scene_(std::move(scene)), world_(std::make_unique<World>()), step_(std::make_unique<Schedule>()) {
+  build_dem_world(scene_, *world_);
+  schedule_dem_step(*step_);
+  step_->build(*world_);
+}
+
+DemSimulation DemSimulation::from_file(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return DemSimulation(load_dem_scene(SceneDoc::load(file, overrides)));
+}
+
+DemSimulation DemSimulation::from_text(std::string_view toml, const std::vector<std::string>& overrides) {
+  return DemSimulation(load_dem_scene(SceneDoc::parse(toml, "scene.toml", overrides)));
+}
+
+void DemSimulation::prime() {
+  StepMode& mode = world_->resources.get<StepMode>();
+  mode.prime = true;
+  step_->run_step();
+  mode.prime = false;
+  primed_ = true;
+}
+
+StageReport DemSimulation::settle(double progress_seconds) {
+  if (!primed_) prime();
+  StageReport rep;
+  if (scene_.settle_steps() <= 0) return rep;
+  Walls& walls = world_->resources.get<Walls>();
+  walls.rotation_enabled = false;
+  StageOptions so;
+  so.label = "settle";
+  so.steps = scene_.settle_steps();
+  so.progress_seconds = progress_seconds;
+  rep = run_stage(*world_, *step_, so);
+  walls.rotation_enabled = true;
+  world_->clock.t = 0.0;
+  world_->clock.step = 0;
+  return rep;
+}
+
+void DemSimulation::advance(std::int64_t n) {
+  if (!primed_) prime();
+  StageOptions so;
+  so.steps = n;
+  so.progress_seconds = 0.0;
+  run_stage(*world_, *step_, so);
+}
+
+}  // namespace gf
