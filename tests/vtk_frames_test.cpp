@@ -219,7 +219,7 @@ TEST_CASE("vtp frame round-trips positions, ids and fields bit-exactly", "[outpu
   CHECK(v.arrays.at("type").type == "Int32");
   const auto types = values<std::int32_t>(v.arrays.at("type"));
   REQUIRE(types.size() == 5);
-  for (std::size_t i = 0; i < 5; ++i) CHECK(types[i] == g.species.type[i]);
+  for (std::size_t i = 0; i < 5; ++i) CHECK(types[i] == g.species.type[i] + 1);  // written from 1, in scene order
 
   check_bits(values<double>(v.arrays.at("radius")), radius);
   check_bits(values<double>(v.arrays.at("diameter")), diameter);

@@ -9,6 +9,11 @@ namespace gf {
 namespace {
 // Due at t >= next, up to round-off of the clock (t = k dt).
 bool due(double t, double next, double dt) { return t >= next - 1e-6 * dt; }
+// Sampling times stay on the grid k * interval even when the interval is not a multiple of dt.
+double next_sample(double t, double next, double interval, double dt) {
+  while (due(t, next, dt)) next += interval;
+  return next;
+}
 }  // namespace
 
 SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
@@ -22,7 +27,7 @@ SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
 void SeriesOutput::run(World& world) {
   const double t = world.clock.t;
   if (!due(t, next_, world.clock.dt)) return;
-  next_ = t + s_.interval;
+  next_ = next_sample(t, next_, s_.interval, world.clock.dt);
   const Grains& g = world.grains;
   const Walls& walls = world.resources.get<Walls>();
   SeriesRow& row = world.resources.get<SeriesRow>();
@@ -75,7 +80,7 @@ FrameOutput::FrameOutput(std::filesystem::path dir, double interval, FrameFields
 void FrameOutput::run(World& world) {
   const double t = world.clock.t;
   if (!due(t, next_, world.clock.dt)) return;
-  next_ = t + interval_;
+  next_ = next_sample(t, next_, interval_, world.clock.dt);
   series_.write(world.grains, t, fields_);
 }
 

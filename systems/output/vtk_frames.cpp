@@ -102,7 +102,7 @@ std::string vtp_bytes(const Grains& g, const FrameFields& fields) {
   const std::string_view in = "        ";
   data.add<std::int64_t>(xml, in, "id", 1, n, [&](std::size_t i, std::size_t) { return g.pid.id[i]; });
   data.add<std::int32_t>(xml, in, "type", 1, n,
-                         [&](std::size_t i, std::size_t) { return g.species.type[i]; });
+                         [&](std::size_t i, std::size_t) { return g.species.type[i] + 1; });
   data.add<double>(xml, in, "radius", 1, n, [&](std::size_t i, std::size_t) { return g.radius.r[i]; });
   // Diameter too, because ParaView's Glyph filter scales a unit sphere by diameter, not radius.
   data.add<double>(xml, in, "diameter", 1, n,

@@ -11,7 +11,8 @@
 
 namespace gf {
 
-// Optional per-point arrays. Position, id, type, radius and diameter are always written.
+// Optional per-point arrays. Position, id, type (species in scene order, from 1), radius and
+// diameter are always written.
 struct FrameFields {
   bool velocity = true;          // "velocity" (3) and "speed"
   bool angular_velocity = true;  // "angular_velocity" (3)

@@ -35,7 +35,7 @@ nlohmann::json timings_json(const Schedule& sched, double total) {
 void write_final_state(const std::filesystem::path& file, const Grains& g, const DemScene& s) {
   std::vector<StateRow> rows(g.n_owned);
   for (std::size_t i = 0; i < g.n_owned; ++i)
-    rows[i] = {g.pid.id[i], g.species.type[i], s.species[g.species.type[i]].diameter,
+    rows[i] = {g.pid.id[i], g.species.type[i] + 1, s.species[g.species.type[i]].diameter,
                {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, 0};
   std::sort(rows.begin(), rows.end(), [](const StateRow& a, const StateRow& b) { return a.id < b.id; });
   write_state_csv(file, rows);
