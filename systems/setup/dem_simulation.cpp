@@ -1,5 +1,10 @@
 #include "systems/setup/dem_simulation.hpp"
 
+#include <algorithm>
+
+#include "systems/broadphase/neighbor_list.hpp"
+#include "systems/walls/walls.hpp"
+
 namespace gf {
 
 DemSimulation::DemSimulation(DemScene scene)
@@ -23,6 +28,10 @@ void DemSimulation::prime() {
   step_->run_step();
   mode.prime = false;
   primed_ = true;
+  // The law advanced every spring by v_t dt while evaluating; no time has passed, and the springs
+  // of a new state start from zero, so that increment is undone.
+  for_each_column(world_->resources.get<PairHistory>(), [](ColumnD& c) { std::fill(c.begin(), c.end(), 0.0); });
+  for_each_column(world_->grains.extras.get<WallHistory>(), [](ColumnD& c) { std::fill(c.begin(), c.end(), 0.0); });
 }
 
 StageReport DemSimulation::settle(double progress_seconds) {
