@@ -28,6 +28,17 @@ void SeriesOutput::run(World& world) {
   const double t = world.clock.t;
   if (!due(t, next_, world.clock.dt)) return;
   next_ = next_sample(t, next_, s_.interval, world.clock.dt);
+  sample(world);
+}
+
+void SeriesOutput::finish(World& world) {
+  const SeriesRow& row = world.resources.get<SeriesRow>();
+  if (row.valid && row.time == world.clock.t) return;
+  sample(world);
+}
+
+void SeriesOutput::sample(World& world) {
+  const double t = world.clock.t;
   const Grains& g = world.grains;
   const Walls& walls = world.resources.get<Walls>();
   SeriesRow& row = world.resources.get<SeriesRow>();
@@ -82,6 +93,13 @@ void FrameOutput::run(World& world) {
   if (!due(t, next_, world.clock.dt)) return;
   next_ = next_sample(t, next_, interval_, world.clock.dt);
   series_.write(world.grains, t, fields_);
+  last_written_ = t;
+}
+
+void FrameOutput::finish(World& world) {
+  if (world.clock.t == last_written_) return;
+  series_.write(world.grains, world.clock.t, fields_);
+  last_written_ = world.clock.t;
 }
 
 }  // namespace gf

@@ -44,8 +44,11 @@ class SeriesOutput : public SystemBase<SeriesOutput> {
   explicit SeriesOutput(SeriesSettings s);
   std::string_view name() const override { return "series_output"; }
   void run(World& world) override;
+  // Samples the last state too (summary.json reports it) unless the latest row already is it.
+  void finish(World& world);
 
  private:
+  void sample(World& world);
   SeriesSettings s_;
   std::unique_ptr<SeriesCsv> csv_;
   double next_ = 0;
@@ -58,6 +61,8 @@ class FrameOutput : public SystemBase<FrameOutput> {
   FrameOutput(std::filesystem::path dir, double interval, FrameFields fields);
   std::string_view name() const override { return "frame_output"; }
   void run(World& world) override;
+  // Writes the last state as a frame unless the latest frame already shows it.
+  void finish(World& world);
   std::size_t frames() const { return series_.count(); }
 
  private:
@@ -65,6 +70,7 @@ class FrameOutput : public SystemBase<FrameOutput> {
   double interval_;
   FrameFields fields_;
   double next_ = 0;
+  double last_written_ = -1;
 };
 
 }  // namespace gf

@@ -108,7 +108,7 @@ int run_command(const CliOptions& opt) {
   ss.segregation_type = s.segregation_type;
   ss.segregation_cell = s.segregation_cell;
   ss.max_overlap = s.max_overlap;
-  observe.emplace<SeriesOutput>(ss);
+  SeriesOutput& series = observe.emplace<SeriesOutput>(ss);
   FrameOutput* frames = nullptr;
   if (s.output.frame_interval > 0) frames = &observe.emplace<FrameOutput>(out, s.output.frame_interval, s.output.fields);
   observe.build(world);
@@ -134,6 +134,16 @@ int run_command(const CliOptions& opt) {
     rc = 3;
   }
 
+  if (status != "failed") {
+    try {
+      series.finish(world);
+      if (frames) frames->finish(world);
+    } catch (const std::exception& e) {
+      status = "failed";
+      failure = e.what();
+      rc = 3;
+    }
+  }
   const double psps = main.wall_seconds > 0 ? static_cast<double>(main.steps) * n / main.wall_seconds : 0.0;
   const auto& row = world.resources.get<SeriesRow>();
   summary["status"] = status;
