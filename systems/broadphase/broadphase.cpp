@@ -37,15 +37,22 @@ struct OldHistory {
   std::array<std::vector<double>, 6> values;
 };
 
-OldHistory collect_active(const NeighborList& list, PairHistory& h) {
+// The pair law keeps the springs as seen from the owner row i (they change sign with i and j), and
+// the owner is the lower row, which re-sorting may make the other particle. So history is carried
+// over oriented from the lower id to the higher one, and turned to the new owner's view when placed.
+double owner_sign(std::int64_t owner_id, std::int64_t partner_id) { return owner_id < partner_id ? 1.0 : -1.0; }
+
+OldHistory collect_active(const Grains& g, const NeighborList& list, PairHistory& h) {
   OldHistory old;
   const std::size_t np = list.pairs();
   for (std::size_t k = 0; k < np; ++k) {
     if (h.sx[k] != 0.0 || h.sy[k] != 0.0 || h.sz[k] != 0.0 || h.rx[k] != 0.0 || h.ry[k] != 0.0 || h.rz[k] != 0.0) {
       const auto slot = static_cast<std::uint32_t>(old.index.size());
       old.index.emplace_back(list.key[k], slot);
+      // Rows are still in the order this list was built for, so i and j name the old owner and partner.
+      const double sign = owner_sign(g.pid.id[list.i[k]], g.pid.id[list.j[k]]);
       std::size_t c = 0;
-      for_each_column(h, [&](ColumnD& col) { old.values[c++].push_back(col[k]); });
+      for_each_column(h, [&](ColumnD& col) { old.values[c++].push_back(sign * col[k]); });
     }
   }
   tbb::parallel_sort(old.index.begin(), old.index.end());
@@ -55,7 +62,7 @@ OldHistory collect_active(const NeighborList& list, PairHistory& h) {
 }  // namespace
 
 void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHistory& history) {
-  OldHistory old = collect_active(list, history);
+  OldHistory old = collect_active(g, list, history);
   const std::size_t n = g.n;
 
   double rmax = 0.0;
@@ -138,12 +145,13 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
         auto it = std::lower_bound(old.index.begin(), old.index.end(), std::make_pair(key, std::uint32_t(0)));
         if (it != old.index.end() && it->first == key) {
           const std::uint32_t slot = it->second;
-          history.sx[k] = old.values[0][slot];
-          history.sy[k] = old.values[1][slot];
-          history.sz[k] = old.values[2][slot];
-          history.rx[k] = old.values[3][slot];
-          history.ry[k] = old.values[4][slot];
-          history.rz[k] = old.values[5][slot];
+          const double sign = owner_sign(idi, g.pid.id[j]);
+          history.sx[k] = sign * old.values[0][slot];
+          history.sy[k] = sign * old.values[1][slot];
+          history.sz[k] = sign * old.values[2][slot];
+          history.rx[k] = sign * old.values[3][slot];
+          history.ry[k] = sign * old.values[4][slot];
+          history.rz[k] = sign * old.values[5][slot];
         }
         ++k;
       });
