@@ -1,0 +1,581 @@
+// DEM scenes: every bad scene stops before anything runs with a message naming the file, the line
+// and the key (or the fill); the critical-step check and its override; and the command line end to
+// end on a tiny scene: outputs of `run`, the report of `check`, exit codes, and a run stopped by
+// SIGTERM that keeps every result it wrote.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/scene.hpp"
+#include "systems/setup/dem_scene.hpp"
+#include "systems/setup/dem_simulation.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Contains;
+
+namespace {
+
+// 50 glass spheres of 2 mm in a 10 x 20 x 10 mm box. SI units. The smallest collision period is the
+// tangential glass-glass term, 3.36e-4 s, so dt = 1e-5 s is 0.03 of it.
+const std::string kScene = R"(# tiny test scene (SI units)
+[run]
+dt = 1.0e-5
+duration = 0.01
+skin = 1.0e-4
+gravity = [0.0, -9.81, 0.0]
+
+[[species]]
+name = "glass"
+diameter = 2.0e-3
+density = 2500.0
+
+[contact]
+model = "linear_spring_dashpot"
+kn = 1000.0
+kt = 600.0
+en = 0.3
+et = 0.3
+friction = 0.3
+
+[[wall]]
+type = "box"
+lo = [0.0, 0.0, 0.0]
+hi = [0.01, 0.02, 0.01]
+
+[[fill]]
+kind = "random"
+region = { shape = "box", lo = [0.001, 0.001, 0.001], hi = [0.009, 0.019, 0.009] }
+count = { glass = 50 }
+
+[output]
+series_interval = 1.0e-4
+frame_interval = 5.0e-4
+)";
+
+struct TempDir {
+  fs::path path;
+  explicit TempDir(const std::string& stem) {
+    static int serial = 0;
+    const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();
+    path = fs::temp_directory_path() / ("grainflow_" + stem + "_" + std::to_string(::getpid()) + "_" +
+                                        std::to_string(tick) + "_" + std::to_string(++serial));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+};
+
+// `text` with the first `from` replaced by `to`; the test fails if `from` is absent.
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+// 1-based line of the first occurrence of `needle`.
+int line_of(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  REQUIRE(at != std::string::npos);
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+}
+
+fs::path write(const fs::path& dir, const std::string& name, const std::string& text) {
+  const fs::path p = dir / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// "<file>:<line>:" as the messages start.
+std::string at(const fs::path& file, int line) { return file.string() + ":" + std::to_string(line) + ":"; }
+
+// The SceneError message of loading (and, with build = true, building the world of) a scene file;
+// "" if it loads. Any other exception escapes and fails the test.
+std::string scene_error(const fs::path& file, const std::vector<std::string>& overrides = {}, bool build = false) {
+  try {
+    gf::DemScene s = gf::load_dem_scene(gf::SceneDoc::load(file, overrides));
+    if (build) gf::DemSimulation sim(std::move(s));
+  } catch (const gf::SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The collision periods of the test scene, from the closed form T = 2 sqrt(pi^2 + ln^2 e) sqrt(m/k),
+// computed here independently of the contact table. Returns the smallest.
+double expected_critical_period() {
+  const double pi = std::numbers::pi;
+  const double r = 1.0e-3, m = 2500.0 * 4.0 / 3.0 * pi * r * r * r;
+  const double root = std::sqrt(pi * pi + std::log(0.3) * std::log(0.3));
+  auto period = [&](double meff, double k) { return 2.0 * root * std::sqrt(meff / k); };
+  const double pair_normal = period(m / 2, 1000.0), pair_tangential = period(2.0 / 7.0 * m / 2, 600.0);
+  const double wall_normal = period(m, 1000.0), wall_tangential = period(2.0 / 7.0 * m, 600.0);
+  // The tangential pair term must be the smallest, or the message would name another term.
+  REQUIRE(pair_tangential < std::min({pair_normal, wall_normal, wall_tangential}));
+  return pair_tangential;
+}
+
+// The number after `prefix` in `text`, or NaN.
+double number_after(const std::string& text, const std::string& prefix) {
+  const auto at = text.find(prefix);
+  if (at == std::string::npos) return std::nan("");
+  const char* b = text.data() + at + prefix.size();
+  double v = 0;
+  const auto res = std::from_chars(b, text.data() + text.size(), v);
+  return res.ec == std::errc() ? v : std::nan("");
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+// Running the real binary.
+
+struct Exit {
+  bool exited = false;  // false: killed by a signal (a crash)
+  int code = -1;
+  std::string out, err;
+};
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+Exit run_cli(const TempDir& dir, const std::string& args) {
+  const fs::path out = dir.path / "stdout.txt", err = dir.path / "stderr.txt";
+  const std::string cmd = quote(GRAINFLOW_BINARY) + " " + args + " > " + quote(out.string()) + " 2> " +
+                          quote(err.string()) + " < /dev/null";
+  const int status = std::system(cmd.c_str());
+  Exit e;
+  // std::system runs sh -c; a child killed by a signal shows as exit code 128 + signal there.
+  e.exited = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) < 128;
+  e.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  e.out = read(out);
+  e.err = read(err);
+  return e;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+// Every field of a series.csv row as a number: the whole field must parse.
+std::vector<double> fields(const std::string& row) {
+  std::vector<double> out;
+  std::size_t b = 0;
+  for (;;) {
+    const auto e = row.find(',', b);
+    const std::string f = row.substr(b, e == std::string::npos ? std::string::npos : e - b);
+    double v = 0;
+    const auto res = std::from_chars(f.data(), f.data() + f.size(), v);
+    if (res.ec != std::errc() || res.ptr != f.data() + f.size()) return {};
+    out.push_back(v);
+    if (e == std::string::npos) break;
+    b = e + 1;
+  }
+  return out;
+}
+
+const std::string kSeriesHeader =
+    "time,angle,ke_translational,ke_rotational,contacts,wall_contacts,max_overlap_ratio,segregation_index";
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------------------------
+TEST_CASE("dem scene: the test scene itself is valid", "[dem_scene]") {
+  // Every error case below is one edit of this scene, so it must load, build and have 50 grains.
+  TempDir dir("dem_scene_ok");
+  const fs::path f = write(dir.path, "ok.toml", kScene);
+  CHECK(scene_error(f, {}, true).empty());
+  const gf::DemScene s = gf::load_dem_scene(gf::SceneDoc::load(f));
+  CHECK(s.dt == 1.0e-5);
+  CHECK(s.critical.term == "tangential, glass-glass");
+  // The contact table's period against the closed form: only rounding differs (1e-12 relative).
+  CHECK(s.critical.period == Approx(expected_critical_period()).epsilon(1e-12));
+  CHECK(gf::planned_grain_count(s) == 50);
+}
+
+TEST_CASE("dem scene: bad keys and values name the file, the line and the key", "[dem_scene]") {
+  TempDir dir("dem_scene_keys");
+  SECTION("a misspelt key in [run]") {
+    const std::string text = with(kScene, "skin = 1.0e-4\n", "skin = 1.0e-4\nseeed = 3\n");
+    const fs::path f = write(dir.path, "typo.toml", text);
+    const std::string e = scene_error(f);
+    CHECK_THAT(e, Contains(at(f, line_of(text, "seeed")) + " key 'run.seeed'"));
+    CHECK_THAT(e, Contains("unknown key 'seeed'"));
+    CHECK_THAT(e, Contains("did you mean 'seed'?"));
+  }
+  SECTION("a misspelt table") {
+    const std::string text = with(kScene, "[output]", "[outptu]");
+    const fs::path f = write(dir.path, "typo_table.toml", text);
+    CHECK_THAT(scene_error(f), Contains(at(f, line_of(text, "[outptu]")) + " key 'outptu'"));
+  }
+  SECTION("a missing species diameter") {
+    const std::string text = with(kScene, "diameter = 2.0e-3\n", "");
+    const fs::path f = write(dir.path, "no_diameter.toml", text);
+    const std::string e = scene_error(f);
+    CHECK_THAT(e, Contains(at(f, line_of(text, "[[species]]")) + " key 'species[0].diameter'"));
+    CHECK_THAT(e, Contains("missing required key 'diameter'"));
+  }
+  SECTION("a negative diameter") {
+    const std::string text = with(kScene, "diameter = 2.0e-3", "diameter = -2.0e-3");
+    const fs::path f = write(dir.path, "negative_diameter.toml", text);
+    const std::string e = scene_error(f);
+    CHECK_THAT(e, Contains(at(f, line_of(text, "diameter = -2.0e-3")) + " key 'species[0].diameter'"));
+    CHECK_THAT(e, Contains("-0.002 is out of range") && Contains("> 0"));
+  }
+  SECTION("a negative radius") {
+    const std::string text =
+        with(kScene, R"(region = { shape = "box", lo = [0.001, 0.001, 0.001], hi = [0.009, 0.019, 0.009] })",
+             R"(region = { shape = "cylinder", center = [0.005, 0.01, 0.005], axis = [0, 0, 1], radius = -0.003, length = 0.006 })");
+    const fs::path f = write(dir.path, "negative_radius.toml", text);
+    const std::string e = scene_error(f);
+    CHECK_THAT(e, Contains(at(f, line_of(text, "radius = -0.003")) + " key 'fill[0].region.radius'"));
+    CHECK_THAT(e, Contains("out of range"));
+  }
+  SECTION("a value given on the command line is located there") {
+    const fs::path f = write(dir.path, "ok.toml", kScene);
+    CHECK_THAT(scene_error(f, {"run.skin=-1"}),
+               Contains("command line (--set run.skin=-1): key 'run.skin'") && Contains("out of range"));
+  }
+}
+
+TEST_CASE("dem scene: a time step above the critical step is refused unless allowed", "[dem_scene]") {
+  TempDir dir("dem_scene_dt");
+  const double limit = 0.1 * expected_critical_period();  // dt_safety defaults to 0.1
+  const std::string text = with(kScene, "dt = 1.0e-5", "dt = 1.0e-4");
+  const fs::path f = write(dir.path, "big_dt.toml", text);
+  const std::string e = scene_error(f);
+  CHECK_THAT(e, Contains(at(f, line_of(text, "dt = 1.0e-4")) + " key 'run.dt'"));
+  CHECK_THAT(e, Contains("tangential, glass-glass"));  // the term that sets the limit
+  // The limit is printed to 4 significant digits: 5e-4 relative covers the rounding.
+  CHECK(number_after(e, "the limit is ") == Approx(limit).epsilon(5e-4));
+  CHECK(number_after(e, "set dt <= ") == Approx(limit).epsilon(5e-4));
+  CHECK_THAT(e, Contains("allow_unstable_dt = true"));  // the fix names the escape hatch
+
+  SECTION("allowed in the file") {
+    const fs::path g = write(dir.path, "big_dt_allowed.toml",
+                             with(text, "skin = 1.0e-4\n", "skin = 1.0e-4\nallow_unstable_dt = true\n"));
+    CHECK(scene_error(g, {}, true).empty());
+    CHECK(gf::load_dem_scene(gf::SceneDoc::load(g)).allow_unstable_dt);
+  }
+  SECTION("allowed from the command line") {
+    CHECK(scene_error(f, {"run.allow_unstable_dt=true"}, true).empty());
+    CHECK(gf::load_dem_scene(gf::SceneDoc::load(f, {"run.allow_unstable_dt=true"})).dt == 1.0e-4);
+  }
+  SECTION("the check applies to a dt set on the command line") {
+    const fs::path ok = write(dir.path, "ok.toml", kScene);
+    CHECK_THAT(scene_error(ok, {"run.dt=1e-4"}), Contains("command line (--set run.dt=1e-4): key 'run.dt'"));
+  }
+  SECTION("just below the limit is accepted") {
+    const fs::path ok = write(dir.path, "ok.toml", kScene);
+    std::ostringstream set;
+    set.precision(17);
+    set << "run.dt=" << 0.999 * limit;
+    CHECK(scene_error(ok, {set.str()}).empty());
+  }
+}
+
+TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill", "[dem_scene]") {
+  TempDir dir("dem_scene_fill");
+  SECTION("more grains than the region holds") {
+    // 5000 spheres of 2 mm in 1.15 cm^3 would be 18 times the region's volume.
+    const std::string text = with(kScene, "count = { glass = 50 }", "count = { glass = 5000 }");
+    const fs::path f = write(dir.path, "crowded.toml", text);
+    CHECK(scene_error(f).empty());  // valid as text ...
+    const std::string e = scene_error(f, {}, true);  // ... but cannot be placed
+    CHECK_THAT(e, Contains(at(f, line_of(text, "[[fill]]")) + " fill[0]:"));
+    CHECK_THAT(e, Contains("could not place"));
+  }
+  SECTION("a region reaching through a wall") {
+    const std::string text = with(kScene, "lo = [0.001, 0.001, 0.001]", "lo = [-0.002, 0.001, 0.001]");
+    const fs::path f = write(dir.path, "through.toml", text);
+    const std::string e = scene_error(f, {}, true);
+    CHECK_THAT(e, Contains(at(f, line_of(text, "[[fill]]")) + " fill[0]:"));
+    CHECK_THAT(e, Contains("reaches through wall 'box-x'"));
+  }
+  SECTION("no fill at all") {
+    const std::string text = kScene.substr(0, kScene.find("[[fill]]")) + kScene.substr(kScene.find("[output]"));
+    const fs::path f = write(dir.path, "empty.toml", text);
+    const std::string e = scene_error(f);
+    CHECK_THAT(e, Contains(f.string() + ":") && Contains("key 'fill'") && Contains("places no grains"));
+  }
+  SECTION("a state file") {
+    // Read relative to the scene file's folder, as a scene run from elsewhere would.
+    const std::string file_fill =
+        "[[fill]]\nkind = \"file\"\npath = \"grains.csv\"\ntypes = { 1 = \"glass\" }\n\n";
+    const std::string text =
+        kScene.substr(0, kScene.find("[[fill]]")) + file_fill + kScene.substr(kScene.find("[output]"));
+    const fs::path f = write(dir.path, "from_file.toml", text);
+    const fs::path csv = dir.path / "grains.csv";
+    const int fill_line = line_of(text, "[[fill]]");
+
+    write(dir.path, "grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,1,0.002,0.006,0.003,0.003\n");
+    CHECK(scene_error(f, {}, true).empty());
+
+    write(dir.path, "grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,2,0.002,0.006,0.003,0.003\n");
+    std::string e = scene_error(f, {}, true);
+    CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:"));
+    CHECK_THAT(e, Contains(csv.string() + ":3: type 2 is not mapped to a species"));
+
+    write(dir.path, "grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,1,0.003,0.006,0.003,0.003\n");
+    e = scene_error(f, {}, true);
+    CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:"));
+    CHECK_THAT(e, Contains(csv.string() + ":3: diameter 0.003 m does not match species 'glass' (0.002 m)"));
+
+    fs::remove(csv);
+    e = scene_error(f, {}, true);
+    CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:") && Contains("grains.csv"));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
+TEST_CASE("cli: run writes the series, the frames and the summary", "[dem_scene][cli]") {
+  REQUIRE(fs::exists(GRAINFLOW_BINARY));
+  TempDir dir("cli_run");
+  const fs::path scene = write(dir.path, "tiny.toml", kScene);
+  const fs::path out = dir.path / "out";
+  const Exit e = run_cli(dir, "run " + quote(scene.string()) + " --out " + quote(out.string()) +
+                                  " --steps 200 --threads 1 --quiet");
+  INFO("stderr: " << e.err);
+  REQUIRE(e.exited);
+  REQUIRE(e.code == 0);
+
+  // series.csv: the header and a row every 1e-4 s = 10 steps, from t = 0 to t = 200 dt.
+  const auto rows = lines(read(out / "series.csv"));
+  REQUIRE(rows.size() == 1 + 21);
+  CHECK(rows[0] == kSeriesHeader);
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    INFO("row " << k << ": " << rows[k]);
+    const auto v = fields(rows[k]);
+    REQUIRE(v.size() == 8);
+    // Times are k * 10 dt computed as a product, not a running sum: 1e-15 s absorbs the rounding.
+    CHECK(std::abs(v[0] - static_cast<double>(k - 1) * 1.0e-4) < 1e-15);
+  }
+
+  // Frames every 5e-4 s: t = 0, 5e-4, ..., 2e-3, each listed in frames.pvd and present on disk.
+  const std::string pvd = read(out / "frames.pvd");
+  CHECK_THAT(pvd, Contains("</VTKFile>"));
+  std::size_t listed = 0;
+  for (std::size_t p = pvd.find("file=\""); p != std::string::npos; p = pvd.find("file=\"", p + 1)) {
+    const auto b = p + 6, q = pvd.find('"', b);
+    const fs::path frame = out / pvd.substr(b, q - b);
+    INFO(frame);
+    CHECK(fs::exists(frame));
+    CHECK(read(frame).find("<VTKFile type=\"PolyData\"") != std::string::npos);
+    ++listed;
+  }
+  CHECK(listed == 5);
+  std::size_t vtp = 0;
+  for (const auto& entry : fs::directory_iterator(out / "frames")) vtp += entry.path().extension() == ".vtp";
+  CHECK(vtp == 5);
+
+  const auto summary = nlohmann::json::parse(read(out / "summary.json"));
+  CHECK(summary.at("status") == "completed");
+  CHECK(summary.at("steps") == 200);
+  CHECK(summary.at("grains") == 50);
+  CHECK(summary.at("particle_steps_per_second").get<double>() > 0.0);
+  CHECK(summary.at("critical_term") == "tangential, glass-glass");
+  std::map<std::string, std::int64_t> calls;
+  for (const auto& t : summary.at("time_per_system")) {
+    calls[t.at("system").get<std::string>()] = t.at("calls").get<std::int64_t>();
+    CHECK(t.at("seconds").get<double>() >= 0.0);
+  }
+  for (const char* s : {"integrate_positions", "broadphase", "pair_contact", "wall_contact", "integrate_velocities"}) {
+    INFO(s);
+    CHECK(calls[s] == 200);  // once per step
+  }
+  CHECK(calls.count("series_output") == 1);
+  CHECK(calls.count("frame_output") == 1);
+  CHECK(fs::exists(out / "final_state.csv"));
+}
+
+TEST_CASE("cli: check prints the systems and the critical step", "[dem_scene][cli]") {
+  TempDir dir("cli_check");
+  const fs::path scene = write(dir.path, "tiny.toml", kScene);
+  const Exit e = run_cli(dir, "check " + quote(scene.string()));
+  INFO("stdout: " << e.out << "\nstderr: " << e.err);
+  REQUIRE(e.exited);
+  REQUIRE(e.code == 0);
+  CHECK_THAT(e.out, Contains("valid"));
+  for (const char* s : {"integrate_positions", "broadphase", "pair_contact", "wall_contact", "integrate_velocities"})
+    CHECK_THAT(e.out, Contains(s));
+  CHECK_THAT(e.out, Contains("critical step"));
+  CHECK_THAT(e.out, Contains("tangential, glass-glass"));
+  // Printed to 4 significant digits: 5e-4 relative.
+  CHECK(number_after(e.out, "smallest collision period ") == Approx(expected_critical_period()).epsilon(5e-4));
+  CHECK(e.err.empty());
+}
+
+TEST_CASE("cli: a bad scene and a bad flag fail cleanly", "[dem_scene][cli]") {
+  TempDir dir("cli_bad");
+  SECTION("bad scene: exit 1, file:line on stderr") {
+    const std::string text = with(kScene, "skin = 1.0e-4\n", "skin = 1.0e-4\nseeed = 3\n");
+    const fs::path scene = write(dir.path, "bad.toml", text);
+    const Exit e = run_cli(dir, "run " + quote(scene.string()) + " --out " + quote((dir.path / "out").string()) +
+                                    " --steps 10 --quiet");
+    REQUIRE(e.exited);  // an error, not a crash
+    CHECK(e.code == 1);
+    CHECK_THAT(e.err, Contains(at(scene, line_of(text, "seeed")) + " key 'run.seeed'"));
+    CHECK_FALSE(fs::exists(dir.path / "out" / "summary.json"));  // nothing ran
+  }
+  SECTION("bad scene under check") {
+    const fs::path scene = write(dir.path, "bad.toml", with(kScene, "dt = 1.0e-5", "dt = 1.0e-4"));
+    const Exit e = run_cli(dir, "check " + quote(scene.string()));
+    REQUIRE(e.exited);
+    CHECK(e.code == 1);
+    CHECK_THAT(e.err, Contains("key 'run.dt'"));
+  }
+  SECTION("missing scene file") {
+    const Exit e = run_cli(dir, "check " + quote((dir.path / "nope.toml").string()));
+    REQUIRE(e.exited);
+    CHECK(e.code == 1);
+    CHECK_THAT(e.err, Contains("nope.toml") && Contains("cannot open"));
+  }
+  SECTION("unknown flag: exit 2 with usage") {
+    const fs::path scene = write(dir.path, "tiny.toml", kScene);
+    const Exit e = run_cli(dir, "run " + quote(scene.string()) + " --bogus");
+    REQUIRE(e.exited);
+    CHECK(e.code == 2);
+    CHECK_THAT(e.err, Contains("--bogus") && Contains("usage:"));
+  }
+  SECTION("bad flag value: exit 2 with usage") {
+    const fs::path scene = write(dir.path, "tiny.toml", kScene);
+    const Exit e = run_cli(dir, "run " + quote(scene.string()) + " --threads zero");
+    REQUIRE(e.exited);
+    CHECK(e.code == 2);
+    CHECK_THAT(e.err, Contains("--threads") && Contains("usage:"));
+  }
+  SECTION("no arguments: exit 2 with usage") {
+    const Exit e = run_cli(dir, "");
+    REQUIRE(e.exited);
+    CHECK(e.code == 2);
+    CHECK_THAT(e.err, Contains("usage:"));
+  }
+}
+
+TEST_CASE("cli: SIGTERM stops a run after the step in flight and keeps its results", "[dem_scene][cli]") {
+  REQUIRE(fs::exists(GRAINFLOW_BINARY));
+  TempDir dir("cli_sigterm");
+  const fs::path scene = write(dir.path, "tiny.toml", kScene);
+  const fs::path out = dir.path / "out";
+  const fs::path series = out / "series.csv";
+  const std::int64_t requested = 1'000'000'000;  // far more than runs before the signal
+
+  // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
+  const std::string bin = GRAINFLOW_BINARY, scene_s = scene.string(), out_s = out.string();
+  const std::string steps = std::to_string(requested);
+  const std::string log = (dir.path / "stderr.txt").string();
+  std::vector<const char*> argv = {bin.c_str(), "run",      scene_s.c_str(), "--out", out_s.c_str(),
+                                   "--steps",   steps.c_str(), "--threads", "1",   "--quiet",
+                                   "--set",     "output.frame_interval=0.01", nullptr};
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      ::dup2(fd, 1);
+      ::dup2(fd, 2);
+    }
+    ::execv(bin.c_str(), const_cast<char* const*>(argv.data()));
+    ::_exit(127);
+  }
+
+  // Wait (at most 60 s) until the run has written 30 rows, then stop it.
+  const auto t0 = std::chrono::steady_clock::now();
+  auto waited = [&] { return std::chrono::steady_clock::now() - t0 > std::chrono::seconds(60); };
+  std::string before;
+  int status = 0;
+  bool exited_early = false;
+  for (;;) {
+    before = fs::exists(series) ? read(series) : "";
+    if (std::count(before.begin(), before.end(), '\n') >= 31) break;
+    if (::waitpid(pid, &status, WNOHANG) == pid) {
+      exited_early = true;
+      break;
+    }
+    if (waited()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (exited_early) FAIL("the run ended before it was signalled: " << read(log));
+  REQUIRE(::kill(pid, SIGTERM) == 0);
+  bool done = false;
+  for (int k = 0; k < 3000 && !done; ++k) {  // up to 30 s for the step in flight and the final writes
+    done = ::waitpid(pid, &status, WNOHANG) == pid;
+    if (!done) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (!done) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    FAIL("grainflow did not stop within 30 s of SIGTERM");
+  }
+  const std::string err = read(log);
+  INFO("stderr: " << err);
+  REQUIRE(WIFEXITED(status));  // it stopped itself, it was not killed by the signal
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK_THAT(err, Contains("interrupted after"));
+
+  const auto summary = nlohmann::json::parse(read(out / "summary.json"));
+  CHECK(summary.at("status") == "interrupted");
+  const std::int64_t steps_done = summary.at("steps").get<std::int64_t>();
+  CHECK(steps_done >= 300);  // at least the 30 rows seen before the signal
+  CHECK(steps_done < requested);
+
+  // Every row written before the signal is still there, unchanged, and every row is complete.
+  const std::string after = read(series);
+  const std::string complete_before = before.substr(0, before.rfind('\n') + 1);
+  CHECK(after.compare(0, complete_before.size(), complete_before) == 0);
+  REQUIRE(!after.empty());
+  CHECK(after.back() == '\n');
+  const auto rows = lines(after);
+  REQUIRE(rows.size() >= 32);
+  CHECK(rows[0] == kSeriesHeader);
+  // Rows on the sampling grid (every 10 steps) up to the last step, then one for the final state if
+  // the run stopped between samples.
+  const std::size_t on_grid = static_cast<std::size_t>(steps_done / 10) + 1;
+  const std::size_t expected_rows = on_grid + (steps_done % 10 != 0 ? 1 : 0);
+  CHECK(rows.size() - 1 == expected_rows);
+  double last_time = -1;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    INFO("row " << k << ": " << rows[k]);
+    const auto v = fields(rows[k]);
+    REQUIRE(v.size() == 8);
+    CHECK(v[0] > last_time);
+    // Times are products k * dt: rounding of a few ulp of ~1 s, far below 1e-12 s.
+    if (k <= on_grid) CHECK(std::abs(v[0] - static_cast<double>(k - 1) * 1.0e-4) < 1e-12);
+    last_time = v[0];
+  }
+  // The last row is the state the summary reports.
+  CHECK(last_time == summary.at("simulated_time").get<double>());
+
+  const std::string pvd = read(out / "frames.pvd");
+  CHECK_THAT(pvd, Contains("</VTKFile>"));
+  CHECK(fs::exists(out / "final_state.csv"));
+}
