@@ -21,32 +21,10 @@
 #include <tbb/global_control.h>
 
 #include "systems/broadphase/broadphase.hpp"
+#include "bench/settled_drum.hpp"
 #include "systems/setup/dem_simulation.hpp"
 
 namespace {
-
-constexpr const char* kDrumScene = GRAINFLOW_SOURCE_DIR "/scenes/drum_seed000_settled.toml";
-constexpr std::int64_t kWarmSteps = 20;
-
-// Built once, on first use, outside every timed loop.
-gf::DemSimulation& drum() {
-  static gf::DemSimulation sim = [] {
-    gf::DemSimulation s = gf::DemSimulation::from_file(kDrumScene);
-    s.prime();
-    s.advance(kWarmSteps);
-    return s;
-  }();
-  return sim;
-}
-
-gf::DemSimulation* drum_or_skip(benchmark::State& state) {
-  try {
-    return &drum();
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return nullptr;
-  }
-}
 
 // Cell edge the broadphase uses: the largest interaction range plus the skin.
 double cell_edge(const gf::Grains& g, double skin) {
@@ -58,7 +36,7 @@ double cell_edge(const gf::Grains& g, double skin) {
 void BM_CellGridBuild(benchmark::State& state) {
   // A benchmark program owns its process, so it may set the thread count here (not in a library).
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
-  gf::DemSimulation* sim = drum_or_skip(state);
+  gf::DemSimulation* sim = gf::bench::settled_drum_or_skip(state);
   if (!sim) return;
   const gf::Grains& g = sim->grains();
   const double edge = cell_edge(g, sim->world().resources.get<gf::BroadphaseState>().skin);
@@ -78,7 +56,7 @@ void BM_CellGridBuild(benchmark::State& state) {
 
 void BM_NeighborRebuild(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
-  gf::DemSimulation* sim = drum_or_skip(state);
+  gf::DemSimulation* sim = gf::bench::settled_drum_or_skip(state);
   if (!sim) return;
   gf::World& w = sim->world();
   gf::Grains& g = w.grains;
@@ -102,7 +80,7 @@ void BM_NeighborRebuild(benchmark::State& state) {
 
 void BM_NeedsRebuild(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
-  gf::DemSimulation* sim = drum_or_skip(state);
+  gf::DemSimulation* sim = gf::bench::settled_drum_or_skip(state);
   if (!sim) return;
   const gf::Grains& g = sim->grains();
   const auto& bp = sim->world().resources.get<gf::BroadphaseState>();

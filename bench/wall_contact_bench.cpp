@@ -16,33 +16,11 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
+#include "bench/settled_drum.hpp"
 #include "systems/setup/dem_simulation.hpp"
 #include "systems/walls/wall_contact.hpp"
 
 namespace {
-
-constexpr const char* kDrumScene = GRAINFLOW_SOURCE_DIR "/scenes/drum_seed000_settled.toml";
-constexpr std::int64_t kWarmSteps = 20;
-
-// Built once, on first use, outside every timed loop.
-gf::DemSimulation& drum() {
-  static gf::DemSimulation sim = [] {
-    gf::DemSimulation s = gf::DemSimulation::from_file(kDrumScene);
-    s.prime();
-    s.advance(kWarmSteps);
-    return s;
-  }();
-  return sim;
-}
-
-gf::DemSimulation* drum_or_skip(benchmark::State& state) {
-  try {
-    return &drum();
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return nullptr;
-  }
-}
 
 // Rows touching at least one wall at the walls' current placement.
 std::int64_t count_touching(const gf::Grains& g, const gf::Walls& walls) {
@@ -63,7 +41,7 @@ std::int64_t count_touching(const gf::Grains& g, const gf::Walls& walls) {
 void BM_WallForces(benchmark::State& state) {
   // A benchmark program owns its process, so it may set the thread count here (not in a library).
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
-  gf::DemSimulation* sim = drum_or_skip(state);
+  gf::DemSimulation* sim = gf::bench::settled_drum_or_skip(state);
   if (!sim) return;
   gf::World& w = sim->world();
   gf::Grains& g = w.grains;

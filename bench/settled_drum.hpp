@@ -1,0 +1,38 @@
+// The standard benchmark state shared by the per-system benchmarks: scenes/drum_seed000_settled.toml
+// (47,108 grains), primed and stepped a few times so the neighbour list and the contact springs are
+// those of a running simulation. Built once, on first use, outside every timed loop.
+#pragma once
+
+#include <cstdint>
+#include <exception>
+
+#include <benchmark/benchmark.h>
+
+#include "systems/setup/dem_simulation.hpp"
+
+namespace gf::bench {
+
+inline constexpr const char* kDrumScene = GRAINFLOW_SOURCE_DIR "/scenes/drum_seed000_settled.toml";
+inline constexpr std::int64_t kWarmSteps = 20;
+
+inline DemSimulation& settled_drum() {
+  static DemSimulation sim = [] {
+    DemSimulation s = DemSimulation::from_file(kDrumScene);
+    s.prime();
+    s.advance(kWarmSteps);
+    return s;
+  }();
+  return sim;
+}
+
+// The drum, or nullptr with the benchmark marked as failed (and why) when the scene cannot load.
+inline DemSimulation* settled_drum_or_skip(benchmark::State& state) {
+  try {
+    return &settled_drum();
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return nullptr;
+  }
+}
+
+}  // namespace gf::bench
