@@ -1,0 +1,400 @@
+// Sphere-wall contacts through the whole engine: restitution and contact time against a plane (with the sphere's
+// own mass), the resting overlap m g / k_n on a plane and on the inner wall of a cylinder, sticking and sliding on
+// an incline, rolling resistance, and the drag of a rotating drum wall.
+//
+// What the seed's model predicts on an incline (theta the tilt, N = m g cos(theta), L = r - delta/2 the lever arm):
+//  - sliding needs the friction force to exceed f_s N: tan(theta) > f_s;
+//  - but a sphere need not slide to move: it can roll. Holding it still needs, besides F_t = m g sin(theta), a
+//    torque L F_t about its centre from the rolling resistance, which is capped at f_r N. So the sphere stays put
+//    only if tan(theta) < f_s AND tan(theta) < f_r / L. With the seed's values (f_r = 5e-5 m, r = 1.5 mm) the
+//    second bound is 0.033 << f_s = 0.3: on any slope steeper than 1.9 degrees a seed sphere ROLLS, long before it
+//    could slide, accelerating at a = g (sin(theta) - (f_r/L) cos(theta)) / (1 + I/(m L^2)) without slip.
+//  - the textbook Coulomb threshold tan(theta) = f_s is therefore tested with a rolling resistance large enough to
+//    forbid rolling (f_r = 2 r): below it the sphere stays (elastic creep only), above it it slides as a block at
+//    a = g (sin(theta) - f_s cos(theta)).
+//  - without rolling resistance a sphere rolls without slip while tan(theta) < 3.5 f_s and slides (spinning up)
+//    above; the centre then accelerates at g (sin(theta) - f_s cos(theta)) and the spin at f_s N L / I.
+// Slopes are reached by tilting gravity slowly (a quasi-static ramp), as one tilts a plank: a sudden tilt would
+// load the springs dynamically and overshoot the static friction force.
+#include "systems/setup/dem_simulation.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using gf::DemSimulation;
+using gf::Grains;
+using V = gf::V3<double>;
+
+namespace {
+
+const std::string kPlane = std::string(GRAINFLOW_SOURCE_DIR) + "/scenes/tests/sphere_on_plane.toml";
+const std::string kDrum = std::string(GRAINFLOW_SOURCE_DIR) + "/scenes/tests/sphere_in_drum.toml";
+
+// The scenes' values, restated so that the references are computed independently of the engine.
+constexpr double kD = 3e-3, kR = 1.5e-3, kRho = 2500.0;
+constexpr double kKn = 1000.0, kKt = 600.0, kKr = 1e-5, kG = 9.81;
+constexpr double kDrumR = 0.075, kDrumOmega = 0.5;
+const double kM = kRho * 4.0 / 3.0 * std::numbers::pi * kR * kR * kR;
+const double kI = 0.4 * kM * kR * kR;
+
+std::string set(const std::string& key, double value) {
+  std::ostringstream os;
+  os.precision(17);
+  os << key << "=" << value;
+  return os.str();
+}
+double contact_time(double m, double k, double e) {
+  const double l = std::log(e);
+  return std::sqrt(m / k) * std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+}
+
+// The scenes hold one grain: row 0.
+V pos(const Grains& g) { return {g.pos.x[0], g.pos.y[0], g.pos.z[0]}; }
+V vel(const Grains& g) { return {g.vel.x[0], g.vel.y[0], g.vel.z[0]}; }
+V spin(const Grains& g) { return {g.omega.x[0], g.omega.y[0], g.omega.z[0]}; }
+void place(Grains& g, const V& x, const V& v, const V& w) {
+  g.pos.x[0] = x.x, g.pos.y[0] = x.y, g.pos.z[0] = x.z;
+  g.vel.x[0] = v.x, g.vel.y[0] = v.y, g.vel.z[0] = v.z;
+  g.omega.x[0] = w.x, g.omega.y[0] = w.y, g.omega.z[0] = w.z;
+}
+
+// Least-squares slope of y(t).
+double slope(const std::vector<double>& t, const std::vector<double>& y) {
+  const double n = static_cast<double>(t.size());
+  double st = 0, sy = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) st += t[i], sy += y[i];
+  const double tm = st / n, ym = sy / n;
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) num += (t[i] - tm) * (y[i] - ym), den += (t[i] - tm) * (t[i] - tm);
+  return num / den;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------------------
+
+TEST_CASE("wall: sphere-plane restitution and contact time use the sphere's own mass", "[contact][wall]") {
+  for (const double e : {0.3, 0.7}) {
+    const double tc = contact_time(kM, kKn, e);  // particle-wall: m = m_i
+    // dt = t_c/1000: as for pairs (tests/pair_contact_test.cpp), the step count quantises the duration to 0.1 %,
+    // and the jump of the dashpot force at touch-down and lift-off gives a restitution error of at most
+    // ~2 ln(1/e)/1000, 0.21 % at e = 0.3 and 0.05 % at e = 0.7, inside the 0.5 % tolerance.
+    const double dt = tc / 1000.0;
+    DemSimulation sim =
+        DemSimulation::from_file(kPlane, {set("contact.en", e), set("run.dt", dt), "run.gravity=[0,0,0]"});
+    Grains& g = sim.grains();
+    const double v0 = 0.2;
+    place(g, {0, kR + 1e-4, 0}, {0, -v0, 0}, {0, 0, 0});
+    std::int64_t in_contact = 0;
+    bool touched = false;
+    int after = 0;
+    for (int k = 0; k < 10000 && after < 10; ++k) {
+      sim.advance(1);
+      if (kR - pos(g).y > 0.0) {
+        touched = true;
+        ++in_contact;
+      } else if (touched) {
+        ++after;
+      }
+    }
+    REQUIRE(after >= 10);
+    const double e_meas = vel(g).y / v0;
+    const double de = e_meas / e - 1.0;
+    const double dtc = static_cast<double>(in_contact) * dt / tc - 1.0;
+    INFO("e = " << e << ": measured restitution " << e_meas << ", contact " << in_contact * dt * 1e3 << " ms vs "
+                << tc * 1e3 << " ms");
+    WARN("sphere-plane, e = " << e << ": restitution error " << de * 100 << " %, contact time error " << dtc * 100
+                              << " %");
+    // Tolerances of the task; the effective mass of a pair (m/2 for equal spheres) instead of m_i would be off by
+    // 29 % in t_c.
+    CHECK(std::abs(de) < 0.005);
+    CHECK(std::abs(dtc) < 0.01);
+    // A head-on bounce stays head-on: no tangential force, no spin.
+    CHECK(std::abs(vel(g).x) + std::abs(vel(g).z) == 0.0);
+  }
+}
+
+// Resting overlap: the sphere falls 0.2 mm, bounces (en = 0.3) and settles; static equilibrium k_n delta = m g is
+// an exact fixed point of velocity Verlet (v = 0 and zero net force), so the settled overlap is m g / k_n up to the
+// residual of the decaying oscillation, exp(-zeta omega_0 t) ~ e^-150 after 0.1 s, and round-off: r - y loses ~4
+// digits of y's 16 (delta/r = 2e-4), so ~1e-12 relative. The task asks for 1 %; we assert 1e-6, still 1e6 times the
+// expected error, so that a small systematic bias (a gravity kick missing a step, a wrong lever in the normal
+// direction) would show too.
+TEST_CASE("wall: resting overlap on a plane is m g / k_n", "[contact][wall]") {
+  DemSimulation sim = DemSimulation::from_file(kPlane);
+  sim.advance(sim.scene().main_steps());
+  const Grains& g = sim.grains();
+  const double delta = kR - pos(g).y;
+  const double ref = kM * kG / kKn;
+  const double err = delta / ref - 1.0;
+  WARN("resting overlap on a plane: " << delta << " m vs m g/k_n = " << ref << " m, relative error " << err);
+  CHECK(std::abs(err) < 1e-6);
+  CHECK(std::abs(vel(g).y) < 1e-9);  // at rest: the settling is complete
+}
+
+TEST_CASE("wall: resting overlap on the inner wall of a cylinder is m g / k_n", "[contact][wall]") {
+  DemSimulation sim = DemSimulation::from_file(kDrum, {"wall.0.omega=0"});
+  sim.advance(sim.scene().main_steps());
+  const Grains& g = sim.grains();
+  const V p = pos(g);
+  const double delta = kR - (kDrumR - std::sqrt(p.x * p.x + p.y * p.y));
+  const double ref = kM * kG / kKn;
+  const double err = delta / ref - 1.0;
+  WARN("resting overlap on a cylinder wall: " << delta << " m vs m g/k_n = " << ref << " m, relative error " << err);
+  // Same reasoning as on the plane; r - (R - rho) cancels more digits (R = 75 mm): ~1e-10 relative.
+  CHECK(std::abs(err) < 1e-6);
+  CHECK(std::abs(p.x) < 1e-12);  // at the bottom, not dragged anywhere
+  CHECK(std::abs(p.z) == 0.0);   // no end-wall contact
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Incline: the plane y = 0 stays, gravity is tilted by theta about z, so "down the slope" is +x.
+
+namespace {
+
+struct InclineRun {
+  std::vector<double> t, x, vx, wz, slip;  // after the ramp
+  double lever = 0;                        // L = r - delta/2 at the final normal load
+  double max_abs_slip_ratio = 0;           // max |slip| / max(|v_x|, 1e-12) after the ramp
+};
+
+// Tilts gravity from 0 to theta over `ramp` seconds (smooth cosine ramp), then holds it for `hold` seconds.
+InclineRun incline(double tan_theta, double fs, double fr, double ramp, double hold) {
+  const double theta = std::atan(tan_theta);
+  DemSimulation sim = DemSimulation::from_file(kPlane, {set("contact.friction", fs), set("contact.rolling_friction", fr)});
+  Grains& g = sim.grains();
+  auto& grav = sim.world().resources.get<gf::Gravity>();
+  const double dt = sim.scene().dt;
+  place(g, {0, kR - kM * kG / kKn, 0}, {0, 0, 0}, {0, 0, 0});  // resting on the level plane
+  InclineRun out;
+  out.lever = kR - 0.5 * kM * kG * std::cos(theta) / kKn;
+  const auto ramp_steps = static_cast<std::int64_t>(std::llround(ramp / dt));
+  const auto total = ramp_steps + static_cast<std::int64_t>(std::llround(hold / dt));
+  for (std::int64_t k = 0; k < total; ++k) {
+    const double s = std::min(1.0, static_cast<double>(k) / static_cast<double>(ramp_steps));
+    const double th = theta * 0.5 * (1.0 - std::cos(std::numbers::pi * s));
+    grav.x = kG * std::sin(th);
+    grav.y = -kG * std::cos(th);
+    sim.advance(1);
+    if (k >= ramp_steps) {
+      const double slip = vel(g).x + out.lever * spin(g).z;  // contact-point velocity along the slope
+      out.t.push_back(sim.world().clock.t);
+      out.x.push_back(pos(g).x);
+      out.vx.push_back(vel(g).x);
+      out.wz.push_back(spin(g).z);
+      out.slip.push_back(slip);
+    }
+  }
+  return out;
+}
+
+// The tail of a run, from time t0 on.
+InclineRun tail(const InclineRun& r, double t0) {
+  InclineRun o;
+  o.lever = r.lever;
+  for (std::size_t i = 0; i < r.t.size(); ++i) {
+    if (r.t[i] < t0) continue;
+    o.t.push_back(r.t[i]), o.x.push_back(r.x[i]), o.vx.push_back(r.vx[i]), o.wz.push_back(r.wz[i]);
+    o.slip.push_back(r.slip[i]);
+    o.max_abs_slip_ratio = std::max(o.max_abs_slip_ratio, std::abs(r.slip[i]) / std::max(std::abs(r.vx[i]), 1e-12));
+  }
+  return o;
+}
+
+// Elastic creep of a stuck sphere: F_t = m g sin(theta) stretches the tangential spring by F_t/k_t and the torque
+// L F_t turns the rolling spring by L F_t/k_r, which rolls the centre by a further L^2 F_t/k_r.
+double creep(double tan_theta, double lever) {
+  const double s = std::sin(std::atan(tan_theta));
+  return kM * kG * s * (1.0 / kKt + lever * lever / kKr);
+}
+
+}  // namespace
+
+TEST_CASE("wall: incline, Coulomb threshold with rolling forbidden (f_r = 2 r)", "[contact][wall][incline]") {
+  const double fs = 0.3, fr = 2.0 * kR;
+  SECTION("tan(theta) = 0.9 f_s: the sphere sticks; only the springs stretch") {
+    const double tt = 0.9 * fs;
+    const InclineRun r = tail(incline(tt, fs, fr, 0.1, 0.3), 0.35);
+    const double x_end = r.x.back(), ref = creep(tt, r.lever);
+    const double err = x_end / ref - 1.0;
+    WARN("incline stick, tan = 0.9 f_s: displacement " << x_end << " m vs elastic creep " << ref << " m (error "
+                                                        << err * 100 << " %), final |v| " << std::abs(r.vx.back()));
+    // 1 %: the creep is a static equilibrium (exact) once the ramp's rolling-spring oscillation (period ~21 ms,
+    // modal damping ratio ~0.2) has decayed for 0.25 s, ~1e-6 of its amplitude. A slip of the contact would add a
+    // permanent displacement; sliding would grow it without bound.
+    CHECK(std::abs(err) < 0.01);
+    CHECK(std::abs(r.vx.back()) < 1e-6);  // at rest (sliding at 1.1 f_s reaches 0.03 m/s within 0.1 s)
+  }
+  SECTION("tan(theta) = 1.1 f_s: the sphere slides as a block at g (sin - f_s cos)") {
+    const double tt = 1.1 * fs;
+    const InclineRun r = tail(incline(tt, fs, fr, 0.1, 0.3), 0.15);
+    const double th = std::atan(tt);
+    const double a = slope(r.t, r.vx), ref = kG * (std::sin(th) - fs * std::cos(th));
+    const double wdot = slope(r.t, r.wz);
+    const double err = a / ref - 1.0;
+    WARN("incline slide, tan = 1.1 f_s: a = " << a << " m/s^2 vs g(sin - f_s cos) = " << ref << " (error "
+                                               << err * 100 << " %), spin rate " << wdot << " rad/s^2");
+    // 1 %: at steady sliding the tangential force is exactly f_s N and the rolling spring holds the spin at zero;
+    // the fit over 0.15 s averages the small remaining spring oscillation. A cap on the wrong normal force or a
+    // missing cap would be off by >= 10 % (the margin over the threshold is 10 %, so a is 1/10 of g sin).
+    CHECK(std::abs(err) < 0.01);
+    CHECK(std::abs(wdot) < 1e-3 * a / kR);  // no rolling
+  }
+}
+
+TEST_CASE("wall: incline with the seed's rolling resistance: it rolls unless tan(theta) < f_r/L",
+          "[contact][wall][incline]") {
+  const double fs = 0.3, fr = 5e-5;  // seed 000, Table 4
+  SECTION("tan(theta) = 0.6 f_r/r: rolling resistance holds the sphere") {
+    const double tt = 0.6 * fr / kR;
+    const InclineRun r = tail(incline(tt, fs, fr, 0.1, 0.4), 0.45);
+    const double x_end = r.x.back(), ref = creep(tt, r.lever);
+    const double err = x_end / ref - 1.0;
+    WARN("incline, seed f_r, tan = 0.6 f_r/r: displacement " << x_end << " m vs elastic creep " << ref
+                                                              << " m (error " << err * 100 << " %)");
+    CHECK(std::abs(err) < 0.01);  // as for the Coulomb stick case
+    CHECK(std::abs(r.vx.back()) < 1e-6);
+  }
+  SECTION("tan(theta) = 3 f_r/r (< f_s): the sphere rolls without slipping") {
+    const double tt = 3.0 * fr / kR;
+    const InclineRun r = tail(incline(tt, fs, fr, 0.1, 0.3), 0.15);
+    const double th = std::atan(tt), L = r.lever;
+    const double ref = kG * (std::sin(th) - fr / L * std::cos(th)) / (1.0 + kI / (kM * L * L));
+    const double a = slope(r.t, r.vx);
+    const double err = a / ref - 1.0;
+    WARN("incline roll, seed f_r, tan = 3 f_r/r: a = " << a << " m/s^2 vs 5/7 g (sin - f_r/L cos) = " << ref
+                                                        << " (error " << err * 100 << " %), max |slip|/v "
+                                                        << r.max_abs_slip_ratio);
+    // 1 %: steady rolling with the rolling torque at its cap f_r N is again an exact balance once the spring
+    // transients have decayed; the 5/7 factor alone (a sphere sliding or not rolling) would be off by 29 %, and
+    // ignoring the rolling resistance by 50 %.
+    CHECK(std::abs(err) < 0.01);
+    // Rolling, not sliding: the contact point is at rest to 1e-3 of the speed (the tangential spring is static).
+    CHECK(r.max_abs_slip_ratio < 1e-3);
+    CHECK(slope(r.t, r.wz) < 0.0);  // rolls forward: spin about -z for motion along +x
+  }
+}
+
+TEST_CASE("wall: incline without rolling resistance slides and spins up above tan(theta) = 3.5 f_s",
+          "[contact][wall][incline]") {
+  const double fs = 0.1, tt = 0.5;  // 0.5 > 3.5 f_s = 0.35
+  const InclineRun r = tail(incline(tt, fs, 0.0, 0.1, 0.2), 0.12);
+  const double th = std::atan(tt);
+  const double a = slope(r.t, r.vx), ref = kG * (std::sin(th) - fs * std::cos(th));
+  const double wdot = slope(r.t, r.wz);
+  const double wref = -fs * kM * kG * std::cos(th) * r.lever / kI;  // friction up the slope spins it forward
+  WARN("incline slide with spin, f_s = 0.1, tan = 0.5: a = " << a << " vs " << ref << " (error "
+                                                              << (a / ref - 1) * 100 << " %), spin-up " << wdot
+                                                              << " vs " << wref << " (error " << (wdot / wref - 1) * 100
+                                                              << " %)");
+  // 1 %: constant kinetic friction f_s N on a sliding contact gives exactly these accelerations; a wrong sign of the
+  // wall torque would reverse the spin-up, a wrong lever arm change its size by the lever's error.
+  CHECK(std::abs(a / ref - 1.0) < 0.01);
+  CHECK(std::abs(wdot / wref - 1.0) < 0.01);
+}
+
+TEST_CASE("wall: rolling friction decelerates a rolling sphere at 5 f_r g / (7 r)", "[contact][wall]") {
+  // Seed rolling friction f_r = 5e-5 m. Rolling without slip, the capped rolling torque f_r m g about the centre
+  // is the only horizontal drive: (m + I/L^2) a = -f_r m g / L, i.e. a = -5 f_r g / (7 r) for L = r.
+  DemSimulation sim = DemSimulation::from_file(kPlane);
+  Grains& g = sim.grains();
+  const double delta0 = kM * kG / kKn, L = kR - 0.5 * delta0, v0 = 0.1;
+  place(g, {0, kR - delta0, 0}, {v0, 0, 0}, {0, 0, -v0 / L});  // rolling along +x without slip
+  std::vector<double> t, vx;
+  double max_slip = 0;
+  for (int k = 0; k < 20000; ++k) {  // 0.2 s: v drops from 0.1 to 0.053 m/s
+    sim.advance(1);
+    if (sim.world().clock.t < 0.02) continue;  // let the tangential spring settle (period ~0.1 ms)
+    t.push_back(sim.world().clock.t);
+    vx.push_back(vel(g).x);
+    max_slip = std::max(max_slip, std::abs(vel(g).x + L * spin(g).z));
+  }
+  const double a = slope(t, vx);
+  const double ref = -(5e-5 * kM * kG / L) / (kM + kI / (L * L));
+  const double err = a / ref - 1.0;
+  WARN("rolling friction: a = " << a << " m/s^2 vs -5 f_r g/(7 r) = " << -5.0 * 5e-5 * kG / (7 * kR)
+                                << " (with L: " << ref << "), error " << err * 100 << " %, max slip " << max_slip
+                                << " m/s");
+  // 2 % (the task's); expected far smaller: a steady capped torque on a rolling sphere is an exact balance. Without
+  // the I/L^2 term (a sliding block) the rate would be 40 % higher.
+  CHECK(std::abs(err) < 0.02);
+  CHECK(max_slip < 1e-4 * v0);  // it rolls: the contact point stays at rest
+}
+
+TEST_CASE("wall: rolling resistance acts on the spin relative to a turning wall (turntable)", "[contact][wall]") {
+  // The plane turns about its own normal (a turntable, omega = 20 rad/s about +y through the origin); the sphere
+  // rests on the axis, where the table's surface does not move, so only the relative spin w_i - w_wall matters.
+  // The law's rolling torque acts on the whole relative angular velocity (twist included) and is capped at f_r N:
+  // the resting sphere is spun up about +y at f_r m g / I = 5 f_r g / (2 r^2) = 545 rad/s^2 until it turns with the
+  // table (37 ms), then stays there (relative spin zero, rolling spring static).
+  const double w_table = 20.0, fr = 5e-5;
+  DemSimulation sim = DemSimulation::from_file(kPlane, {set("wall.0.omega", w_table)});
+  Grains& g = sim.grains();
+  place(g, {0, kR - kM * kG / kKn, 0}, {0, 0, 0}, {0, 0, 0});
+  const double rate_ref = fr * kM * kG / kI;
+  std::vector<double> t, wy;
+  for (int k = 0; k < 10000; ++k) {  // 100 ms
+    sim.advance(1);
+    const double tk = sim.world().clock.t;
+    if (tk > 0.002 && tk < 0.03) t.push_back(tk), wy.push_back(spin(g).y);
+  }
+  const double rate = slope(t, wy);
+  WARN("turntable: spin-up " << rate << " rad/s^2 vs f_r m g / I = " << rate_ref << " (error "
+                             << (rate / rate_ref - 1) * 100 << " %), final spin " << spin(g).y << " rad/s vs table "
+                             << w_table);
+  // 1 %: a capped torque f_r N with N = m g exactly at rest; the sign says the torque drives the sphere towards
+  // the table's spin (relative spin), not against its own spin.
+  CHECK(std::abs(rate / rate_ref - 1.0) < 0.01);
+  // 1e-4: on reaching the table's spin the rolling spring is still at the cap and overshoots; the oscillation
+  // (period 2 pi sqrt(I/k_r) = 11 ms, amplitude ~1 rad/s, decay time 1/(zeta omega) = 5 ms at e_r = 0.3) has
+  // decayed by e^-12 in the remaining 63 ms.
+  CHECK(std::abs(spin(g).y / w_table - 1.0) < 1e-4);
+  CHECK(std::abs(pos(g).x) + std::abs(pos(g).z) < 1e-12);  // on the axis, not thrown off
+}
+
+TEST_CASE("wall: a rotating drum wall drags a resting sphere along its motion", "[contact][wall][drum]") {
+  // The drum (omega = +0.5 rad/s about +z) moves at +x at its bottom, U = omega R = 0.0375 m/s. The sphere rests
+  // there at first: the contact slides, so the sphere accelerates along +x at f_s g and spins up about +z at
+  // f_s m g L / I until its contact point moves with the wall. Friction acts at the contact point, so the angular
+  // momentum about it, m v L + I w, is conserved: rolling starts at v = U / (1 + m L^2 / I) = 2U/7.
+  // Rolling resistance is switched off here: it would act on the spin relative to the drum and change sign when the
+  // sphere's spin passes the drum's, which spoils the clean bowling-ball result.
+  DemSimulation sim = DemSimulation::from_file(kDrum, {"contact.rolling_friction=0"});
+  Grains& g = sim.grains();
+  const double fs = 0.3;
+  const double delta0 = kM * kG / kKn, L = kR - 0.5 * delta0;
+  place(g, {0, -(kDrumR - kR + delta0), 0}, {0, 0, 0}, {0, 0, 0});  // at rest, at the resting overlap
+  const double U = kDrumOmega * (kDrumR - 0.5 * delta0);           // wall speed at the contact point
+  const double t_roll = U / (fs * kG * (1.0 + kM * L * L / kI));   // 3.6 ms
+  std::vector<double> t, vx, wz;
+  for (int k = 0; k < 800; ++k) {  // 8 ms
+    sim.advance(1);
+    const double tk = sim.world().clock.t;
+    if (tk > 0.1 * t_roll && tk < 0.8 * t_roll) {
+      t.push_back(tk);
+      vx.push_back(vel(g).x);
+      wz.push_back(spin(g).z);
+    }
+  }
+  const double a = slope(t, vx), wdot = slope(t, wz);
+  const double a_ref = fs * kG, w_ref = fs * kM * kG * L / kI;
+  const double v_end = vel(g).x, v_ref = U / (1.0 + kM * L * L / kI);
+  WARN("drum drag: a = " << a << " vs f_s g = " << a_ref << " (error " << (a / a_ref - 1) * 100 << " %), spin-up "
+                         << wdot << " vs " << w_ref << " (error " << (wdot / w_ref - 1) * 100 << " %), rolling speed "
+                         << v_end << " vs 2U/7 = " << v_ref << " (error " << (v_end / v_ref - 1) * 100 << " %)");
+  // Direction first: the sphere goes the way the wall moves and spins the way the drum turns.
+  REQUIRE(a > 0.0);
+  REQUIRE(wdot > 0.0);
+  // 1 % on the sliding phase: kinetic friction f_s m g exactly, the curvature of the drum adds a gravity component
+  // of order g phi with phi < 3e-4 rad over 3 ms (0.1 %).
+  CHECK(std::abs(a / a_ref - 1.0) < 0.01);
+  CHECK(std::abs(wdot / w_ref - 1.0) < 0.01);
+  // 2 % on the rolling speed 4 ms after it starts rolling: the sphere has begun to climb the wall and gravity slows
+  // it by about 5/7 g phi t ~ 0.2 %, and the tangential spring's damped oscillation around rolling adds a little.
+  CHECK(std::abs(v_end / v_ref - 1.0) < 0.02);
+}
