@@ -7,13 +7,14 @@
 #include <span>
 #include <vector>
 
-#include <xsimd/xsimd.hpp>
+#include "engine/simd.hpp"
 
 namespace gf {
 
 // Columns are 64-byte aligned and padded to whole batches of this many elements, so a kernel
 // may load a full xsimd batch at any row index that is a multiple of it without a bounds branch.
 inline constexpr std::size_t kColumnPad = 8;
+static_assert(kColumnPad % kLanes == 0, "columns must pad to whole SIMD batches");
 
 inline constexpr std::size_t padded_size(std::size_t n) {
   return (n + kColumnPad - 1) / kColumnPad * kColumnPad;

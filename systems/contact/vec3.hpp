@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include <xsimd/xsimd.hpp>
+#include "engine/simd.hpp"
 
 namespace gf {
 

@@ -417,9 +417,7 @@ void build_dem_world(const DemScene& s, World& world) {
     g.species.type[i] = p.type;
     g.pid.id[i] = static_cast<std::int64_t>(i);
   }
-  WallHistory& wh = g.extras.attach<WallHistory>(n);
-  wh.cols.resize(6 * s.walls.size());
-  for (auto& c : wh.cols) c.resize(n);
+  g.extras.attach<WallHistory>(n).shape(s.walls.size(), n);
 
   world.clock = Clock{0.0, s.dt, 0};
   world.resources.emplace<Gravity>(s.gravity);

@@ -4,18 +4,41 @@
 #include <tbb/parallel_for.h>
 
 #include "systems/contact/linear_spring_dashpot.hpp"
-#include "systems/integrate/integrate.hpp"
 
 namespace gf {
 
-void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
-                         double t_contact) {
+namespace {
+
+void prepare(Grains& g, Walls& walls, WallHistory& h, double t_contact) {
   walls.place(t_contact);
-  const std::size_t nw = walls.list.size();
-  if (h.cols.size() != 6 * nw) {
-    h.cols.resize(6 * nw);
-    for (auto& c : h.cols) c.resize(g.n);
+  if (h.cols.size() != 6 * walls.list.size() || h.active.size() != walls.list.size())
+    h.shape(walls.list.size(), g.n);
+}
+
+// Per-type law constants as columns, so a batch gathers its lanes' values by type.
+struct CoeffColumns {
+  std::vector<double> kn, kt, kr, eta_n, eta_t, eta_r, fs, fr;
+  explicit CoeffColumns(const ContactTable& table) {
+    for (std::size_t a = 0; a < table.types(); ++a) {
+      const PairCoeffs& c = table.wall(a);
+      kn.push_back(c.kn);
+      kt.push_back(c.kt);
+      kr.push_back(c.kr);
+      eta_n.push_back(c.eta_n);
+      eta_t.push_back(c.eta_t);
+      eta_r.push_back(c.eta_r);
+      fs.push_back(c.fs);
+      fr.push_back(c.fr);
+    }
   }
+};
+
+}  // namespace
+
+void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
+                                double t_contact) {
+  prepare(g, walls, h, t_contact);
+  const std::size_t nw = walls.list.size();
   const PairCoeffs* coeffs = table.wall_data();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -29,8 +52,10 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         const double gap = wall_gap(wall, p, n);
         if (gap >= ri) {
           for (int c = 0; c < 6; ++c) hc[c][i] = 0.0;
+          h.active[w][i] = 0.0;
           continue;
         }
+        h.active[w][i] = 1.0;
         const double delta = ri - gap;
         const double li = ri - 0.5 * delta;
         const Vec3d wi{g.omega.x[i], g.omega.y[i], g.omega.z[i]};
@@ -58,6 +83,96 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
       g.wall_torque.x[i] = t.x;
       g.wall_torque.y[i] = t.y;
       g.wall_torque.z[i] = t.z;
+    }
+  });
+}
+
+// The same arithmetic over batches of rows: each wall's gap is computed for every lane, and the law
+// runs only for batches with a lane touching that wall now or at the last evaluation (whose springs
+// must be reset); elsewhere the springs are already zero and nothing is read or written.
+void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
+                         double t_contact) {
+  prepare(g, walls, h, t_contact);
+  using B = BatchD;
+  using V = V3<B>;
+  constexpr std::size_t L = kLanes;
+  const std::size_t nw = walls.list.size();
+  const CoeffColumns cc(table);
+  const std::size_t nown = g.n_owned;
+  const std::size_t nbatch = (nown + L - 1) / L;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nbatch, 128), [&](const tbb::blocked_range<std::size_t>& r) {
+    alignas(64) std::int64_t type_idx[L];
+    for (std::size_t b = r.begin(); b != r.end(); ++b) {
+      const std::size_t i = b * L;
+      // Padding lanes past the last owned row take no part.
+      alignas(64) double lane_ok[L];
+      for (std::size_t l = 0; l < L; ++l) lane_ok[l] = i + l < nown ? 1.0 : 0.0;
+      const auto valid = B::load_aligned(lane_ok) != B(0.0);
+      const V p{B::load_aligned(&g.pos.x[i]), B::load_aligned(&g.pos.y[i]), B::load_aligned(&g.pos.z[i])};
+      const B ri = B::load_aligned(&g.radius.r[i]);
+      V f{B(0.0), B(0.0), B(0.0)}, t{B(0.0), B(0.0), B(0.0)};
+      bool types_loaded = false;
+      LsdCoeffs<B> c{};
+      for (std::size_t w = 0; w < nw; ++w) {
+        const Wall& wall = walls.list[w];
+        V n;
+        B gap;
+        if (wall.kind == Wall::Kind::Plane) {
+          const V pn{B(wall.cur_normal.x), B(wall.cur_normal.y), B(wall.cur_normal.z)};
+          const V pp{B(wall.cur_point.x), B(wall.cur_point.y), B(wall.cur_point.z)};
+          gap = dot(p - pp, pn);
+          n = -pn;
+        } else {
+          const V ax{B(wall.cur_axis.x), B(wall.cur_axis.y), B(wall.cur_axis.z)};
+          const V q = p - V{B(wall.cur_center.x), B(wall.cur_center.y), B(wall.cur_center.z)};
+          const V radial = q - dot(q, ax) * ax;
+          const B rho = xsimd::sqrt(dot(radial, radial));
+          // A lane on the axis is far from the surface (gap = R > r for any grain that fits).
+          const B inv = B(1.0) / xsimd::select(rho > B(0.0), rho, B(1.0));
+          n = inv * radial;
+          gap = B(wall.radius) - rho;
+        }
+        const auto touching = (gap < ri) && valid;
+        ColumnD& act = h.active[w];
+        const B was = B::load_aligned(&act[i]);
+        if (!xsimd::any(touching) && !xsimd::any(was != B(0.0))) continue;
+        if (!types_loaded) {
+          for (std::size_t l = 0; l < L; ++l) type_idx[l] = i + l < nown ? g.species.type[i + l] : 0;
+          const BatchI ti = BatchI::load_aligned(type_idx);
+          c = {B::gather(cc.kn.data(), ti),    B::gather(cc.kt.data(), ti),    B::gather(cc.kr.data(), ti),
+               B::gather(cc.eta_n.data(), ti), B::gather(cc.eta_t.data(), ti), B::gather(cc.eta_r.data(), ti),
+               B::gather(cc.fs.data(), ti),    B::gather(cc.fr.data(), ti)};
+          types_loaded = true;
+        }
+        const B delta = ri - gap;
+        const B li = ri - B(0.5) * delta;
+        const V wi{B::load_aligned(&g.omega.x[i]), B::load_aligned(&g.omega.y[i]), B::load_aligned(&g.omega.z[i])};
+        const V vi{B::load_aligned(&g.vel.x[i]), B::load_aligned(&g.vel.y[i]), B::load_aligned(&g.vel.z[i])};
+        const V contact = p + li * n;
+        const double om = walls.rotation_enabled ? wall.omega : 0.0;
+        const V wall_w{B(om * wall.rot_axis.x), B(om * wall.rot_axis.y), B(om * wall.rot_axis.z)};
+        const V wall_v = cross(wall_w, contact - V{B(wall.rot_point.x), B(wall.rot_point.y), B(wall.rot_point.z)});
+        const V v = vi + cross(li * wi, n) - wall_v;
+        ColumnD* hc = &h.cols[6 * w];
+        LsdState<B> s{{B::load_aligned(&hc[0][i]), B::load_aligned(&hc[1][i]), B::load_aligned(&hc[2][i])},
+                      {B::load_aligned(&hc[3][i]), B::load_aligned(&hc[4][i]), B::load_aligned(&hc[5][i])}};
+        const LsdResult<B> res = LinearSpringDashpot::evaluate(touching, n, delta, v, wi - wall_w, c, B(dt), s);
+        s.shear.x.store_aligned(&hc[0][i]);
+        s.shear.y.store_aligned(&hc[1][i]);
+        s.shear.z.store_aligned(&hc[2][i]);
+        s.roll.x.store_aligned(&hc[3][i]);
+        s.roll.y.store_aligned(&hc[4][i]);
+        s.roll.z.store_aligned(&hc[5][i]);
+        xsimd::select(touching, B(1.0), B(0.0)).store_aligned(&act[i]);
+        f = f + res.force;
+        t = t + li * cross(n, res.force_t) + res.rolling_torque;
+      }
+      f.x.store_aligned(&g.wall_force.x[i]);
+      f.y.store_aligned(&g.wall_force.y[i]);
+      f.z.store_aligned(&g.wall_force.z[i]);
+      t.x.store_aligned(&g.wall_torque.x[i]);
+      t.y.store_aligned(&g.wall_torque.y[i]);
+      t.z.store_aligned(&g.wall_torque.z[i]);
     }
   });
 }

@@ -1,5 +1,7 @@
 // Particle-wall contacts with the same linear spring-dashpot-slider law, with the particle's own
 // mass and inertia in the damping (seed 000, Table 2). Lever arm L = r - delta/2 as for pairs.
+// Two drivers share the law: an xsimd one over batches of rows (the default) and its scalar twin,
+// kept as the reference the tests compare it with.
 //
 // Reads:  Position, Velocity, AngularVelocity, Radius, Species, ContactTable, Clock, StepMode.
 // Writes: WallForce, WallTorque, WallHistory, Walls (the current, rotated geometry).
@@ -16,6 +18,8 @@ namespace gf {
 // placed at time t_contact (the time the positions refer to).
 void compute_wall_forces(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
                          double t_contact);
+void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
+                                double t_contact);
 
 class WallContact : public SystemBase<WallContact> {
  public:

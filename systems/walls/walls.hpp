@@ -44,12 +44,22 @@ double wall_gap(const Wall& w, const Vec3d& p, Vec3d& towards);
 
 Vec3d rotate_about(const Vec3d& v, const Vec3d& axis, double angle);
 
-// Contact history of each row against each wall: six columns per wall (spring, rolling angle).
+// Contact history of each row against each wall: six columns per wall (spring, rolling angle),
+// and per wall a column that is 1 where the row touched the wall at the last evaluation, so the
+// kernels skip rows far from a wall without reading their springs.
 struct WallHistory {
-  std::vector<ColumnD> cols;
+  std::vector<ColumnD> cols;    // 6 per wall: sx, sy, sz, rx, ry, rz
+  std::vector<ColumnD> active;  // 1 per wall
+  void shape(std::size_t walls, std::size_t rows) {
+    cols.resize(6 * walls);
+    active.resize(walls);
+    for (auto& c : cols) c.resize(rows);
+    for (auto& c : active) c.resize(rows);
+  }
   template <class F>
   void visit_columns(F&& f) {
     for (auto& c : cols) f(c);
+    for (auto& c : active) f(c);
   }
 };
 
