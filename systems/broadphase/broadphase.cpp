@@ -32,9 +32,41 @@ bool needs_rebuild(const Grains& g, const BroadphaseState& s) {
 
 namespace {
 
+// Springs of the old list that carry over, found by pair key through an open-addressing table
+// (one probe or two per new pair, where a sorted index took ~17 random ones).
 struct OldHistory {
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> index;  // (key, slot) sorted by key
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);  // no pair has this key (lo < hi)
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint32_t> slots;
+  std::uint64_t mask = 0;
+  int shift = 64;
   std::array<std::vector<double>, 6> values;
+
+  std::size_t home(std::uint64_t key) const { return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift); }
+  void build(const std::vector<std::uint64_t>& active_keys) {
+    std::size_t cap = 16;
+    shift = 60;
+    while (cap < 2 * active_keys.size()) {
+      cap *= 2;
+      --shift;
+    }
+    mask = cap - 1;
+    keys.assign(cap, kEmpty);
+    slots.assign(cap, 0);
+    for (std::size_t s = 0; s < active_keys.size(); ++s) {
+      std::size_t h = home(active_keys[s]);
+      while (keys[h] != kEmpty) h = (h + 1) & mask;
+      keys[h] = active_keys[s];
+      slots[h] = static_cast<std::uint32_t>(s);
+    }
+  }
+  // Slot of the key's springs, or -1.
+  std::int64_t find(std::uint64_t key) const {
+    for (std::size_t h = home(key);; h = (h + 1) & mask) {
+      if (keys[h] == key) return slots[h];
+      if (keys[h] == kEmpty) return -1;
+    }
+  }
 };
 
 // The pair law keeps the springs as seen from the owner row i (they change sign with i and j), and
@@ -44,18 +76,18 @@ double owner_sign(std::int64_t owner_id, std::int64_t partner_id) { return owner
 
 OldHistory collect_active(const Grains& g, const NeighborList& list, PairHistory& h) {
   OldHistory old;
+  std::vector<std::uint64_t> active;
   const std::size_t np = list.pairs();
   for (std::size_t k = 0; k < np; ++k) {
     if (h.sx[k] != 0.0 || h.sy[k] != 0.0 || h.sz[k] != 0.0 || h.rx[k] != 0.0 || h.ry[k] != 0.0 || h.rz[k] != 0.0) {
-      const auto slot = static_cast<std::uint32_t>(old.index.size());
-      old.index.emplace_back(list.key[k], slot);
+      active.push_back(list.key[k]);
       // Rows are still in the order this list was built for, so i and j name the old owner and partner.
       const double sign = owner_sign(g.pid.id[list.i[k]], g.pid.id[list.j[k]]);
       std::size_t c = 0;
       for_each_column(h, [&](ColumnD& col) { old.values[c++].push_back(sign * col[k]); });
     }
   }
-  tbb::parallel_sort(old.index.begin(), old.index.end());
+  old.build(active);
   return old;
 }
 
@@ -65,10 +97,15 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   OldHistory old = collect_active(g, list, history);
   const std::size_t n = g.n;
 
-  double rmax = 0.0;
-  for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, g.radius.r[i]);
-  const double reach = 2.0 * rmax + s.skin;
-  s.grid.build(g.pos.x.span(), g.pos.y.span(), g.pos.z.span(), reach);
+  // Cells sized for the smallest pair reach: in a mixture of 1 and 3 mm grains, cells sized for
+  // the largest would make a small grain test ~4x more candidates than it can touch. A row then
+  // searches as many cells around its own as its own largest reach needs.
+  double rmax = 0.0, rmin = n ? g.radius.r[0] : 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    rmax = std::max(rmax, g.radius.r[i]);
+    rmin = std::min(rmin, g.radius.r[i]);
+  }
+  s.grid.build(g.pos.x.span(), g.pos.y.span(), g.pos.z.span(), 2.0 * rmin + s.skin);
   CellGrid& grid = s.grid;
 
   // Cell order, ties by id: the row order becomes a function of positions alone.
@@ -93,20 +130,39 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   list.offsets.assign(nown + 1, 0);
   const auto dims = grid.dims;
   const double skin = s.skin;
+  const double cell = grid.cell;
+  const double inv_cell = 1.0 / cell;
+  const auto origin = grid.origin;
+  // Distance from coordinate v to the cell interval [o + k cell, o + (k + 1) cell] along one axis.
+  auto gap_to = [&](double v, double o, std::int64_t k) {
+    const double lo = o + static_cast<double>(k) * cell;
+    return v < lo ? lo - v : std::max(0.0, v - (lo + cell));
+  };
   auto visit = [&](std::size_t i, auto&& emit) {
     const std::uint32_t c = grid.cell_of[i];
-    const std::int64_t cx = c % dims[0];
     const std::int64_t cy = (c / dims[0]) % dims[1];
     const std::int64_t cz = c / (dims[0] * dims[1]);
     const double xi = g.pos.x[i], yi = g.pos.y[i], zi = g.pos.z[i], ri = g.radius.r[i];
-    for (std::int64_t dz = -1; dz <= 1; ++dz) {
+    // Only cells that a sphere of the row's largest reach can touch: lines of cells along x are
+    // culled by their distance in y and z, and each line is cut to the chord of that sphere.
+    const double reach = ri + rmax + skin;
+    const auto ext = static_cast<std::int64_t>(std::ceil(reach * inv_cell));
+    for (std::int64_t dz = -ext; dz <= ext; ++dz) {
       const std::int64_t z = cz + dz;
       if (z < 0 || z >= dims[2]) continue;
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+      const double gz = gap_to(zi, origin[2], z);
+      for (std::int64_t dy = -ext; dy <= ext; ++dy) {
         const std::int64_t y = cy + dy;
         if (y < 0 || y >= dims[1]) continue;
-        const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0);
-        const std::int64_t x1 = std::min<std::int64_t>(cx + 1, dims[0] - 1);
+        const double gy = gap_to(yi, origin[1], y);
+        const double rest = reach * reach - gy * gy - gz * gz;
+        if (rest < 0.0) continue;
+        const double half = std::sqrt(rest);
+        const std::int64_t x0 =
+            std::max<std::int64_t>(static_cast<std::int64_t>(std::floor((xi - half - origin[0]) * inv_cell)), 0);
+        const std::int64_t x1 = std::min<std::int64_t>(
+            static_cast<std::int64_t>(std::floor((xi + half - origin[0]) * inv_cell)), dims[0] - 1);
+        if (x1 < x0) continue;
         // Cells x0..x1 of one (y, z) line are consecutive, so their rows are one range.
         const std::size_t base = static_cast<std::size_t>((z * dims[1] + y) * dims[0]);
         std::size_t b = grid.start[base + x0];
@@ -120,31 +176,48 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
       }
     }
   };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nown, 512), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      std::uint32_t count = 0;
-      visit(i, [&](std::size_t) { ++count; });
-      list.offsets[i + 1] = count;
+  // One search pass: each fixed block of rows collects its partners, then blocks are laid end to
+  // end. Blocks do not depend on the thread count, so neither does the list.
+  constexpr std::size_t kRows = 512;
+  const std::size_t nblocks = (nown + kRows - 1) / kRows;
+  s.partners.resize(nblocks);
+  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
+    std::vector<std::uint32_t>& out = s.partners[blk];
+    out.clear();
+    const std::size_t r1 = std::min(nown, (blk + 1) * kRows);
+    for (std::size_t i = blk * kRows; i < r1; ++i) {
+      const std::size_t before = out.size();
+      visit(i, [&](std::size_t j) { out.push_back(static_cast<std::uint32_t>(j)); });
+      list.offsets[i + 1] = static_cast<std::uint32_t>(out.size() - before);
     }
   });
   for (std::size_t i = 0; i < nown; ++i) list.offsets[i + 1] += list.offsets[i];
   const std::size_t np = list.offsets[nown];
   list.i.resize(np);
   list.j.resize(np);
+  // Padded to whole batches with row 0, a valid index, so kernels may gather past the end.
+  list.i_lane.assign(np, 0);
+  list.j_lane.assign(np, 0);
+  list.type_pair.assign(np, 0);
   list.key.resize(np);
   for_each_column(history, [np](ColumnD& col) { col.assign(np, 0.0); });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nown, 512), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      std::size_t k = list.offsets[i];
+  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
+    const std::vector<std::uint32_t>& partners = s.partners[blk];
+    const std::size_t r0 = blk * kRows, r1 = std::min(nown, (blk + 1) * kRows);
+    std::size_t q = 0;
+    for (std::size_t i = r0; i < r1; ++i) {
       const std::int64_t idi = g.pid.id[i];
-      visit(i, [&](std::size_t j) {
+      for (std::size_t k = list.offsets[i]; k < list.offsets[i + 1]; ++k, ++q) {
+        const std::uint32_t j = partners[q];
         list.i[k] = static_cast<std::uint32_t>(i);
-        list.j[k] = static_cast<std::uint32_t>(j);
+        list.j[k] = j;
+        list.i_lane[k] = static_cast<std::int32_t>(i);
+        list.j_lane[k] = static_cast<std::int32_t>(j);
+        list.type_pair[k] = static_cast<std::int32_t>(g.species.type[i] * kMaxSpecies + g.species.type[j]);
         const std::uint64_t key = pair_key(idi, g.pid.id[j]);
         list.key[k] = key;
-        auto it = std::lower_bound(old.index.begin(), old.index.end(), std::make_pair(key, std::uint32_t(0)));
-        if (it != old.index.end() && it->first == key) {
-          const std::uint32_t slot = it->second;
+        const std::int64_t slot = old.find(key);
+        if (slot >= 0) {
           const double sign = owner_sign(idi, g.pid.id[j]);
           history.sx[k] = sign * old.values[0][slot];
           history.sy[k] = sign * old.values[1][slot];
@@ -153,8 +226,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
           history.ry[k] = sign * old.values[4][slot];
           history.rz[k] = sign * old.values[5][slot];
         }
-        ++k;
-      });
+      }
     }
   });
 
@@ -174,6 +246,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   std::copy(g.pos.x.begin(), g.pos.x.end(), s.ref_x.begin());
   std::copy(g.pos.y.begin(), g.pos.y.end(), s.ref_y.begin());
   std::copy(g.pos.z.begin(), g.pos.z.end(), s.ref_z.begin());
+  ++list.version;
   s.valid = true;
   s.force_rebuild = false;
   ++s.rebuilds;

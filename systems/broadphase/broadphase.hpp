@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "engine/grains.hpp"
 #include "engine/system.hpp"
@@ -24,6 +25,7 @@ struct BroadphaseState {
   std::int64_t checks = 0;
   CellGrid grid;
   ColumnD ref_x, ref_y, ref_z;  // positions at the last rebuild
+  std::vector<std::vector<std::uint32_t>> partners;  // search scratch per block of rows, reused
 };
 
 // One full rebuild: sort rows, find pairs within r_i + r_j + skin, carry history over.

@@ -12,10 +12,17 @@
 
 namespace gf {
 
+// Scenes define at most this many species (the scene loader enforces it), so a type pair has a
+// fixed index whatever the table: species_i * kMaxSpecies + species_j.
+inline constexpr std::int64_t kMaxSpecies = 64;
+
 struct NeighborList {
+  std::uint64_t version = 0;            // bumped at every rebuild
   std::vector<std::uint32_t> offsets;   // size n_owned + 1
   std::vector<std::uint32_t> i;         // owner row of each pair
   std::vector<std::uint32_t> j;         // partner row of each pair
+  Column<std::int32_t> i_lane, j_lane;  // the same as SIMD gather indices, padded with row 0
+  Column<std::int32_t> type_pair;       // species[i] * kMaxSpecies + species[j], to index pair tables
   std::vector<std::uint64_t> key;       // (min id << 32 | max id): identifies a pair across rebuilds
   std::vector<std::uint32_t> in_offsets;  // size n + 1
   std::vector<std::uint32_t> in_pairs;    // pair indices whose j is the row

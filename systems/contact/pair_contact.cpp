@@ -1,5 +1,7 @@
 #include "systems/contact/pair_contact.hpp"
 
+#include <algorithm>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -7,83 +9,98 @@
 
 namespace gf {
 
-void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table, double dt,
-                         PairForces& out) {
+namespace {
+
+// Pairs per prefilter block: a multiple of the batch width, small enough for load balance.
+constexpr std::size_t kBlock = 2048;
+
+// Force columns hold one extra slot, kept zero, that pairs apart point at: the per-row sums then
+// add without a branch (half the list pairs are apart, at random, which a branch mispredicts).
+void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
+  for (Column<std::int32_t>* c : {&out.pair, &out.ci, &out.cj, &out.ctype}) c->resize(nc + 1);
+  out.rank.resize(np + 1);
+  out.contact_of.resize(np);
+  out.record.resize((nc + 1) * PairForces::kRecord);
+  std::fill(&out.record[nc * PairForces::kRecord], &out.record[(nc + 1) * PairForces::kRecord], 0.0);
+}
+
+// After a rebuild the list is new: a pair was touching if the broadphase carried a spring over.
+void reset_flags(const NeighborList& list, const PairHistory& h, PairForces& out) {
   const std::size_t np = list.pairs();
-  for_each_column(out, [np](ColumnD& col) { col.resize(np); });
-  const std::size_t ntypes = table.types();
-  const PairCoeffs* coeffs = table.pair_data();
+  out.touching.assign(padded_size(np), 0);
+  out.was_touching.assign(padded_size(np), 0);
+  for (std::size_t k = 0; k < np; ++k)
+    out.was_touching[k] = (h.sx[k] != 0.0 || h.sy[k] != 0.0 || h.sz[k] != 0.0 || h.rx[k] != 0.0 || h.ry[k] != 0.0 ||
+                           h.rz[k] != 0.0);
+  out.list_version = list.version;
+}
 
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 2048), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      const std::uint32_t i = list.i[k], j = list.j[k];
-      const V3<double> d{g.pos.x[j] - g.pos.x[i], g.pos.y[j] - g.pos.y[i], g.pos.z[j] - g.pos.z[i]};
-      const double ri = g.radius.r[i], rj = g.radius.r[j];
-      const double dist2 = dot(d, d);
-      const double rsum = ri + rj;
-      const bool touching = dist2 < rsum * rsum;
-      if (!touching) {
-        // Apart: springs reset, nothing to sum. Skipping the law keeps the common case cheap.
-        h.sx[k] = h.sy[k] = h.sz[k] = h.rx[k] = h.ry[k] = h.rz[k] = 0.0;
-        out.fx[k] = out.fy[k] = out.fz[k] = 0.0;
-        out.tix[k] = out.tiy[k] = out.tiz[k] = 0.0;
-        out.tjx[k] = out.tjy[k] = out.tjz[k] = 0.0;
-        continue;
-      }
-      const double dist = std::sqrt(dist2);
-      const double inv = 1.0 / dist;
-      const V3<double> n{d.x * inv, d.y * inv, d.z * inv};
-      const double delta = rsum - dist;
-      const double li = ri - 0.5 * delta, lj = rj - 0.5 * delta;
-      const V3<double> wi{g.omega.x[i], g.omega.y[i], g.omega.z[i]};
-      const V3<double> wj{g.omega.x[j], g.omega.y[j], g.omega.z[j]};
-      const V3<double> vij{g.vel.x[i] - g.vel.x[j], g.vel.y[i] - g.vel.y[j], g.vel.z[i] - g.vel.z[j]};
-      const V3<double> v = vij + cross(li * wi + lj * wj, n);
-      const PairCoeffs& pc =
-          coeffs[static_cast<std::size_t>(g.species.type[i]) * ntypes + static_cast<std::size_t>(g.species.type[j])];
-      const LsdCoeffs<double> c{pc.kn, pc.kt, pc.kr, pc.eta_n, pc.eta_t, pc.eta_r, pc.fs, pc.fr};
-      LsdState<double> s{{h.sx[k], h.sy[k], h.sz[k]}, {h.rx[k], h.ry[k], h.rz[k]}};
-      const LsdResult<double> res = LinearSpringDashpot::evaluate(true, n, delta, v, wi - wj, c, dt, s);
-      h.sx[k] = s.shear.x;
-      h.sy[k] = s.shear.y;
-      h.sz[k] = s.shear.z;
-      h.rx[k] = s.roll.x;
-      h.ry[k] = s.roll.y;
-      h.rz[k] = s.roll.z;
-      const V3<double> nxf = cross(n, res.force_t);
-      out.fx[k] = res.force.x;
-      out.fy[k] = res.force.y;
-      out.fz[k] = res.force.z;
-      out.tix[k] = li * nxf.x + res.rolling_torque.x;
-      out.tiy[k] = li * nxf.y + res.rolling_torque.y;
-      out.tiz[k] = li * nxf.z + res.rolling_torque.z;
-      // On j the force is -F and the lever -L_j n: the tangential torque has the same sign as i's.
-      out.tjx[k] = lj * nxf.x - res.rolling_torque.x;
-      out.tjy[k] = lj * nxf.y - res.rolling_torque.y;
-      out.tjz[k] = lj * nxf.z - res.rolling_torque.z;
-    }
-  });
+void zero_history(PairHistory& h, std::size_t k) { h.sx[k] = h.sy[k] = h.sz[k] = h.rx[k] = h.ry[k] = h.rz[k] = 0.0; }
 
-  const std::size_t nown = g.n_owned;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nown, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+// Law, lever arms and torques for one contact; shared by the scalar tail and the scalar driver.
+void evaluate_one(const Grains& g, std::size_t k, std::size_t i, std::size_t j, PairHistory& h,
+                  const PairCoeffs* coeffs, std::size_t ntypes, double dt, PairForces& out, std::size_t c) {
+  const V3<double> d{g.pos.x[j] - g.pos.x[i], g.pos.y[j] - g.pos.y[i], g.pos.z[j] - g.pos.z[i]};
+  const double ri = g.radius.r[i], rj = g.radius.r[j];
+  const double dist = std::sqrt(dot(d, d));
+  const double inv = 1.0 / dist;
+  const V3<double> n{d.x * inv, d.y * inv, d.z * inv};
+  const double delta = ri + rj - dist;
+  const double li = ri - 0.5 * delta, lj = rj - 0.5 * delta;
+  const V3<double> wi{g.omega.x[i], g.omega.y[i], g.omega.z[i]};
+  const V3<double> wj{g.omega.x[j], g.omega.y[j], g.omega.z[j]};
+  const V3<double> vij{g.vel.x[i] - g.vel.x[j], g.vel.y[i] - g.vel.y[j], g.vel.z[i] - g.vel.z[j]};
+  const V3<double> v = vij + cross(li * wi + lj * wj, n);
+  const PairCoeffs& pc =
+      coeffs[static_cast<std::size_t>(g.species.type[i]) * ntypes + static_cast<std::size_t>(g.species.type[j])];
+  const LsdCoeffs<double> cf{pc.kn, pc.kt, pc.kr, pc.eta_n, pc.eta_t, pc.eta_r, pc.fs, pc.fr};
+  LsdState<double> s{{h.sx[k], h.sy[k], h.sz[k]}, {h.rx[k], h.ry[k], h.rz[k]}};
+  const LsdResult<double> res = LinearSpringDashpot::evaluate(true, n, delta, v, wi - wj, cf, dt, s);
+  h.sx[k] = s.shear.x;
+  h.sy[k] = s.shear.y;
+  h.sz[k] = s.shear.z;
+  h.rx[k] = s.roll.x;
+  h.ry[k] = s.roll.y;
+  h.rz[k] = s.roll.z;
+  const V3<double> nxf = cross(n, res.force_t);
+  double* rec = &out.record[c * PairForces::kRecord];
+  rec[PairForces::Fx] = res.force.x;
+  rec[PairForces::Fy] = res.force.y;
+  rec[PairForces::Fz] = res.force.z;
+  rec[PairForces::Tix] = li * nxf.x + res.rolling_torque.x;
+  rec[PairForces::Tiy] = li * nxf.y + res.rolling_torque.y;
+  rec[PairForces::Tiz] = li * nxf.z + res.rolling_torque.z;
+  // On j the force is -F and the lever -L_j n: the tangential torque has the same sign as i's.
+  rec[PairForces::Tjx] = lj * nxf.x - res.rolling_torque.x;
+  rec[PairForces::Tjy] = lj * nxf.y - res.rolling_torque.y;
+  rec[PairForces::Tjz] = lj * nxf.z - res.rolling_torque.z;
+}
+
+// Per row: own contacts (a contiguous run of list pairs), then incoming ones, in list order.
+void reduce_rows(Grains& g, const NeighborList& list, const PairForces& out) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t a = r.begin(); a != r.end(); ++a) {
       double fx = 0, fy = 0, fz = 0, tx = 0, ty = 0, tz = 0;
-      for (std::uint32_t k = list.offsets[a]; k < list.offsets[a + 1]; ++k) {
-        fx += out.fx[k];
-        fy += out.fy[k];
-        fz += out.fz[k];
-        tx += out.tix[k];
-        ty += out.tiy[k];
-        tz += out.tiz[k];
+      // Own contacts are one run of the packed list: contacts keep list order, rows own list runs.
+      const double* rec = out.record.data();
+      constexpr std::size_t R = PairForces::kRecord;
+      for (std::size_t c = out.rank[list.offsets[a]]; c < static_cast<std::size_t>(out.rank[list.offsets[a + 1]]); ++c) {
+        const double* q = rec + c * R;
+        fx += q[PairForces::Fx];
+        fy += q[PairForces::Fy];
+        fz += q[PairForces::Fz];
+        tx += q[PairForces::Tix];
+        ty += q[PairForces::Tiy];
+        tz += q[PairForces::Tiz];
       }
       for (std::uint32_t q = list.in_offsets[a]; q < list.in_offsets[a + 1]; ++q) {
-        const std::uint32_t k = list.in_pairs[q];
-        fx -= out.fx[k];
-        fy -= out.fy[k];
-        fz -= out.fz[k];
-        tx += out.tjx[k];
-        ty += out.tjy[k];
-        tz += out.tjz[k];
+        const double* p = rec + static_cast<std::size_t>(out.contact_of[list.in_pairs[q]]) * R;
+        fx -= p[PairForces::Fx];
+        fy -= p[PairForces::Fy];
+        fz -= p[PairForces::Fz];
+        tx += p[PairForces::Tjx];
+        ty += p[PairForces::Tjy];
+        tz += p[PairForces::Tjz];
       }
       g.force.x[a] = fx;
       g.force.y[a] = fy;
@@ -93,6 +110,178 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       g.torque.z[a] = tz;
     }
   });
+}
+
+}  // namespace
+
+void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table,
+                                double dt, PairForces& out) {
+  const std::size_t np = list.pairs();
+  if (out.list_version != list.version || out.touching.size() != padded_size(np)) reset_flags(list, h, out);
+  std::size_t nc = 0;
+  for (std::size_t k = 0; k < np; ++k) {
+    const std::size_t i = list.i[k], j = list.j[k];
+    const double dx = g.pos.x[j] - g.pos.x[i], dy = g.pos.y[j] - g.pos.y[i], dz = g.pos.z[j] - g.pos.z[i];
+    const double rs = g.radius.r[i] + g.radius.r[j];
+    out.touching[k] = dx * dx + dy * dy + dz * dz < rs * rs;
+    nc += out.touching[k];
+  }
+  size_outputs(out, np, nc);
+  std::size_t c = 0;
+  for (std::size_t k = 0; k < np; ++k) {
+    out.rank[k] = static_cast<std::int32_t>(c);
+    if (!out.touching[k]) {
+      out.contact_of[k] = static_cast<std::int32_t>(nc);
+      if (out.was_touching[k]) zero_history(h, k);
+      continue;
+    }
+    out.contact_of[k] = static_cast<std::int32_t>(c);
+    out.pair[c] = static_cast<std::int32_t>(k);
+    out.ci[c] = static_cast<std::int32_t>(list.i[k]);
+    out.cj[c] = static_cast<std::int32_t>(list.j[k]);
+    evaluate_one(g, k, list.i[k], list.j[k], h, table.pair_data(), table.types(), dt, out, c);
+    ++c;
+  }
+  out.rank[np] = static_cast<std::int32_t>(nc);
+  std::swap(out.touching, out.was_touching);
+  reduce_rows(g, list, out);
+}
+
+void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table, double dt,
+                         PairForces& out) {
+  using B = BatchD;
+  using V = V3<B>;
+  constexpr std::size_t L = kLanes;
+  const std::size_t np = list.pairs();
+  if (out.list_version != list.version || out.touching.size() != padded_size(np)) reset_flags(list, h, out);
+
+  // 1. Overlap test per pair; counts per block of pairs.
+  const std::size_t nblocks = (np + kBlock - 1) / kBlock;
+  out.block_start.assign(nblocks + 1, 0);
+  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
+    const std::size_t k0 = b * kBlock, k1 = std::min(np, k0 + kBlock);
+    alignas(64) bool lane[L];
+    std::uint32_t count = 0;
+    for (std::size_t k = k0; k < k1; k += L) {
+      const std::int32_t* bi = &list.i_lane[k];
+      const std::int32_t* bj = &list.j_lane[k];
+      const B dx = gather32(g.pos.x.data(), bj) - gather32(g.pos.x.data(), bi);
+      const B dy = gather32(g.pos.y.data(), bj) - gather32(g.pos.y.data(), bi);
+      const B dz = gather32(g.pos.z.data(), bj) - gather32(g.pos.z.data(), bi);
+      const B rs = gather32(g.radius.r.data(), bj) + gather32(g.radius.r.data(), bi);
+      (dx * dx + dy * dy + dz * dz < rs * rs).store_aligned(lane);
+      const std::size_t m = std::min(L, k1 - k);
+      for (std::size_t l = 0; l < m; ++l) {
+        out.touching[k + l] = lane[l];
+        count += lane[l];
+      }
+    }
+    out.block_start[b + 1] = count;
+  });
+  for (std::size_t b = 0; b < nblocks; ++b) out.block_start[b + 1] += out.block_start[b];
+  const std::size_t nc = out.block_start[nblocks];
+  size_outputs(out, np, nc);
+
+  // 2. Packed contact list in list order; springs of pairs that just separated are reset.
+  const std::size_t ntypes = table.types();
+  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
+    const std::size_t k0 = b * kBlock, k1 = std::min(np, k0 + kBlock);
+    std::int32_t c = static_cast<std::int32_t>(out.block_start[b]);
+    const auto none = static_cast<std::int32_t>(nc);
+    for (std::size_t k = k0; k < k1; ++k) {
+      const std::int32_t t = out.touching[k];
+      out.rank[k] = c;
+      out.contact_of[k] = t ? c : none;
+      // Only touching pairs write their slot: a block's slot past its last contact is the next
+      // block's first, written concurrently by another thread.
+      if (t) {
+        out.pair[c] = static_cast<std::int32_t>(k);
+        out.ci[c] = list.i_lane[k];
+        out.cj[c] = list.j_lane[k];
+        out.ctype[c] = list.type_pair[k];
+      }
+      c += t;
+      if (out.was_touching[k] & !t) zero_history(h, k);
+    }
+  });
+  out.rank[np] = static_cast<std::int32_t>(nc);
+
+  // 3. The law over whole batches of contacts; the remainder through the scalar path.
+  const PairCoeffs* coeffs = table.pair_data();
+  for (int q = 0; q < 8; ++q) out.coeff[q].clear();
+  for (std::size_t a = 0; a < ntypes; ++a)
+    for (std::size_t t = 0; t < static_cast<std::size_t>(kMaxSpecies); ++t) {
+      const PairCoeffs& pc = coeffs[a * ntypes + std::min(t, ntypes - 1)];
+      const double v[8] = {pc.kn, pc.kt, pc.kr, pc.eta_n, pc.eta_t, pc.eta_r, pc.fs, pc.fr};
+      for (int q = 0; q < 8; ++q) out.coeff[q].push_back(v[q]);
+    }
+  // A constant that is the same for every type pair is broadcast instead of gathered.
+  for (int q = 0; q < 8; ++q)
+    out.coeff_uniform[q] = std::all_of(out.coeff[q].begin(), out.coeff[q].end(),
+                                       [&](double x) { return x == out.coeff[q][0]; });
+  auto coeff = [&](int q, const std::int32_t* idx) {
+    return out.coeff_uniform[q] ? B(out.coeff[q][0]) : gather32(out.coeff[q].data(), idx);
+  };
+  const std::size_t full = nc / L;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, full, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t bt = r.begin(); bt != r.end(); ++bt) {
+      const std::size_t c0 = bt * L;
+      const std::int32_t* bi = &out.ci[c0];
+      const std::int32_t* bj = &out.cj[c0];
+      const std::int32_t* bt_idx = &out.ctype[c0];
+      const std::int32_t* bk = &out.pair[c0];
+      const V d{gather32(g.pos.x.data(), bj) - gather32(g.pos.x.data(), bi),
+                gather32(g.pos.y.data(), bj) - gather32(g.pos.y.data(), bi),
+                gather32(g.pos.z.data(), bj) - gather32(g.pos.z.data(), bi)};
+      const B ri = gather32(g.radius.r.data(), bi), rj = gather32(g.radius.r.data(), bj);
+      const B dist = xsimd::sqrt(dot(d, d));
+      const B inv = B(1.0) / dist;
+      const V n = inv * d;
+      const B delta = ri + rj - dist;
+      const B li = ri - B(0.5) * delta, lj = rj - B(0.5) * delta;
+      const V wi{gather32(g.omega.x.data(), bi), gather32(g.omega.y.data(), bi), gather32(g.omega.z.data(), bi)};
+      const V wj{gather32(g.omega.x.data(), bj), gather32(g.omega.y.data(), bj), gather32(g.omega.z.data(), bj)};
+      const V vij{gather32(g.vel.x.data(), bi) - gather32(g.vel.x.data(), bj),
+                  gather32(g.vel.y.data(), bi) - gather32(g.vel.y.data(), bj),
+                  gather32(g.vel.z.data(), bi) - gather32(g.vel.z.data(), bj)};
+      const V v = vij + cross(li * wi + lj * wj, n);
+      const LsdCoeffs<B> cf{coeff(0, bt_idx), coeff(1, bt_idx), coeff(2, bt_idx), coeff(3, bt_idx),
+                            coeff(4, bt_idx), coeff(5, bt_idx), coeff(6, bt_idx), coeff(7, bt_idx)};
+      LsdState<B> s{{gather32(h.sx.data(), bk), gather32(h.sy.data(), bk), gather32(h.sz.data(), bk)},
+                    {gather32(h.rx.data(), bk), gather32(h.ry.data(), bk), gather32(h.rz.data(), bk)}};
+      const auto all = B(0.0) == B(0.0);
+      const LsdResult<B> res = LinearSpringDashpot::evaluate(all, n, delta, v, wi - wj, cf, B(dt), s);
+      scatter32(s.shear.x, h.sx.data(), bk);
+      scatter32(s.shear.y, h.sy.data(), bk);
+      scatter32(s.shear.z, h.sz.data(), bk);
+      scatter32(s.roll.x, h.rx.data(), bk);
+      scatter32(s.roll.y, h.ry.data(), bk);
+      scatter32(s.roll.z, h.rz.data(), bk);
+      const V nxf = cross(n, res.force_t);
+      // Lanes to records: store the nine batches, then interleave them.
+      alignas(64) double lanes[PairForces::kRecord][L];
+      res.force.x.store_aligned(lanes[PairForces::Fx]);
+      res.force.y.store_aligned(lanes[PairForces::Fy]);
+      res.force.z.store_aligned(lanes[PairForces::Fz]);
+      (li * nxf.x + res.rolling_torque.x).store_aligned(lanes[PairForces::Tix]);
+      (li * nxf.y + res.rolling_torque.y).store_aligned(lanes[PairForces::Tiy]);
+      (li * nxf.z + res.rolling_torque.z).store_aligned(lanes[PairForces::Tiz]);
+      (lj * nxf.x - res.rolling_torque.x).store_aligned(lanes[PairForces::Tjx]);
+      (lj * nxf.y - res.rolling_torque.y).store_aligned(lanes[PairForces::Tjy]);
+      (lj * nxf.z - res.rolling_torque.z).store_aligned(lanes[PairForces::Tjz]);
+      double* rec = &out.record[c0 * PairForces::kRecord];
+      for (std::size_t l = 0; l < L; ++l)
+        for (std::size_t f = 0; f < PairForces::kRecord; ++f) rec[l * PairForces::kRecord + f] = lanes[f][l];
+    }
+  });
+  for (std::size_t c = full * L; c < nc; ++c) {
+    const std::size_t k = static_cast<std::size_t>(out.pair[c]);
+    evaluate_one(g, k, list.i[k], list.j[k], h, coeffs, ntypes, dt, out, c);
+  }
+  std::swap(out.touching, out.was_touching);
+
+  // 4. Per-row sums.
+  reduce_rows(g, list, out);
 }
 
 void PairContact::run(World& world) {

@@ -1,30 +1,65 @@
 // Particle-particle contact driver for the linear spring-dashpot-slider law. The driver owns the
-// iteration; the law (linear_spring_dashpot.hpp) owns the physics.
-//   phase 1: per pair of the neighbour list, the law's force and the torques on both sides;
-//   phase 2: per row, a fixed-order sum over its own pairs then its incoming pairs (no atomics).
+// iteration; the law (linear_spring_dashpot.hpp) owns the physics. Per step:
+//   1. prefilter: the overlap test over every pair of the Verlet list, in xsimd batches;
+//   2. compaction of the touching pairs into a packed contact list, in list order; springs of
+//      pairs that stopped touching are reset here, so the law never visits pairs apart;
+//   3. the law over the packed contacts in xsimd batches (a scalar tail), per-contact force and
+//      the torques on both sides;
+//   4. per row, a fixed-order sum over its own contacts, then its incoming ones (no atomics).
+// Every step is independent of the thread count, so runs are bit-for-bit repeatable.
 // Lever arms are L = r - delta/2 on each side (centre to contact point).
+// compute_pair_forces_scalar is the plain reference the tests and benchmarks compare with.
 //
 // Reads:  Position, Velocity, AngularVelocity, Radius, Species, NeighborList, ContactTable, Clock.
-// Writes: Force, Torque, PairHistory.
+// Writes: Force, Torque, PairHistory, PairForces.
 #pragma once
+
+#include <cstdint>
+#include <vector>
 
 #include "engine/system.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/contact/contact_params.hpp"
+#include "systems/contact/vec3.hpp"
 
 namespace gf {
 
-// Per-pair results of phase 1, kept between the phases (and for analysis).
 struct PairForces {
-  ColumnD fx, fy, fz;     // on the owner row i, N
-  ColumnD tix, tiy, tiz;  // torque on i, N m
-  ColumnD tjx, tjy, tjz;  // torque on j, N m
-  auto columns() { return std::tie(fx, fy, fz, tix, tiy, tiz, tjx, tjy, tjz); }
+  // Packed contacts of the last evaluation, in list order (one slack row past the end).
+  Column<std::int32_t> pair;       // list index of each contact
+  Column<std::int32_t> ci, cj;     // its rows
+  Column<std::int32_t> ctype;      // its type-pair index (NeighborList::type_pair)
+  // One record of kRecord doubles per contact, plus a last all-zero record that stands for
+  // "apart": force on the owner row i (N), torque on i, torque on j (N m). Records, not columns:
+  // the per-row sums read a contact's nine values from one or two cache lines instead of nine.
+  static constexpr std::size_t kRecord = 9;
+  enum Field : std::size_t { Fx, Fy, Fz, Tix, Tiy, Tiz, Tjx, Tjy, Tjz };
+  ColumnD record;
+  double at(std::size_t c, Field f) const { return record[c * kRecord + f]; }
+  // Per list pair.
+  std::vector<std::int32_t> rank;        // contacts before this list pair (size pairs + 1)
+  std::vector<std::int32_t> contact_of;  // contact index, or contacts() (a zero row) when apart
+  // Overlap flags per list pair; after an evaluation `was_touching` holds its flags (they become
+  // the previous step's at the next one) and `touching` is scratch.
+  std::vector<std::uint8_t> touching, was_touching;
+  std::vector<std::uint32_t> block_start;
+  std::vector<double> coeff[8];  // law constants per type pair: kn kt kr eta_n eta_t eta_r fs fr
+  bool coeff_uniform[8] = {};
+  std::uint64_t list_version = ~std::uint64_t(0);
+
+  std::size_t contacts() const { return pair.size() - 1; }
+  // Force on the owner of list pair k at the last evaluation (zero when apart).
+  V3<double> force_of(std::size_t k) const {
+    const auto c = static_cast<std::size_t>(contact_of[k]);
+    return {at(c, Fx), at(c, Fy), at(c, Fz)};
+  }
 };
 
-// Evaluates every pair of `list` (phase 1) and sums per row into Force and Torque (phase 2).
+// Evaluates every pair of `list` and sums per row into Force and Torque.
 void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
                          double dt, PairForces& out);
+void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
+                                double dt, PairForces& out);
 
 class PairContact : public SystemBase<PairContact> {
  public:

@@ -7,6 +7,7 @@
 
 #include "systems/analysis/metrics.hpp"
 #include "systems/broadphase/broadphase.hpp"
+#include "systems/broadphase/neighbor_list.hpp"
 #include "systems/contact/pair_contact.hpp"
 #include "systems/fill/random_fill.hpp"
 #include "systems/fill/state_csv.hpp"
@@ -236,7 +237,8 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   if (s.species.empty())
     root.fail("species", "the scene defines no species",
               "add [[species]] with name, diameter (m) and density (kg/m^3)");
-  if (s.species.size() > 64) root.fail("species", "more than 64 species", "merge species");
+  if (s.species.size() > static_cast<std::size_t>(kMaxSpecies))
+    root.fail("species", "more than " + std::to_string(kMaxSpecies) + " species", "merge species");
 
   // Contacts: [contact] for every pair; [contact.wall] and [[contact.pair]] override single keys.
   const SceneNode ct = root.table("contact");
