@@ -5,11 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -19,19 +17,20 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "engine/grains.hpp"
 #include "engine/world.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/contact/pair_contact.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "tests/test_support.hpp"
 
 using gf::BroadphaseState;
 using gf::Grains;
 using gf::NeighborList;
 using gf::PairHistory;
+using gf::test::stir_by_id;
+using gf::test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
@@ -251,21 +250,6 @@ void check_against_brute_force(const Pack& p, double skin, std::size_t min_pairs
 // ---------------------------------------------------------------------------------------------------------------------
 // Scenes for the dynamic tests.
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& stem) {
-    static int serial = 0;
-    const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();
-    path = fs::temp_directory_path() / ("grainflow_" + stem + "_" + std::to_string(::getpid()) + "_" +
-                                        std::to_string(tick) + "_" + std::to_string(++serial));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
 // A few hundred grains of 2 and 3 mm in a closed box (SI units). dt is 0.06 of the critical period.
 std::string pack_scene(double skin) {
   std::ostringstream s;
@@ -309,23 +293,6 @@ region = { shape = "box", lo = [0.0015, 0.0015, 0.0015], hi = [0.0185, 0.0285, 0
 count = { small = 200, large = 100 }
 )";
   return s.str();
-}
-
-// Random velocities by id (up to 0.3 m/s a component) and spins, so that grains collide at once.
-void stir(Grains& g, std::uint64_t seed) {
-  std::vector<std::size_t> by_id(g.n);
-  for (std::size_t r = 0; r < g.n; ++r) by_id[static_cast<std::size_t>(g.pid.id[r])] = r;
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.3, 0.3), w(-100.0, 100.0);
-  for (std::size_t id = 0; id < g.n; ++id) {
-    const std::size_t r = by_id[id];
-    g.vel.x[r] = u(rng);
-    g.vel.y[r] = u(rng);
-    g.vel.z[r] = u(rng);
-    g.omega.x[r] = w(rng);
-    g.omega.y[r] = w(rng);
-    g.omega.z[r] = w(rng);
-  }
 }
 
 std::size_t row_of(const Grains& g, std::int64_t id) {
@@ -380,28 +347,30 @@ TEST_CASE("broadphase: degenerate packs", "[broadphase]") {
     check_incidence(b);
   }
   SECTION("all particles in one cell") {
-    // Centres within 2 mm, radii up to 1.5 mm: the cell edge 2 rmax + skin exceeds the pack.
-    const Pack p = random_pack(31, 40, 0.002, 0.5e-3);
+    // Centres within 2 mm, all radii 1.5 mm: the cell edge 2 rmin + skin exceeds the pack.
+    Pack p = random_pack(31, 40, 0.002, 0.5e-3);
+    for (double& r : p.r) r = 1.5e-3;
     Built b;
     build_list(b, p, 0.2e-3);
     CHECK(b.state.grid.cells() == 1);
     check_against_brute_force(p, 0.2e-3, 500);
   }
   SECTION("particles on cell faces") {
-    // rmax = 0.25 and skin = 0.5 make the cell edge exactly 1 and the origin 0, so integer
-    // coordinates are exact cell faces. A lattice of spacing 0.5 puts every other particle on a
-    // face; pairs at distance 1 with both radii 0.25 sit exactly on the cut-off (excluded by both).
+    // rmin = 0.25 and skin = 0.5 make the cell edge (2 rmin + skin) exactly 1 and the origin 0, so
+    // integer coordinates are exact cell faces. A lattice of spacing 0.5 puts every other particle
+    // on a face; pairs at distance 1 with both radii 0.25 sit exactly on the cut-off (excluded by
+    // both), and larger radii make rows search more than one cell around their own.
     std::mt19937_64 rng(41);
-    const double radii[4] = {0.25, 0.2, 0.1, 0.05};
+    const double radii[4] = {0.25, 0.3, 0.35, 0.4};
     Pack p;
     for (int i = 0; i <= 6; ++i)
       for (int j = 0; j <= 6; ++j)
         for (int k = 0; k <= 6; ++k) p.add(0.5 * i, 0.5 * j, 0.5 * k, radii[rng() % 4]);
     p.r[0] = 0.25;
     // A few particles one ulp either side of a face.
-    p.add(std::nextafter(1.0, 0.0), 1.0, 1.0, 0.2);
+    p.add(std::nextafter(1.0, 0.0), 1.0, 1.0, 0.3);
     p.add(std::nextafter(2.0, 3.0), std::nextafter(1.0, 0.0), 1.5, 0.25);
-    p.add(1.5, std::nextafter(2.0, 3.0), std::nextafter(2.0, 0.0), 0.1);
+    p.add(1.5, std::nextafter(2.0, 3.0), std::nextafter(2.0, 0.0), 0.35);
     p.shuffle_ids(42);
     Built b;
     build_list(b, p, 0.5);
@@ -540,7 +509,7 @@ TEST_CASE("broadphase: between rebuilds the list holds every touching pair", "[b
   // The skin/2 rule's promise: two rows that each moved at most skin/2 were within r_i + r_j + skin at
   // the last rebuild if they touch now. Checked against brute force after every step of a stirred pack.
   gf::DemSimulation sim = gf::DemSimulation::from_text(pack_scene(2.0e-4));
-  stir(sim.grains(), 3);
+  stir_by_id(sim.grains(), 3);  // random velocities and spins, so that grains collide at once
   sim.prime();
   const auto& state = sim.world().resources.get<BroadphaseState>();
   std::size_t touching_seen = 0;
@@ -595,8 +564,7 @@ struct SlidingPair {
     // C sits between the walls (clear of both) at the lowest y, so it fixes the origin's y; A has
     // the lowest x, so A and B share the x cell column whatever the origin's x.
     csv << "3,1," << 2 * r << "," << ax + r << "," << 0.0 << ",0\n";
-    const fs::path file = dir.path / "pair.csv";
-    std::ofstream(file) << csv.str();
+    const fs::path file = dir.write("pair.csv", csv.str());
     std::ostringstream s;
     s.precision(17);
     s << "[run]\ndt = 1.0e-6\nduration = 1.0\nskin = " << skin << "\ngravity = [0.0, 0.0, 0.0]\n"
@@ -721,8 +689,8 @@ TEST_CASE("broadphase: rebuilding a stirred pile every step keeps every pair's h
   const std::vector<std::string> strong_gravity{"run.gravity=[0, -100, 0]"};
   gf::DemSimulation a = gf::DemSimulation::from_text(pack_scene(2.0e-4), strong_gravity);
   gf::DemSimulation b = gf::DemSimulation::from_text(pack_scene(2.0e-4), strong_gravity);
-  stir(a.grains(), 9);
-  stir(b.grains(), 9);
+  stir_by_id(a.grains(), 9);
+  stir_by_id(b.grains(), 9);
   a.advance(kBefore);
   b.advance(kBefore);
   REQUIRE(by_id(a.grains()) == by_id(b.grains()));
@@ -787,7 +755,8 @@ TEST_CASE("broadphase: rebuilding a stirred pile every step keeps every pair's h
       const gf::PairForces& pfa = a.world().resources.get<gf::PairForces>();
       std::vector<double> scale(ga.n, 0.0);
       for (std::size_t k = 0; k < la.pairs(); ++k) {
-        const double m = std::abs(pfa.fx[k]) + std::abs(pfa.fy[k]) + std::abs(pfa.fz[k]);
+        const gf::V3<double> f = pfa.force_of(k);  // zero when apart
+        const double m = std::abs(f.x) + std::abs(f.y) + std::abs(f.z);
         scale[la.i[k]] += m;
         scale[la.j[k]] += m;
       }

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -28,9 +27,14 @@
 #include "engine/scene.hpp"
 #include "systems/setup/dem_scene.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Contains;
+using gf::test::lines_of;
+using gf::test::read_file;
+using gf::test::read_lines;
+using gf::test::TempDir;
 
 namespace {
 
@@ -71,23 +75,6 @@ series_interval = 1.0e-4
 frame_interval = 5.0e-4
 )";
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& stem) {
-    static int serial = 0;
-    const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();
-    path = fs::temp_directory_path() / ("grainflow_" + stem + "_" + std::to_string(::getpid()) + "_" +
-                                        std::to_string(tick) + "_" + std::to_string(++serial));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-};
-
 // `text` with the first `from` replaced by `to`; the test fails if `from` is absent.
 std::string with(std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);
@@ -100,19 +87,6 @@ int line_of(const std::string& text, const std::string& needle) {
   const auto at = text.find(needle);
   REQUIRE(at != std::string::npos);
   return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
-}
-
-fs::path write(const fs::path& dir, const std::string& name, const std::string& text) {
-  const fs::path p = dir / name;
-  std::ofstream(p, std::ios::binary) << text;
-  return p;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 // "<file>:<line>:" as the messages start.
@@ -174,16 +148,9 @@ Exit run_cli(const TempDir& dir, const std::string& args) {
   // std::system runs sh -c; a child killed by a signal shows as exit code 128 + signal there.
   e.exited = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) < 128;
   e.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  e.out = read(out);
-  e.err = read(err);
+  e.out = read_file(out);
+  e.err = read_file(err);
   return e;
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
 }
 
 // Every field of a series.csv row as a number: the whole field must parse.
@@ -212,7 +179,7 @@ const std::string kSeriesHeader =
 TEST_CASE("dem scene: the test scene itself is valid", "[dem_scene]") {
   // Every error case below is one edit of this scene, so it must load, build and have 50 grains.
   TempDir dir("dem_scene_ok");
-  const fs::path f = write(dir.path, "ok.toml", kScene);
+  const fs::path f = dir.write("ok.toml", kScene);
   CHECK(scene_error(f, {}, true).empty());
   const gf::DemScene s = gf::load_dem_scene(gf::SceneDoc::load(f));
   CHECK(s.dt == 1.0e-5);
@@ -226,7 +193,7 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
   TempDir dir("dem_scene_keys");
   SECTION("a misspelt key in [run]") {
     const std::string text = with(kScene, "skin = 1.0e-4\n", "skin = 1.0e-4\nseeed = 3\n");
-    const fs::path f = write(dir.path, "typo.toml", text);
+    const fs::path f = dir.write("typo.toml", text);
     const std::string e = scene_error(f);
     CHECK_THAT(e, Contains(at(f, line_of(text, "seeed")) + " key 'run.seeed'"));
     CHECK_THAT(e, Contains("unknown key 'seeed'"));
@@ -234,19 +201,19 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
   }
   SECTION("a misspelt table") {
     const std::string text = with(kScene, "[output]", "[outptu]");
-    const fs::path f = write(dir.path, "typo_table.toml", text);
+    const fs::path f = dir.write("typo_table.toml", text);
     CHECK_THAT(scene_error(f), Contains(at(f, line_of(text, "[outptu]")) + " key 'outptu'"));
   }
   SECTION("a missing species diameter") {
     const std::string text = with(kScene, "diameter = 2.0e-3\n", "");
-    const fs::path f = write(dir.path, "no_diameter.toml", text);
+    const fs::path f = dir.write("no_diameter.toml", text);
     const std::string e = scene_error(f);
     CHECK_THAT(e, Contains(at(f, line_of(text, "[[species]]")) + " key 'species[0].diameter'"));
     CHECK_THAT(e, Contains("missing required key 'diameter'"));
   }
   SECTION("a negative diameter") {
     const std::string text = with(kScene, "diameter = 2.0e-3", "diameter = -2.0e-3");
-    const fs::path f = write(dir.path, "negative_diameter.toml", text);
+    const fs::path f = dir.write("negative_diameter.toml", text);
     const std::string e = scene_error(f);
     CHECK_THAT(e, Contains(at(f, line_of(text, "diameter = -2.0e-3")) + " key 'species[0].diameter'"));
     CHECK_THAT(e, Contains("-0.002 is out of range") && Contains("> 0"));
@@ -255,13 +222,13 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
     const std::string text =
         with(kScene, R"(region = { shape = "box", lo = [0.001, 0.001, 0.001], hi = [0.009, 0.019, 0.009] })",
              R"(region = { shape = "cylinder", center = [0.005, 0.01, 0.005], axis = [0, 0, 1], radius = -0.003, length = 0.006 })");
-    const fs::path f = write(dir.path, "negative_radius.toml", text);
+    const fs::path f = dir.write("negative_radius.toml", text);
     const std::string e = scene_error(f);
     CHECK_THAT(e, Contains(at(f, line_of(text, "radius = -0.003")) + " key 'fill[0].region.radius'"));
     CHECK_THAT(e, Contains("out of range"));
   }
   SECTION("a value given on the command line is located there") {
-    const fs::path f = write(dir.path, "ok.toml", kScene);
+    const fs::path f = dir.write("ok.toml", kScene);
     CHECK_THAT(scene_error(f, {"run.skin=-1"}),
                Contains("command line (--set run.skin=-1): key 'run.skin'") && Contains("out of range"));
   }
@@ -271,7 +238,7 @@ TEST_CASE("dem scene: a time step above the critical step is refused unless allo
   TempDir dir("dem_scene_dt");
   const double limit = 0.1 * expected_critical_period();  // dt_safety defaults to 0.1
   const std::string text = with(kScene, "dt = 1.0e-5", "dt = 1.0e-4");
-  const fs::path f = write(dir.path, "big_dt.toml", text);
+  const fs::path f = dir.write("big_dt.toml", text);
   const std::string e = scene_error(f);
   CHECK_THAT(e, Contains(at(f, line_of(text, "dt = 1.0e-4")) + " key 'run.dt'"));
   CHECK_THAT(e, Contains("tangential, glass-glass"));  // the term that sets the limit
@@ -281,8 +248,8 @@ TEST_CASE("dem scene: a time step above the critical step is refused unless allo
   CHECK_THAT(e, Contains("allow_unstable_dt = true"));  // the fix names the escape hatch
 
   SECTION("allowed in the file") {
-    const fs::path g = write(dir.path, "big_dt_allowed.toml",
-                             with(text, "skin = 1.0e-4\n", "skin = 1.0e-4\nallow_unstable_dt = true\n"));
+    const fs::path g = dir.write("big_dt_allowed.toml",
+                                 with(text, "skin = 1.0e-4\n", "skin = 1.0e-4\nallow_unstable_dt = true\n"));
     CHECK(scene_error(g, {}, true).empty());
     CHECK(gf::load_dem_scene(gf::SceneDoc::load(g)).allow_unstable_dt);
   }
@@ -291,11 +258,11 @@ TEST_CASE("dem scene: a time step above the critical step is refused unless allo
     CHECK(gf::load_dem_scene(gf::SceneDoc::load(f, {"run.allow_unstable_dt=true"})).dt == 1.0e-4);
   }
   SECTION("the check applies to a dt set on the command line") {
-    const fs::path ok = write(dir.path, "ok.toml", kScene);
+    const fs::path ok = dir.write("ok.toml", kScene);
     CHECK_THAT(scene_error(ok, {"run.dt=1e-4"}), Contains("command line (--set run.dt=1e-4): key 'run.dt'"));
   }
   SECTION("just below the limit is accepted") {
-    const fs::path ok = write(dir.path, "ok.toml", kScene);
+    const fs::path ok = dir.write("ok.toml", kScene);
     std::ostringstream set;
     set.precision(17);
     set << "run.dt=" << 0.999 * limit;
@@ -308,7 +275,7 @@ TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill
   SECTION("more grains than the region holds") {
     // 5000 spheres of 2 mm in 1.15 cm^3 would be 18 times the region's volume.
     const std::string text = with(kScene, "count = { glass = 50 }", "count = { glass = 5000 }");
-    const fs::path f = write(dir.path, "crowded.toml", text);
+    const fs::path f = dir.write("crowded.toml", text);
     CHECK(scene_error(f).empty());  // valid as text ...
     const std::string e = scene_error(f, {}, true);  // ... but cannot be placed
     CHECK_THAT(e, Contains(at(f, line_of(text, "[[fill]]")) + " fill[0]:"));
@@ -316,14 +283,14 @@ TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill
   }
   SECTION("a region reaching through a wall") {
     const std::string text = with(kScene, "lo = [0.001, 0.001, 0.001]", "lo = [-0.002, 0.001, 0.001]");
-    const fs::path f = write(dir.path, "through.toml", text);
+    const fs::path f = dir.write("through.toml", text);
     const std::string e = scene_error(f, {}, true);
     CHECK_THAT(e, Contains(at(f, line_of(text, "[[fill]]")) + " fill[0]:"));
     CHECK_THAT(e, Contains("reaches through wall 'box-x'"));
   }
   SECTION("no fill at all") {
     const std::string text = kScene.substr(0, kScene.find("[[fill]]")) + kScene.substr(kScene.find("[output]"));
-    const fs::path f = write(dir.path, "empty.toml", text);
+    const fs::path f = dir.write("empty.toml", text);
     const std::string e = scene_error(f);
     CHECK_THAT(e, Contains(f.string() + ":") && Contains("key 'fill'") && Contains("places no grains"));
   }
@@ -333,19 +300,19 @@ TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill
         "[[fill]]\nkind = \"file\"\npath = \"grains.csv\"\ntypes = { 1 = \"glass\" }\n\n";
     const std::string text =
         kScene.substr(0, kScene.find("[[fill]]")) + file_fill + kScene.substr(kScene.find("[output]"));
-    const fs::path f = write(dir.path, "from_file.toml", text);
+    const fs::path f = dir.write("from_file.toml", text);
     const fs::path csv = dir.path / "grains.csv";
     const int fill_line = line_of(text, "[[fill]]");
 
-    write(dir.path, "grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,1,0.002,0.006,0.003,0.003\n");
+    dir.write("grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,1,0.002,0.006,0.003,0.003\n");
     CHECK(scene_error(f, {}, true).empty());
 
-    write(dir.path, "grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,2,0.002,0.006,0.003,0.003\n");
+    dir.write("grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,2,0.002,0.006,0.003,0.003\n");
     std::string e = scene_error(f, {}, true);
     CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:"));
     CHECK_THAT(e, Contains(csv.string() + ":3: type 2 is not mapped to a species"));
 
-    write(dir.path, "grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,1,0.003,0.006,0.003,0.003\n");
+    dir.write("grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,1,0.003,0.006,0.003,0.003\n");
     e = scene_error(f, {}, true);
     CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:"));
     CHECK_THAT(e, Contains(csv.string() + ":3: diameter 0.003 m does not match species 'glass' (0.002 m)"));
@@ -360,7 +327,7 @@ TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill
 TEST_CASE("cli: run writes the series, the frames and the summary", "[dem_scene][cli]") {
   REQUIRE(fs::exists(GRAINFLOW_BINARY));
   TempDir dir("cli_run");
-  const fs::path scene = write(dir.path, "tiny.toml", kScene);
+  const fs::path scene = dir.write("tiny.toml", kScene);
   const fs::path out = dir.path / "out";
   const Exit e = run_cli(dir, "run " + quote(scene.string()) + " --out " + quote(out.string()) +
                                   " --steps 200 --threads 1 --quiet");
@@ -369,7 +336,7 @@ TEST_CASE("cli: run writes the series, the frames and the summary", "[dem_scene]
   REQUIRE(e.code == 0);
 
   // series.csv: the header and a row every 1e-4 s = 10 steps, from t = 0 to t = 200 dt.
-  const auto rows = lines(read(out / "series.csv"));
+  const auto rows = read_lines(out / "series.csv");
   REQUIRE(rows.size() == 1 + 21);
   CHECK(rows[0] == kSeriesHeader);
   for (std::size_t k = 1; k < rows.size(); ++k) {
@@ -381,7 +348,7 @@ TEST_CASE("cli: run writes the series, the frames and the summary", "[dem_scene]
   }
 
   // Frames every 5e-4 s: t = 0, 5e-4, ..., 2e-3, each listed in frames.pvd and present on disk.
-  const std::string pvd = read(out / "frames.pvd");
+  const std::string pvd = read_file(out / "frames.pvd");
   CHECK_THAT(pvd, Contains("</VTKFile>"));
   std::size_t listed = 0;
   for (std::size_t p = pvd.find("file=\""); p != std::string::npos; p = pvd.find("file=\"", p + 1)) {
@@ -389,7 +356,7 @@ TEST_CASE("cli: run writes the series, the frames and the summary", "[dem_scene]
     const fs::path frame = out / pvd.substr(b, q - b);
     INFO(frame);
     CHECK(fs::exists(frame));
-    CHECK(read(frame).find("<VTKFile type=\"PolyData\"") != std::string::npos);
+    CHECK(read_file(frame).find("<VTKFile type=\"PolyData\"") != std::string::npos);
     ++listed;
   }
   CHECK(listed == 5);
@@ -397,7 +364,7 @@ TEST_CASE("cli: run writes the series, the frames and the summary", "[dem_scene]
   for (const auto& entry : fs::directory_iterator(out / "frames")) vtp += entry.path().extension() == ".vtp";
   CHECK(vtp == 5);
 
-  const auto summary = nlohmann::json::parse(read(out / "summary.json"));
+  const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
   CHECK(summary.at("status") == "completed");
   CHECK(summary.at("steps") == 200);
   CHECK(summary.at("grains") == 50);
@@ -419,7 +386,7 @@ TEST_CASE("cli: run writes the series, the frames and the summary", "[dem_scene]
 
 TEST_CASE("cli: check prints the systems and the critical step", "[dem_scene][cli]") {
   TempDir dir("cli_check");
-  const fs::path scene = write(dir.path, "tiny.toml", kScene);
+  const fs::path scene = dir.write("tiny.toml", kScene);
   const Exit e = run_cli(dir, "check " + quote(scene.string()));
   INFO("stdout: " << e.out << "\nstderr: " << e.err);
   REQUIRE(e.exited);
@@ -438,7 +405,7 @@ TEST_CASE("cli: a bad scene and a bad flag fail cleanly", "[dem_scene][cli]") {
   TempDir dir("cli_bad");
   SECTION("bad scene: exit 1, file:line on stderr") {
     const std::string text = with(kScene, "skin = 1.0e-4\n", "skin = 1.0e-4\nseeed = 3\n");
-    const fs::path scene = write(dir.path, "bad.toml", text);
+    const fs::path scene = dir.write("bad.toml", text);
     const Exit e = run_cli(dir, "run " + quote(scene.string()) + " --out " + quote((dir.path / "out").string()) +
                                     " --steps 10 --quiet");
     REQUIRE(e.exited);  // an error, not a crash
@@ -447,7 +414,7 @@ TEST_CASE("cli: a bad scene and a bad flag fail cleanly", "[dem_scene][cli]") {
     CHECK_FALSE(fs::exists(dir.path / "out" / "summary.json"));  // nothing ran
   }
   SECTION("bad scene under check") {
-    const fs::path scene = write(dir.path, "bad.toml", with(kScene, "dt = 1.0e-5", "dt = 1.0e-4"));
+    const fs::path scene = dir.write("bad.toml", with(kScene, "dt = 1.0e-5", "dt = 1.0e-4"));
     const Exit e = run_cli(dir, "check " + quote(scene.string()));
     REQUIRE(e.exited);
     CHECK(e.code == 1);
@@ -460,14 +427,14 @@ TEST_CASE("cli: a bad scene and a bad flag fail cleanly", "[dem_scene][cli]") {
     CHECK_THAT(e.err, Contains("nope.toml") && Contains("cannot open"));
   }
   SECTION("unknown flag: exit 2 with usage") {
-    const fs::path scene = write(dir.path, "tiny.toml", kScene);
+    const fs::path scene = dir.write("tiny.toml", kScene);
     const Exit e = run_cli(dir, "run " + quote(scene.string()) + " --bogus");
     REQUIRE(e.exited);
     CHECK(e.code == 2);
     CHECK_THAT(e.err, Contains("--bogus") && Contains("usage:"));
   }
   SECTION("bad flag value: exit 2 with usage") {
-    const fs::path scene = write(dir.path, "tiny.toml", kScene);
+    const fs::path scene = dir.write("tiny.toml", kScene);
     const Exit e = run_cli(dir, "run " + quote(scene.string()) + " --threads zero");
     REQUIRE(e.exited);
     CHECK(e.code == 2);
@@ -484,7 +451,7 @@ TEST_CASE("cli: a bad scene and a bad flag fail cleanly", "[dem_scene][cli]") {
 TEST_CASE("cli: SIGTERM stops a run after the step in flight and keeps its results", "[dem_scene][cli]") {
   REQUIRE(fs::exists(GRAINFLOW_BINARY));
   TempDir dir("cli_sigterm");
-  const fs::path scene = write(dir.path, "tiny.toml", kScene);
+  const fs::path scene = dir.write("tiny.toml", kScene);
   const fs::path out = dir.path / "out";
   const fs::path series = out / "series.csv";
   const std::int64_t requested = 1'000'000'000;  // far more than runs before the signal
@@ -515,7 +482,7 @@ TEST_CASE("cli: SIGTERM stops a run after the step in flight and keeps its resul
   int status = 0;
   bool exited_early = false;
   for (;;) {
-    before = fs::exists(series) ? read(series) : "";
+    before = fs::exists(series) ? read_file(series) : "";
     if (std::count(before.begin(), before.end(), '\n') >= 31) break;
     if (::waitpid(pid, &status, WNOHANG) == pid) {
       exited_early = true;
@@ -524,7 +491,7 @@ TEST_CASE("cli: SIGTERM stops a run after the step in flight and keeps its resul
     if (waited()) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  if (exited_early) FAIL("the run ended before it was signalled: " << read(log));
+  if (exited_early) FAIL("the run ended before it was signalled: " << read_file(log));
   REQUIRE(::kill(pid, SIGTERM) == 0);
   bool done = false;
   for (int k = 0; k < 3000 && !done; ++k) {  // up to 30 s for the step in flight and the final writes
@@ -536,25 +503,25 @@ TEST_CASE("cli: SIGTERM stops a run after the step in flight and keeps its resul
     ::waitpid(pid, &status, 0);
     FAIL("grainflow did not stop within 30 s of SIGTERM");
   }
-  const std::string err = read(log);
+  const std::string err = read_file(log);
   INFO("stderr: " << err);
   REQUIRE(WIFEXITED(status));  // it stopped itself, it was not killed by the signal
   CHECK(WEXITSTATUS(status) == 0);
   CHECK_THAT(err, Contains("interrupted after"));
 
-  const auto summary = nlohmann::json::parse(read(out / "summary.json"));
+  const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
   CHECK(summary.at("status") == "interrupted");
   const std::int64_t steps_done = summary.at("steps").get<std::int64_t>();
   CHECK(steps_done >= 300);  // at least the 30 rows seen before the signal
   CHECK(steps_done < requested);
 
   // Every row written before the signal is still there, unchanged, and every row is complete.
-  const std::string after = read(series);
+  const std::string after = read_file(series);
   const std::string complete_before = before.substr(0, before.rfind('\n') + 1);
   CHECK(after.compare(0, complete_before.size(), complete_before) == 0);
   REQUIRE(!after.empty());
   CHECK(after.back() == '\n');
-  const auto rows = lines(after);
+  const auto rows = lines_of(after);
   REQUIRE(rows.size() >= 32);
   CHECK(rows[0] == kSeriesHeader);
   // Rows on the sampling grid (every 10 steps) up to the last step, then one for the final state if
@@ -575,7 +542,7 @@ TEST_CASE("cli: SIGTERM stops a run after the step in flight and keeps its resul
   // The last row is the state the summary reports.
   CHECK(last_time == summary.at("simulated_time").get<double>());
 
-  const std::string pvd = read(out / "frames.pvd");
+  const std::string pvd = read_file(out / "frames.pvd");
   CHECK_THAT(pvd, Contains("</VTKFile>"));
   CHECK(fs::exists(out / "final_state.csv"));
 }

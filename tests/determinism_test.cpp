@@ -20,9 +20,11 @@
 
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "tests/test_support.hpp"
 
 using gf::DemSimulation;
 using gf::Grains;
+using gf::test::stir_by_id;
 
 namespace {
 
@@ -43,24 +45,6 @@ std::string box_scene(int small, int large, double side) {
     << 1.5 * side - 0.0015 << ", " << side - 0.0015 << "] }\n"
     << "count = { small = " << small << ", large = " << large << " }\n";
   return s.str();
-}
-
-// A pour from rest barely collides within a few hundred steps, so every grain also gets a random
-// velocity (up to 0.3 m/s a component) and spin, drawn by id so that it does not depend on rows.
-void stir(Grains& g, std::uint64_t seed) {
-  std::vector<std::size_t> row(g.n);
-  for (std::size_t r = 0; r < g.n; ++r) row[static_cast<std::size_t>(g.pid.id[r])] = r;
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.3, 0.3), w(-100.0, 100.0);
-  for (std::size_t id = 0; id < g.n; ++id) {
-    const std::size_t r = row[id];
-    g.vel.x[r] = u(rng);
-    g.vel.y[r] = u(rng);
-    g.vel.z[r] = u(rng);
-    g.omega.x[r] = w(rng);
-    g.omega.y[r] = w(rng);
-    g.omega.z[r] = w(rng);
-  }
 }
 
 // Position, velocity and angular velocity of every grain, indexed by id, as raw bits: bit
@@ -117,7 +101,9 @@ struct RunResult {
 RunResult run(const std::string& scene, int steps, std::uint64_t permutation_seed = 0) {
   DemSimulation sim = DemSimulation::from_text(scene);
   Grains& g = sim.grains();
-  stir(g, 5);
+  // A pour from rest barely collides within a few hundred steps, so every grain also gets a random
+  // velocity (up to 0.3 m/s a component) and spin, drawn by id so that it does not depend on rows.
+  stir_by_id(g, 5);
   if (permutation_seed != 0) {
     std::vector<std::uint32_t> perm(g.n);
     std::iota(perm.begin(), perm.end(), 0u);

@@ -9,13 +9,14 @@
 #include <random>
 #include <string>
 
+#include "tests/test_support.hpp"
+
 using gf::DemSimulation;
 using gf::Grains;
+using gf::test::norm;
 using V = gf::V3<double>;
 
 namespace {
-
-double norm(const V& a) { return std::sqrt(gf::dot(a, a)); }
 
 struct EnergyParts {
   double kinetic = 0, rotational = 0, gravity = 0, springs = 0;

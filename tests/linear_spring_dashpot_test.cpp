@@ -20,17 +20,19 @@
 #include <random>
 #include <vector>
 
+#include "tests/test_support.hpp"
+
 using gf::dot;
 using gf::LinearSpringDashpot;
 using gf::LsdCoeffs;
 using gf::LsdResult;
 using gf::LsdState;
 using gf::V3;
+using gf::test::norm;
 using V = V3<double>;
 
 namespace {
 
-double norm(const V& a) { return std::sqrt(dot(a, a)); }
 V unit(const V& a) { return (1.0 / norm(a)) * a; }
 
 // Seed 000 contact (Table 4) between two 3 mm glass spheres, damping from e = 0.3 on the effective masses.

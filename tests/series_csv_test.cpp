@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -17,31 +16,14 @@
 
 #include "systems/output/series_csv.hpp"
 #include "systems/output/summary_json.hpp"
+#include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
+using gf::test::read_file;
+using gf::test::read_lines;
+using gf::test::TempDir;
 
 namespace {
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() /
-           ("grainflow_csv_test_" + std::to_string(rd()) + "_" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-std::vector<std::string> read_lines(const fs::path& p) {
-  std::ifstream in(p);
-  std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
-  return lines;
-}
 
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
@@ -50,17 +32,10 @@ std::vector<std::string> split(const std::string& s) {
   return out;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 }  // namespace
 
 TEST_CASE("SeriesCsv writes a header and rows that round-trip exactly", "[output]") {
-  TempDir tmp;
+  TempDir tmp("csv_test");
   const fs::path file = tmp.path / "series.csv";
   // Hard cases for a text round trip: non-terminating binary fractions, subnormals, the
   // extremes, a negative zero, and values where %.6g or %.15g would lose bits.
@@ -100,7 +75,7 @@ TEST_CASE("SeriesCsv writes a header and rows that round-trip exactly", "[output
 }
 
 TEST_CASE("SeriesCsv writes non-finite values readably", "[output]") {
-  TempDir tmp;
+  TempDir tmp("csv_test");
   const fs::path file = tmp.path / "s.csv";
   gf::SeriesCsv csv(file, {"a", "b"});
   const double v[2] = {std::nan(""), -std::numeric_limits<double>::infinity()};
@@ -112,7 +87,7 @@ TEST_CASE("SeriesCsv writes non-finite values readably", "[output]") {
 }
 
 TEST_CASE("SeriesCsv rejects a wrong value count without writing", "[output]") {
-  TempDir tmp;
+  TempDir tmp("csv_test");
   const fs::path file = tmp.path / "s.csv";
   gf::SeriesCsv csv(file, {"t", "e"});
   csv.append(std::vector<double>{1.0, 2.0});
@@ -122,7 +97,7 @@ TEST_CASE("SeriesCsv rejects a wrong value count without writing", "[output]") {
 }
 
 TEST_CASE("SeriesCsv truncates an old file and validates its columns", "[output]") {
-  TempDir tmp;
+  TempDir tmp("csv_test");
   const fs::path file = tmp.path / "s.csv";
   std::ofstream(file) << "old,run\n1,2\n3,4\n";
   { gf::SeriesCsv csv(file, {"t"}); }
@@ -134,7 +109,7 @@ TEST_CASE("SeriesCsv truncates an old file and validates its columns", "[output]
 }
 
 TEST_CASE("SeriesCsv names the file it cannot open", "[output]") {
-  TempDir tmp;
+  TempDir tmp("csv_test");
   const fs::path file = tmp.path / "missing_folder" / "s.csv";
   try {
     gf::SeriesCsv csv(file, {"t"});
@@ -145,24 +120,24 @@ TEST_CASE("SeriesCsv names the file it cannot open", "[output]") {
 }
 
 TEST_CASE("write_summary_json writes indented JSON that parses back, atomically replaced", "[output]") {
-  TempDir tmp;
+  TempDir tmp("csv_test");
   const fs::path file = tmp.path / "summary.json";
   nlohmann::json doc = {{"scene", "drum"},
                         {"steps", 1000},
                         {"final_time", 0.1},
                         {"timings", {{"contact", 1.25}, {"integrate", 0.5}}}};
   gf::write_summary_json(file, doc);
-  const std::string text = slurp(file);
+  const std::string text = read_file(file);
   CHECK(nlohmann::json::parse(text) == doc);
   CHECK(text.find("\n  \"scene\": \"drum\"") != std::string::npos);  // indent 2
   CHECK(text.back() == '\n');
 
   doc["steps"] = 2000;
   gf::write_summary_json(file, doc);
-  CHECK(nlohmann::json::parse(slurp(file))["steps"] == 2000);
+  CHECK(nlohmann::json::parse(read_file(file))["steps"] == 2000);
   CHECK_FALSE(fs::exists(tmp.path / "summary.json.tmp"));
 
   // Invalid UTF-8 in a string is replaced, not allowed to lose the whole summary.
   gf::write_summary_json(file, nlohmann::json{{"name", std::string("caf\xe9")}});
-  CHECK(nlohmann::json::parse(slurp(file)).contains("name"));
+  CHECK(nlohmann::json::parse(read_file(file)).contains("name"));
 }

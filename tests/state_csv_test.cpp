@@ -1,15 +1,14 @@
 // Grain-state CSV: exact round trip, the shared seed state, and errors that point at the line.
 #include <catch2/catch.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <string>
 
 #include "systems/fill/state_csv.hpp"
+#include "tests/test_support.hpp"
 
 using gf::StateCsvError;
 using gf::StateRow;
@@ -17,20 +16,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A file under the temp folder with a name no parallel test run shares; removed afterwards.
+// A file holding `content` in a fresh temporary folder, removed with the folder afterwards.
 struct TempFile {
+  gf::test::TempDir dir;
   fs::path path;
-  explicit TempFile(const std::string& content, const std::string& stem = "state") {
-    static int serial = 0;
-    const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();
-    path = fs::temp_directory_path() / ("grainflow_" + stem + "_" + std::to_string(tick) + "_" +
-                                        std::to_string(++serial) + ".csv");
-    std::ofstream(path, std::ios::binary) << content;
-  }
-  ~TempFile() {
-    std::error_code ec;
-    fs::remove(path, ec);
-  }
+  explicit TempFile(const std::string& content, const std::string& stem = "state")
+      : dir(stem), path(dir.write(stem + ".csv", content)) {}
 };
 
 // The message of the StateCsvError that reading `content` throws ("" when none is thrown).

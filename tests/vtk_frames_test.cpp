@@ -9,40 +9,19 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "engine/atomic_file.hpp"
 #include "engine/grains.hpp"
 #include "systems/output/vtk_frames.hpp"
+#include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
+using gf::test::read_file;
+using gf::test::TempDir;
 
 namespace {
-
-// A fresh folder per test, removed afterwards, so runs in parallel or after a crash don't collide.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() /
-           ("grainflow_vtk_test_" + std::to_string(rd()) + "_" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 // Values with full 53-bit mantissas, so any float conversion or text round trip would show.
 gf::Grains make_grains(std::size_t n) {
@@ -263,14 +242,14 @@ TEST_CASE("vtp frame of an empty table is still a valid document", "[output]") {
 }
 
 TEST_CASE("FrameSeries writes frames and a pvd that lists every complete frame", "[output]") {
-  TempDir tmp;
+  TempDir tmp("vtk_test");
   gf::Grains g = make_grains(5);
   gf::FrameSeries series(tmp.path / "run");
   CHECK(series.count() == 0);
 
   const fs::path f0 = series.write(g, 0.0);
   CHECK(series.count() == 1);
-  std::string pvd = slurp(tmp.path / "run" / "frames.pvd");
+  std::string pvd = read_file(tmp.path / "run" / "frames.pvd");
   CHECK(pvd.find("file=\"frames/frame_000000.vtp\"") != std::string::npos);
   CHECK(pvd.find("frame_000001") == std::string::npos);
 
@@ -280,7 +259,7 @@ TEST_CASE("FrameSeries writes frames and a pvd that lists every complete frame",
   CHECK(f0 == tmp.path / "run" / "frames" / "frame_000000.vtp");
   CHECK(f1 == tmp.path / "run" / "frames" / "frame_000001.vtp");
 
-  pvd = slurp(series.pvd_path());
+  pvd = read_file(series.pvd_path());
   CHECK(pvd.rfind("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\"", 0) == 0);
   CHECK(pvd.find("<DataSet timestep=\"0\" group=\"\" part=\"0\" file=\"frames/frame_000000.vtp\"/>") !=
         std::string::npos);
@@ -296,8 +275,8 @@ TEST_CASE("FrameSeries writes frames and a pvd that lists every complete frame",
   CHECK(datasets == 2);
 
   // Every frame the .pvd names exists, is complete, and holds the state at its write.
-  const Vtp v0 = parse_vtp(slurp(f0));
-  const Vtp v1 = parse_vtp(slurp(f1));
+  const Vtp v0 = parse_vtp(read_file(f0));
+  const Vtp v1 = parse_vtp(read_file(f1));
   CHECK(values<double>(v0.arrays.at("Points"))[0] == make_grains(5).pos.x[0]);
   CHECK(values<double>(v1.arrays.at("Points"))[0] == 42.0);
 
@@ -305,7 +284,7 @@ TEST_CASE("FrameSeries writes frames and a pvd that lists every complete frame",
 }
 
 TEST_CASE("FrameSeries rejects a non-finite time without advancing", "[output]") {
-  TempDir tmp;
+  TempDir tmp("vtk_test");
   gf::FrameSeries series(tmp.path);
   const gf::Grains g = make_grains(2);
   CHECK_THROWS_AS(series.write(g, std::nan("")), std::invalid_argument);
@@ -316,23 +295,23 @@ TEST_CASE("FrameSeries rejects a non-finite time without advancing", "[output]")
 }
 
 TEST_CASE("write_file_atomic replaces content and leaves no temporary", "[output]") {
-  TempDir tmp;
+  TempDir tmp("vtk_test");
   const fs::path p = tmp.path / "state.bin";
   gf::write_file_atomic(p, "first version, longer than the second");
-  CHECK(slurp(p) == "first version, longer than the second");
+  CHECK(read_file(p) == "first version, longer than the second");
   gf::write_file_atomic(p, "second");
-  CHECK(slurp(p) == "second");
+  CHECK(read_file(p) == "second");
   CHECK(leftover_tmp(tmp.path).empty());
 
   // A stale .tmp left by a run killed mid-write must not get in the way of the next write.
   std::ofstream(tmp.path / "state.bin.tmp") << "junk from a killed run";
   gf::write_file_atomic(p, std::string("with\0nul", 8));
-  CHECK(slurp(p) == std::string("with\0nul", 8));
+  CHECK(read_file(p) == std::string("with\0nul", 8));
   CHECK(leftover_tmp(tmp.path).empty());
 }
 
 TEST_CASE("write_file_atomic names the path when it fails", "[output]") {
-  TempDir tmp;
+  TempDir tmp("vtk_test");
   const fs::path p = tmp.path / "no_such_folder" / "summary.json";
   try {
     gf::write_file_atomic(p, "x");
@@ -346,7 +325,7 @@ TEST_CASE("write_file_atomic names the path when it fails", "[output]") {
 }
 
 TEST_CASE("ensure_directory creates parents and rejects a file in the way", "[output]") {
-  TempDir tmp;
+  TempDir tmp("vtk_test");
   const fs::path nested = tmp.path / "a" / "b" / "c";
   gf::ensure_directory(nested);
   CHECK(fs::is_directory(nested));

@@ -22,12 +22,16 @@
 
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "systems/walls/wall_contact.hpp"
+#include "tests/test_support.hpp"
+
 using gf::DemSimulation;
 using gf::Grains;
+using gf::test::contact_time;
+using gf::test::set_override;
 using V = gf::V3<double>;
 
 namespace {
@@ -41,17 +45,6 @@ constexpr double kKn = 1000.0, kKt = 600.0, kKr = 1e-5, kG = 9.81;
 constexpr double kDrumR = 0.075, kDrumOmega = 0.5;
 const double kM = kRho * 4.0 / 3.0 * std::numbers::pi * kR * kR * kR;
 const double kI = 0.4 * kM * kR * kR;
-
-std::string set(const std::string& key, double value) {
-  std::ostringstream os;
-  os.precision(17);
-  os << key << "=" << value;
-  return os.str();
-}
-double contact_time(double m, double k, double e) {
-  const double l = std::log(e);
-  return std::sqrt(m / k) * std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
-}
 
 // The scenes hold one grain: row 0.
 V pos(const Grains& g) { return {g.pos.x[0], g.pos.y[0], g.pos.z[0]}; }
@@ -85,8 +78,8 @@ TEST_CASE("wall: sphere-plane restitution and contact time use the sphere's own 
     // and the jump of the dashpot force at touch-down and lift-off gives a restitution error of at most
     // ~2 ln(1/e)/1000, 0.21 % at e = 0.3 and 0.05 % at e = 0.7, inside the 0.5 % tolerance.
     const double dt = tc / 1000.0;
-    DemSimulation sim =
-        DemSimulation::from_file(kPlane, {set("contact.en", e), set("run.dt", dt), "run.gravity=[0,0,0]"});
+    DemSimulation sim = DemSimulation::from_file(
+        kPlane, {set_override("contact.en", e), set_override("run.dt", dt), "run.gravity=[0,0,0]"});
     Grains& g = sim.grains();
     const double v0 = 0.2;
     place(g, {0, kR + 1e-4, 0}, {0, -v0, 0}, {0, 0, 0});
@@ -166,7 +159,8 @@ struct InclineRun {
 // Tilts gravity from 0 to theta over `ramp` seconds (smooth cosine ramp), then holds it for `hold` seconds.
 InclineRun incline(double tan_theta, double fs, double fr, double ramp, double hold) {
   const double theta = std::atan(tan_theta);
-  DemSimulation sim = DemSimulation::from_file(kPlane, {set("contact.friction", fs), set("contact.rolling_friction", fr)});
+  DemSimulation sim = DemSimulation::from_file(
+      kPlane, {set_override("contact.friction", fs), set_override("contact.rolling_friction", fr)});
   Grains& g = sim.grains();
   auto& grav = sim.world().resources.get<gf::Gravity>();
   const double dt = sim.scene().dt;
@@ -333,7 +327,7 @@ TEST_CASE("wall: rolling resistance acts on the spin relative to a turning wall 
   // the resting sphere is spun up about +y at f_r m g / I = 5 f_r g / (2 r^2) = 545 rad/s^2 until it turns with the
   // table (37 ms), then stays there (relative spin zero, rolling spring static).
   const double w_table = 20.0, fr = 5e-5;
-  DemSimulation sim = DemSimulation::from_file(kPlane, {set("wall.0.omega", w_table)});
+  DemSimulation sim = DemSimulation::from_file(kPlane, {set_override("wall.0.omega", w_table)});
   Grains& g = sim.grains();
   place(g, {0, kR - kM * kG / kKn, 0}, {0, 0, 0}, {0, 0, 0});
   const double rate_ref = fr * kM * kG / kI;
@@ -397,4 +391,49 @@ TEST_CASE("wall: a rotating drum wall drags a resting sphere along its motion", 
   // 2 % on the rolling speed 4 ms after it starts rolling: the sphere has begun to climb the wall and gravity slows
   // it by about 5/7 g phi t ~ 0.2 %, and the tangential spring's damped oscillation around rolling adds a little.
   CHECK(std::abs(v_end / v_ref - 1.0) < 0.02);
+}
+
+TEST_CASE("wall contact: the xsimd driver equals the scalar driver on a stirred pack in a box", "[wall]") {
+  // Same state, copies of the same wall springs; round-off differences only (see the pair test):
+  // wall forces to 1e-12 of the largest, springs to 1e-12 of the largest. Grains pour onto the
+  // floor and hit the side walls, so rows enter, stay in and leave wall contact between rounds.
+  DemSimulation sim = DemSimulation::from_text(gf::test::binary_box_scene(3000, 100, 500.0));
+  gf::test::stir_by_id(sim.grains(), 11);
+  sim.prime();
+  gf::World& w = sim.world();
+  for (int round = 0; round < 6; ++round) {
+    sim.advance(300);
+    Grains& g = w.grains;
+    gf::WallHistory& live = g.extras.get<gf::WallHistory>();
+    const gf::WallHistory saved = live;
+    gf::Walls walls = w.resources.get<gf::Walls>();
+    const auto& table = w.resources.get<gf::ContactTable>();
+    const double t = w.clock.t;
+    gf::compute_wall_forces(g, walls, live, table, w.clock.dt, t);
+    const gf::WallHistory h_simd = live;
+    const std::vector<double> fy(g.wall_force.y.begin(), g.wall_force.y.end()),
+        tz(g.wall_torque.z.begin(), g.wall_torque.z.end());
+    live = saved;
+    gf::compute_wall_forces_scalar(g, walls, live, table, w.clock.dt, t);
+    double fmax = 0.0, tmax = 0.0, smax = 0.0;
+    std::size_t touching = 0;
+    for (std::size_t i = 0; i < g.n_owned; ++i) {
+      fmax = std::max(fmax, std::abs(g.wall_force.y[i]));
+      tmax = std::max(tmax, std::abs(g.wall_torque.z[i]));
+      touching += g.wall_force.y[i] != 0.0;
+    }
+    for (const auto& c : live.cols)
+      for (std::size_t i = 0; i < g.n_owned; ++i) smax = std::max(smax, std::abs(c[i]));
+    REQUIRE(touching > 50);
+    for (std::size_t i = 0; i < g.n_owned; ++i) {
+      REQUIRE(std::abs(fy[i] - g.wall_force.y[i]) <= 1e-12 * fmax);
+      REQUIRE(std::abs(tz[i] - g.wall_torque.z[i]) <= 1e-12 * tmax);
+    }
+    for (std::size_t q = 0; q < live.cols.size(); ++q)
+      for (std::size_t i = 0; i < g.n_owned; ++i) REQUIRE(std::abs(h_simd.cols[q][i] - live.cols[q][i]) <= 1e-12 * smax);
+    for (std::size_t q = 0; q < live.active.size(); ++q)
+      for (std::size_t i = 0; i < g.n_owned; ++i) REQUIRE(h_simd.active[q][i] == live.active[q][i]);
+    // Leave the world as the system would have: the live springs are the scalar driver's, which
+    // equal the vector driver's to round-off.
+  }
 }
