@@ -40,6 +40,7 @@ std::int64_t count_contacts(const gf::Grains& g, const gf::NeighborList& list) {
   return n;
 }
 
+template <auto Driver>
 void BM_PairForces(benchmark::State& state) {
   // A benchmark program owns its process, so it may set the thread count here (not in a library).
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
@@ -53,7 +54,7 @@ void BM_PairForces(benchmark::State& state) {
   auto& out = w.resources.get<gf::PairForces>();
   const double dt = w.clock.dt;
   for (auto _ : state) {
-    gf::compute_pair_forces(g, list, history, table, dt, out);
+    Driver(g, list, history, table, dt, out);
     benchmark::ClobberMemory();
   }
   const auto pairs = static_cast<std::int64_t>(list.pairs());
@@ -70,7 +71,8 @@ void BM_PairForces(benchmark::State& state) {
 }
 
 // Real time: TBB workers' CPU time is not the main thread's.
-BENCHMARK(BM_PairForces)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_PairForces, gf::compute_pair_forces)->Name("BM_PairForces/simd")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_PairForces, gf::compute_pair_forces_scalar)->Name("BM_PairForces/scalar")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

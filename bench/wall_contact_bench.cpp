@@ -38,6 +38,7 @@ std::int64_t count_touching(const gf::Grains& g, const gf::Walls& walls) {
   return n;
 }
 
+template <auto Driver>
 void BM_WallForces(benchmark::State& state) {
   // A benchmark program owns its process, so it may set the thread count here (not in a library).
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
@@ -51,7 +52,7 @@ void BM_WallForces(benchmark::State& state) {
   const double dt = w.clock.dt;
   const double t = w.clock.t;  // positions of the last completed step refer to this time
   for (auto _ : state) {
-    gf::compute_wall_forces(g, walls, history, table, dt, t);
+    Driver(g, walls, history, table, dt, t);
     benchmark::ClobberMemory();
   }
   const auto rows = static_cast<std::int64_t>(g.n_owned);
@@ -63,7 +64,8 @@ void BM_WallForces(benchmark::State& state) {
 }
 
 // Real time: TBB workers' CPU time is not the main thread's.
-BENCHMARK(BM_WallForces)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_WallForces, gf::compute_wall_forces)->Name("BM_WallForces/simd")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_WallForces, gf::compute_wall_forces_scalar)->Name("BM_WallForces/scalar")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
