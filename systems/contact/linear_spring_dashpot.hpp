@@ -57,37 +57,12 @@ struct LinearSpringDashpot {
     d = keep * d;
     d = d + dt * vt;
     V3<T> ft = (-c.kt) * d - c.eta_t * vt;
-    const T cap_t = c.fs * fn_mag;
-    const T ft2 = dot(ft, ft);
-    const T d_len = sqrt_of(dot(d, d));
-    const auto slip = ft2 > cap_t * cap_t;
-    const auto has_d = d_len > T(1e-300);
-    const T inv_d = T(1.0) / choose(has_d, d_len, T(1.0));
-    const T ft_len = sqrt_of(choose(ft2 > tiny, ft2, T(1.0)));
-    // At the cap: along -d_t when the spring has a direction, else along the damping force.
-    const V3<T> ft_cap_spring = (-cap_t * inv_d) * d;
-    const V3<T> ft_cap_damp = (cap_t / ft_len) * ft;
-    const V3<T> ft_capped = choose(has_d, ft_cap_spring, ft_cap_damp);
-    const T kt_safe = choose(c.kt > zero, c.kt, T(1.0));
-    const V3<T> d_capped = choose(has_d, (cap_t / kt_safe * inv_d) * d, d);
-    ft = choose(slip, ft_capped, ft);
-    d = choose(slip, d_capped, d);
+    slide(ft, d, c.fs * fn_mag, c.kt);
 
     // Rolling spring-dashpot-slider on the relative angular velocity.
     V3<T> a = s.roll + dt * w;
     V3<T> tr = (-c.kr) * a - c.eta_r * w;
-    const T cap_r = c.fr * fn_mag;
-    const T tr2 = dot(tr, tr);
-    const T a_len = sqrt_of(dot(a, a));
-    const auto roll_slip = tr2 > cap_r * cap_r;
-    const auto has_a = a_len > T(1e-300);
-    const T inv_a = T(1.0) / choose(has_a, a_len, T(1.0));
-    const T tr_len = sqrt_of(choose(tr2 > tiny, tr2, T(1.0)));
-    const V3<T> tr_capped = choose(has_a, (-cap_r * inv_a) * a, (cap_r / tr_len) * tr);
-    const T kr_safe = choose(c.kr > zero, c.kr, T(1.0));
-    const V3<T> a_capped = choose(has_a, (cap_r / kr_safe * inv_a) * a, a);
-    tr = choose(roll_slip, tr_capped, tr);
-    a = choose(roll_slip, a_capped, a);
+    slide(tr, a, c.fr * fn_mag, c.kr);
 
     const V3<T> zv{zero, zero, zero};
     s.shear = choose(touching, d, zv);
@@ -100,6 +75,24 @@ struct LinearSpringDashpot {
   }
 
  private:
+  // The slider of a spring-dashpot pair: where |f| exceeds the cap, f points along -spring with
+  // the cap's magnitude (along f itself when the spring has no direction), and the spring is
+  // shortened to cap / k so that a reversal starts from the cap.
+  template <class T>
+  static void slide(V3<T>& f, V3<T>& spring, const T& cap, const T& k) {
+    const T f2 = dot(f, f);
+    const T len = sqrt_of(dot(spring, spring));
+    const auto over = f2 > cap * cap;
+    const auto has_dir = len > T(1e-300);
+    const T inv = T(1.0) / choose(has_dir, len, T(1.0));
+    const T f_len = sqrt_of(choose(f2 > T(1e-300), f2, T(1.0)));
+    const V3<T> f_capped = choose(has_dir, (-cap * inv) * spring, (cap / f_len) * f);
+    const T k_safe = choose(k > T(0.0), k, T(1.0));
+    const V3<T> spring_capped = choose(has_dir, (cap / k_safe * inv) * spring, spring);
+    f = choose(over, f_capped, f);
+    spring = choose(over, spring_capped, spring);
+  }
+
   static double xsimd_abs(double v) { return v < 0 ? -v : v; }
   template <class A>
   static xsimd::batch<double, A> xsimd_abs(const xsimd::batch<double, A>& v) {
