@@ -68,7 +68,7 @@ int check_command(const CliOptions& opt) {
   std::printf("steps: %lld settling + %lld main (%.4g s simulated)\n", static_cast<long long>(s.settle_steps()),
               static_cast<long long>(s.main_steps()), s.duration);
   const double mb = static_cast<double>(estimate_memory_bytes(s, n)) / 1048576.0;
-  std::printf("memory estimate: %.1f MiB (%.0f bytes per grain)\n", mb, n ? mb * 1048576.0 / n : 0.0);
+  std::printf("memory estimate, simulation arrays: %.1f MiB (%.0f bytes per grain; the process adds its code and buffers)\n", mb, n ? mb * 1048576.0 / n : 0.0);
   return 0;
 }
 

@@ -338,11 +338,13 @@ std::size_t planned_grain_count(const DemScene& scene) {
 }
 
 std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n) {
-  // Core columns: 25 doubles + type + id; walls: 6 doubles each; pairs: about 7 candidates per
-  // grain in a dense pack, each with i, j, key, 6 history and 9 force doubles, plus incidence.
-  const std::size_t per_grain = 25 * 8 + 4 + 8 + 6 * 8 * scene.walls.size() + 3 * 8 /*skin reference*/;
-  const std::size_t per_pair = 4 + 4 + 8 + 6 * 8 + 9 * 8 + 4;
-  return n * (per_grain + 7 * per_pair);
+  // Arrays the simulation holds, per grain: 25 double columns, type and id, the skin reference
+  // positions, seven wall-history columns per wall. A dense pack of the seed drum has about 3.4
+  // list pairs and 1.7 contacts per grain; a list pair keeps rows, 32-bit lanes, key, springs,
+  // flags and incidence (90 bytes), a contact its indices and force record (88 bytes).
+  const std::size_t per_grain = 25 * 8 + 4 + 8 + 3 * 8 + 7 * 8 * scene.walls.size();
+  const std::size_t per_pair = 90, per_contact = 88;
+  return n * (per_grain + per_pair * 34 / 10 + per_contact * 17 / 10);
 }
 
 namespace {
