@@ -332,9 +332,10 @@ TEST_CASE("pair contact: the xsimd driver equals the scalar driver on a stirred 
       fmax = std::max(fmax, std::abs(g.force.x[i]) + std::abs(g.force.y[i]) + std::abs(g.force.z[i]));
       tmax = std::max(tmax, std::abs(g.torque.x[i]));
     }
-    for (std::size_t k = 0; k < list.pairs(); ++k) {
-      smax = std::max(smax, std::abs(h_scalar.sx[k]));
-      rmax = std::max(rmax, std::abs(h_scalar.ry[k]));
+    REQUIRE(h_simd.size() == h_scalar.size());
+    for (std::size_t e = 0; e < h_scalar.size(); ++e) {
+      smax = std::max(smax, std::abs(h_scalar.sx[e]));
+      rmax = std::max(rmax, std::abs(h_scalar.ry[e]));
     }
     REQUIRE(smax > 0.0);
     for (std::size_t i = 0; i < g.n_owned; ++i) {
@@ -343,11 +344,12 @@ TEST_CASE("pair contact: the xsimd driver equals the scalar driver on a stirred 
       REQUIRE(std::abs(fz[i] - g.force.z[i]) <= 1e-12 * fmax);
       REQUIRE(std::abs(tx[i] - g.torque.x[i]) <= 1e-12 * tmax);
     }
-    for (std::size_t k = 0; k < list.pairs(); ++k) {
-      REQUIRE(std::abs(h_simd.sx[k] - h_scalar.sx[k]) <= 1e-12 * smax);
-      REQUIRE(std::abs(h_simd.ry[k] - h_scalar.ry[k]) <= 1e-12 * rmax);
-      REQUIRE(f_simd.contact_of[k] == f_scalar.contact_of[k]);
+    for (std::size_t e = 0; e < h_scalar.size(); ++e) {
+      REQUIRE(h_simd.pair[e] == h_scalar.pair[e]);
+      REQUIRE(std::abs(h_simd.sx[e] - h_scalar.sx[e]) <= 1e-12 * smax);
+      REQUIRE(std::abs(h_simd.ry[e] - h_scalar.ry[e]) <= 1e-12 * rmax);
     }
+    for (std::size_t k = 0; k < list.pairs(); ++k) REQUIRE(f_simd.contact_of[k] == f_scalar.contact_of[k]);
     ++compared;
   }
   REQUIRE(max_contacts > 2000);  // a packed bed, not a gas: most grains in contact

@@ -74,18 +74,17 @@ struct OldHistory {
 // over oriented from the lower id to the higher one, and turned to the new owner's view when placed.
 double owner_sign(std::int64_t owner_id, std::int64_t partner_id) { return owner_id < partner_id ? 1.0 : -1.0; }
 
-OldHistory collect_active(const Grains& g, const NeighborList& list, PairHistory& h) {
+OldHistory collect_active(const Grains& g, const NeighborList& list, const PairHistory& h) {
   OldHistory old;
   std::vector<std::uint64_t> active;
-  const std::size_t np = list.pairs();
-  for (std::size_t k = 0; k < np; ++k) {
-    if (h.sx[k] != 0.0 || h.sy[k] != 0.0 || h.sz[k] != 0.0 || h.rx[k] != 0.0 || h.ry[k] != 0.0 || h.rz[k] != 0.0) {
-      active.push_back(list.key[k]);
-      // Rows are still in the order this list was built for, so i and j name the old owner and partner.
-      const double sign = owner_sign(g.pid.id[list.i[k]], g.pid.id[list.j[k]]);
-      std::size_t c = 0;
-      for_each_column(h, [&](ColumnD& col) { old.values[c++].push_back(sign * col[k]); });
-    }
+  active.reserve(h.size());
+  for (std::size_t e = 0; e < h.size(); ++e) {
+    const auto k = static_cast<std::size_t>(h.pair[e]);
+    active.push_back(list.key[k]);
+    // Rows are still in the order this list was built for, so i and j name the old owner and partner.
+    const double sign = owner_sign(g.pid.id[list.i[k]], g.pid.id[list.j[k]]);
+    const double v[6] = {h.sx[e], h.sy[e], h.sz[e], h.rx[e], h.ry[e], h.rz[e]};
+    for (int c = 0; c < 6; ++c) old.values[c].push_back(sign * v[c]);
   }
   old.build(active);
   return old;
@@ -200,7 +199,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   list.j_lane.assign(np, 0);
   list.type_pair.assign(np, 0);
   list.key.resize(np);
-  for_each_column(history, [np](ColumnD& col) { col.assign(np, 0.0); });
+  s.carried.assign(np, -1);
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
     const std::vector<std::uint32_t>& partners = s.partners[blk];
     const std::size_t r0 = blk * kRows, r1 = std::min(nown, (blk + 1) * kRows);
@@ -216,19 +215,28 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
         list.type_pair[k] = static_cast<std::int32_t>(g.species.type[i] * kMaxSpecies + g.species.type[j]);
         const std::uint64_t key = pair_key(idi, g.pid.id[j]);
         list.key[k] = key;
-        const std::int64_t slot = old.find(key);
-        if (slot >= 0) {
-          const double sign = owner_sign(idi, g.pid.id[j]);
-          history.sx[k] = sign * old.values[0][slot];
-          history.sy[k] = sign * old.values[1][slot];
-          history.sz[k] = sign * old.values[2][slot];
-          history.rx[k] = sign * old.values[3][slot];
-          history.ry[k] = sign * old.values[4][slot];
-          history.rz[k] = sign * old.values[5][slot];
-        }
+        s.carried[k] = old.find(key);
       }
     }
   });
+
+  // Carried springs in list order, turned to the new owner's view.
+  std::size_t carried = 0;
+  for (std::size_t k = 0; k < np; ++k) carried += s.carried[k] >= 0;
+  history.resize(carried);
+  for (std::size_t k = 0, e = 0; k < np; ++k) {
+    const std::int64_t slot = s.carried[k];
+    if (slot < 0) continue;
+    const double sign = owner_sign(g.pid.id[list.i[k]], g.pid.id[list.j[k]]);
+    history.pair[e] = static_cast<std::int32_t>(k);
+    history.sx[e] = sign * old.values[0][slot];
+    history.sy[e] = sign * old.values[1][slot];
+    history.sz[e] = sign * old.values[2][slot];
+    history.rx[e] = sign * old.values[3][slot];
+    history.ry[e] = sign * old.values[4][slot];
+    history.rz[e] = sign * old.values[5][slot];
+    ++e;
+  }
 
   // Transposed incidence in pair order: deterministic per-row force sums.
   list.in_offsets.assign(n + 1, 0);

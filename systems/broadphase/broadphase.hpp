@@ -26,6 +26,7 @@ struct BroadphaseState {
   CellGrid grid;
   ColumnD ref_x, ref_y, ref_z;  // positions at the last rebuild
   std::vector<std::vector<std::uint32_t>> partners;  // search scratch per block of rows, reused
+  std::vector<std::int64_t> carried;                 // per new list pair: slot of its old spring, or -1
 };
 
 // One full rebuild: sort rows, find pairs within r_i + r_j + skin, carry history over.

@@ -5,6 +5,7 @@
 // depend on thread scheduling.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -29,11 +30,26 @@ struct NeighborList {
   std::size_t pairs() const { return j.size(); }
 };
 
-// Contact history per pair of the list (seed 000 Table 1 springs), kept in columns for SIMD.
+// Contact history (seed 000 Table 1 springs) of the pairs in contact at the last evaluation, packed
+// in list order: `pair` holds each spring's list index, increasing, and the six columns its values.
+// Pairs apart have no entry, which is a zero spring. Springs are seen from the pair's owner row i.
 struct PairHistory {
+  Column<std::int32_t> pair;
   ColumnD sx, sy, sz;  // tangential spring, m
   ColumnD rx, ry, rz;  // rolling angle, rad
-  auto columns() { return std::tie(sx, sy, sz, rx, ry, rz); }
+  std::size_t size() const { return pair.size(); }
+  void resize(std::size_t n) {
+    pair.resize(n);
+    for (ColumnD* c : {&sx, &sy, &sz, &rx, &ry, &rz}) c->resize(n);
+  }
+  void clear() { resize(0); }
+  // Entry of list pair k, or -1 when it has no spring.
+  std::int64_t find(std::size_t k) const {
+    const std::int32_t* b = pair.begin();
+    const std::int32_t* e = pair.end();
+    const std::int32_t* it = std::lower_bound(b, e, static_cast<std::int32_t>(k));
+    return it != e && *it == static_cast<std::int32_t>(k) ? it - b : -1;
+  }
 };
 
 inline std::uint64_t pair_key(std::int64_t a, std::int64_t b) {

@@ -20,26 +20,29 @@ void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
   for (Column<std::int32_t>* c : {&out.pair, &out.ci, &out.cj, &out.ctype}) c->resize(nc + 1);
   out.rank.resize(np + 1);
   out.contact_of.resize(np);
+  out.next.resize(nc);
   out.record.resize((nc + 1) * PairForces::kRecord);
   std::fill(&out.record[nc * PairForces::kRecord], &out.record[(nc + 1) * PairForces::kRecord], 0.0);
 }
 
-// After a rebuild the list is new: a pair was touching if the broadphase carried a spring over.
-void reset_flags(const NeighborList& list, const PairHistory& h, PairForces& out) {
-  const std::size_t np = list.pairs();
-  out.touching.assign(padded_size(np), 0);
-  out.was_touching.assign(padded_size(np), 0);
-  for (std::size_t k = 0; k < np; ++k)
-    out.was_touching[k] = (h.sx[k] != 0.0 || h.sy[k] != 0.0 || h.sz[k] != 0.0 || h.rx[k] != 0.0 || h.ry[k] != 0.0 ||
-                           h.rz[k] != 0.0);
-  out.list_version = list.version;
+// Springs of the last evaluation for contact c (list pair k), found by walking the old packed
+// springs, which are in list order like the contacts; zero for a new contact.
+void carry_spring(const PairHistory& old, std::size_t& e, std::size_t k, PairHistory& next, std::size_t c) {
+  const auto key = static_cast<std::int32_t>(k);
+  while (e < old.size() && old.pair[e] < key) ++e;
+  const bool found = e < old.size() && old.pair[e] == key;
+  next.pair[c] = key;
+  next.sx[c] = found ? old.sx[e] : 0.0;
+  next.sy[c] = found ? old.sy[e] : 0.0;
+  next.sz[c] = found ? old.sz[e] : 0.0;
+  next.rx[c] = found ? old.rx[e] : 0.0;
+  next.ry[c] = found ? old.ry[e] : 0.0;
+  next.rz[c] = found ? old.rz[e] : 0.0;
 }
 
-void zero_history(PairHistory& h, std::size_t k) { h.sx[k] = h.sy[k] = h.sz[k] = h.rx[k] = h.ry[k] = h.rz[k] = 0.0; }
-
 // Law, lever arms and torques for one contact; shared by the scalar tail and the scalar driver.
-void evaluate_one(const Grains& g, std::size_t k, std::size_t i, std::size_t j, PairHistory& h,
-                  const PairCoeffs* coeffs, std::size_t ntypes, double dt, PairForces& out, std::size_t c) {
+void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h, const PairCoeffs* coeffs,
+                  std::size_t ntypes, double dt, PairForces& out, std::size_t c) {
   const V3<double> d{g.pos.x[j] - g.pos.x[i], g.pos.y[j] - g.pos.y[i], g.pos.z[j] - g.pos.z[i]};
   const double ri = g.radius.r[i], rj = g.radius.r[j];
   const double dist = std::sqrt(dot(d, d));
@@ -54,14 +57,14 @@ void evaluate_one(const Grains& g, std::size_t k, std::size_t i, std::size_t j, 
   const PairCoeffs& pc =
       coeffs[static_cast<std::size_t>(g.species.type[i]) * ntypes + static_cast<std::size_t>(g.species.type[j])];
   const LsdCoeffs<double> cf{pc.kn, pc.kt, pc.kr, pc.eta_n, pc.eta_t, pc.eta_r, pc.fs, pc.fr};
-  LsdState<double> s{{h.sx[k], h.sy[k], h.sz[k]}, {h.rx[k], h.ry[k], h.rz[k]}};
+  LsdState<double> s{{h.sx[c], h.sy[c], h.sz[c]}, {h.rx[c], h.ry[c], h.rz[c]}};
   const LsdResult<double> res = LinearSpringDashpot::evaluate(true, n, delta, v, wi - wj, cf, dt, s);
-  h.sx[k] = s.shear.x;
-  h.sy[k] = s.shear.y;
-  h.sz[k] = s.shear.z;
-  h.rx[k] = s.roll.x;
-  h.ry[k] = s.roll.y;
-  h.rz[k] = s.roll.z;
+  h.sx[c] = s.shear.x;
+  h.sy[c] = s.shear.y;
+  h.sz[c] = s.shear.z;
+  h.rx[c] = s.roll.x;
+  h.ry[c] = s.roll.y;
+  h.rz[c] = s.roll.z;
   const V3<double> nxf = cross(n, res.force_t);
   double* rec = &out.record[c * PairForces::kRecord];
   rec[PairForces::Fx] = res.force.x;
@@ -117,7 +120,7 @@ void reduce_rows(Grains& g, const NeighborList& list, const PairForces& out) {
 void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table,
                                 double dt, PairForces& out) {
   const std::size_t np = list.pairs();
-  if (out.list_version != list.version || out.touching.size() != padded_size(np)) reset_flags(list, h, out);
+  out.touching.resize(padded_size(np));
   std::size_t nc = 0;
   for (std::size_t k = 0; k < np; ++k) {
     const std::size_t i = list.i[k], j = list.j[k];
@@ -127,23 +130,23 @@ void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory
     nc += out.touching[k];
   }
   size_outputs(out, np, nc);
-  std::size_t c = 0;
+  std::size_t c = 0, e = 0;
   for (std::size_t k = 0; k < np; ++k) {
     out.rank[k] = static_cast<std::int32_t>(c);
     if (!out.touching[k]) {
       out.contact_of[k] = static_cast<std::int32_t>(nc);
-      if (out.was_touching[k]) zero_history(h, k);
       continue;
     }
     out.contact_of[k] = static_cast<std::int32_t>(c);
     out.pair[c] = static_cast<std::int32_t>(k);
     out.ci[c] = static_cast<std::int32_t>(list.i[k]);
     out.cj[c] = static_cast<std::int32_t>(list.j[k]);
-    evaluate_one(g, k, list.i[k], list.j[k], h, table.pair_data(), table.types(), dt, out, c);
+    carry_spring(h, e, k, out.next, c);
+    evaluate_one(g, list.i[k], list.j[k], out.next, table.pair_data(), table.types(), dt, out, c);
     ++c;
   }
   out.rank[np] = static_cast<std::int32_t>(nc);
-  std::swap(out.touching, out.was_touching);
+  std::swap(h, out.next);
   reduce_rows(g, list, out);
 }
 
@@ -153,7 +156,7 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   using V = V3<B>;
   constexpr std::size_t L = kLanes;
   const std::size_t np = list.pairs();
-  if (out.list_version != list.version || out.touching.size() != padded_size(np)) reset_flags(list, h, out);
+  out.touching.resize(padded_size(np));
 
   // 1. Overlap test per pair; counts per block of pairs.
   const std::size_t nblocks = (np + kBlock - 1) / kBlock;
@@ -182,12 +185,14 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   const std::size_t nc = out.block_start[nblocks];
   size_outputs(out, np, nc);
 
-  // 2. Packed contact list in list order; springs of pairs that just separated are reset.
+  // 2. Packed contact list in list order, each contact with its spring from the last evaluation.
   const std::size_t ntypes = table.types();
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
     const std::size_t k0 = b * kBlock, k1 = std::min(np, k0 + kBlock);
     std::int32_t c = static_cast<std::int32_t>(out.block_start[b]);
     const auto none = static_cast<std::int32_t>(nc);
+    std::size_t e = static_cast<std::size_t>(
+        std::lower_bound(h.pair.begin(), h.pair.end(), static_cast<std::int32_t>(k0)) - h.pair.begin());
     for (std::size_t k = k0; k < k1; ++k) {
       const std::int32_t t = out.touching[k];
       out.rank[k] = c;
@@ -199,9 +204,9 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
         out.ci[c] = list.i_lane[k];
         out.cj[c] = list.j_lane[k];
         out.ctype[c] = list.type_pair[k];
+        carry_spring(h, e, k, out.next, static_cast<std::size_t>(c));
       }
       c += t;
-      if (out.was_touching[k] & !t) zero_history(h, k);
     }
   });
   out.rank[np] = static_cast<std::int32_t>(nc);
@@ -229,7 +234,6 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       const std::int32_t* bi = &out.ci[c0];
       const std::int32_t* bj = &out.cj[c0];
       const std::int32_t* bt_idx = &out.ctype[c0];
-      const std::int32_t* bk = &out.pair[c0];
       const V d{gather32(g.pos.x.data(), bj) - gather32(g.pos.x.data(), bi),
                 gather32(g.pos.y.data(), bj) - gather32(g.pos.y.data(), bi),
                 gather32(g.pos.z.data(), bj) - gather32(g.pos.z.data(), bi)};
@@ -247,16 +251,17 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       const V v = vij + cross(li * wi + lj * wj, n);
       const LsdCoeffs<B> cf{coeff(0, bt_idx), coeff(1, bt_idx), coeff(2, bt_idx), coeff(3, bt_idx),
                             coeff(4, bt_idx), coeff(5, bt_idx), coeff(6, bt_idx), coeff(7, bt_idx)};
-      LsdState<B> s{{gather32(h.sx.data(), bk), gather32(h.sy.data(), bk), gather32(h.sz.data(), bk)},
-                    {gather32(h.rx.data(), bk), gather32(h.ry.data(), bk), gather32(h.rz.data(), bk)}};
+      PairHistory& nh = out.next;
+      LsdState<B> s{{B::load_aligned(&nh.sx[c0]), B::load_aligned(&nh.sy[c0]), B::load_aligned(&nh.sz[c0])},
+                    {B::load_aligned(&nh.rx[c0]), B::load_aligned(&nh.ry[c0]), B::load_aligned(&nh.rz[c0])}};
       const auto all = B(0.0) == B(0.0);
       const LsdResult<B> res = LinearSpringDashpot::evaluate(all, n, delta, v, wi - wj, cf, B(dt), s);
-      scatter32(s.shear.x, h.sx.data(), bk);
-      scatter32(s.shear.y, h.sy.data(), bk);
-      scatter32(s.shear.z, h.sz.data(), bk);
-      scatter32(s.roll.x, h.rx.data(), bk);
-      scatter32(s.roll.y, h.ry.data(), bk);
-      scatter32(s.roll.z, h.rz.data(), bk);
+      s.shear.x.store_aligned(&nh.sx[c0]);
+      s.shear.y.store_aligned(&nh.sy[c0]);
+      s.shear.z.store_aligned(&nh.sz[c0]);
+      s.roll.x.store_aligned(&nh.rx[c0]);
+      s.roll.y.store_aligned(&nh.ry[c0]);
+      s.roll.z.store_aligned(&nh.rz[c0]);
       const V nxf = cross(n, res.force_t);
       // Lanes to records: store the nine batches, then interleave them.
       alignas(64) double lanes[PairForces::kRecord][L];
@@ -276,9 +281,9 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   });
   for (std::size_t c = full * L; c < nc; ++c) {
     const std::size_t k = static_cast<std::size_t>(out.pair[c]);
-    evaluate_one(g, k, list.i[k], list.j[k], h, coeffs, ntypes, dt, out, c);
+    evaluate_one(g, list.i[k], list.j[k], out.next, coeffs, ntypes, dt, out, c);
   }
-  std::swap(out.touching, out.was_touching);
+  std::swap(h, out.next);
 
   // 4. Per-row sums.
   reduce_rows(g, list, out);

@@ -1,10 +1,10 @@
 // Particle-particle contact driver for the linear spring-dashpot-slider law. The driver owns the
 // iteration; the law (linear_spring_dashpot.hpp) owns the physics. Per step:
 //   1. prefilter: the overlap test over every pair of the Verlet list, in xsimd batches;
-//   2. compaction of the touching pairs into a packed contact list, in list order; springs of
-//      pairs that stopped touching are reset here, so the law never visits pairs apart;
-//   3. the law over the packed contacts in xsimd batches (a scalar tail), per-contact force and
-//      the torques on both sides;
+//   2. compaction of the touching pairs into a packed contact list, in list order, merged with the
+//      packed springs of the last evaluation (pairs that separated drop theirs);
+//   3. the law over the packed contacts in xsimd batches (a scalar tail), springs read and written
+//      with vector loads and stores, per-contact force and the torques on both sides;
 //   4. per row, a fixed-order sum over its own contacts, then its incoming ones (no atomics).
 // Every step is independent of the thread count, so runs are bit-for-bit repeatable.
 // Lever arms are L = r - delta/2 on each side (centre to contact point).
@@ -39,13 +39,11 @@ struct PairForces {
   // Per list pair.
   std::vector<std::int32_t> rank;        // contacts before this list pair (size pairs + 1)
   std::vector<std::int32_t> contact_of;  // contact index, or contacts() (a zero row) when apart
-  // Overlap flags per list pair; after an evaluation `was_touching` holds its flags (they become
-  // the previous step's at the next one) and `touching` is scratch.
-  std::vector<std::uint8_t> touching, was_touching;
+  std::vector<std::uint8_t> touching;  // overlap flag per list pair
+  PairHistory next;                    // springs being written, swapped with the live ones
   std::vector<std::uint32_t> block_start;
   std::vector<double> coeff[8];  // law constants per type pair: kn kt kr eta_n eta_t eta_r fs fr
   bool coeff_uniform[8] = {};
-  std::uint64_t list_version = ~std::uint64_t(0);
 
   std::size_t contacts() const { return pair.size() - 1; }
   // Force on the owner of list pair k at the last evaluation (zero when apart).

@@ -30,7 +30,7 @@ void DemSimulation::prime() {
   primed_ = true;
   // The law advanced every spring by v_t dt while evaluating; no time has passed, and the springs
   // of a new state start from zero, so that increment is undone.
-  for_each_column(world_->resources.get<PairHistory>(), [](ColumnD& c) { std::fill(c.begin(), c.end(), 0.0); });
+  world_->resources.get<PairHistory>().clear();
   for_each_column(world_->grains.extras.get<WallHistory>(), [](ColumnD& c) { std::fill(c.begin(), c.end(), 0.0); });
 }
 
