@@ -35,7 +35,10 @@ def main():
     ap.add_argument("--columns", default="ke_translational,ke_rotational,contacts,wall_contacts,max_overlap_ratio")
     args = ap.parse_args()
     a, b = load(args.a), load(args.b)
-    print(f"window t >= {args.t0} s: {np.sum(a['time'] >= args.t0)} and {np.sum(b['time'] >= args.t0)} samples")
+    na, nb = int(np.sum(a["time"] >= args.t0)), int(np.sum(b["time"] >= args.t0))
+    if min(na, nb) < 2:
+        sys.exit(f"window t >= {args.t0} s holds {na} and {nb} samples; lower --from or run longer")
+    print(f"window t >= {args.t0} s: {na} and {nb} samples")
     print(f"{'column':20s} {'mean A':>12s} {'mean B':>12s} {'B/A - 1':>9s} {'|dA-B|/sem':>10s}")
     worst = 0.0
     for col in args.columns.split(","):
