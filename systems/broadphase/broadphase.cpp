@@ -254,7 +254,6 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   std::copy(g.pos.x.begin(), g.pos.x.end(), s.ref_x.begin());
   std::copy(g.pos.y.begin(), g.pos.y.end(), s.ref_y.begin());
   std::copy(g.pos.z.begin(), g.pos.z.end(), s.ref_z.begin());
-  ++list.version;
   s.valid = true;
   s.force_rebuild = false;
   ++s.rebuilds;

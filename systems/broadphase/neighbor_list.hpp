@@ -18,7 +18,6 @@ namespace gf {
 inline constexpr std::int64_t kMaxSpecies = 64;
 
 struct NeighborList {
-  std::uint64_t version = 0;            // bumped at every rebuild
   std::vector<std::uint32_t> offsets;   // size n_owned + 1
   std::vector<std::uint32_t> i;         // owner row of each pair
   std::vector<std::uint32_t> j;         // partner row of each pair

@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "systems/broadphase/neighbor_list.hpp"
 #include "systems/contact/linear_spring_dashpot.hpp"
 
 namespace gf {
@@ -15,20 +16,22 @@ void prepare(Grains& g, Walls& walls, WallHistory& h, double t_contact) {
     h.shape(walls.list.size(), g.n);
 }
 
-// Per-type law constants as columns, so a batch gathers its lanes' values by type.
+// Per-type law constants as columns, so a batch gathers its lanes' values by type. Fixed size
+// (scenes have at most kMaxSpecies species): built on the stack each call, no allocation.
 struct CoeffColumns {
-  std::vector<double> kn, kt, kr, eta_n, eta_t, eta_r, fs, fr;
+  alignas(64) double kn[kMaxSpecies], kt[kMaxSpecies], kr[kMaxSpecies], eta_n[kMaxSpecies], eta_t[kMaxSpecies],
+      eta_r[kMaxSpecies], fs[kMaxSpecies], fr[kMaxSpecies];
   explicit CoeffColumns(const ContactTable& table) {
     for (std::size_t a = 0; a < table.types(); ++a) {
       const PairCoeffs& c = table.wall(a);
-      kn.push_back(c.kn);
-      kt.push_back(c.kt);
-      kr.push_back(c.kr);
-      eta_n.push_back(c.eta_n);
-      eta_t.push_back(c.eta_t);
-      eta_r.push_back(c.eta_r);
-      fs.push_back(c.fs);
-      fr.push_back(c.fr);
+      kn[a] = c.kn;
+      kt[a] = c.kt;
+      kr[a] = c.kr;
+      eta_n[a] = c.eta_n;
+      eta_t[a] = c.eta_t;
+      eta_r[a] = c.eta_r;
+      fs[a] = c.fs;
+      fr[a] = c.fr;
     }
   }
 };
@@ -101,7 +104,6 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
   const std::size_t nown = g.n_owned;
   const std::size_t nbatch = (nown + L - 1) / L;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nbatch, 128), [&](const tbb::blocked_range<std::size_t>& r) {
-    alignas(64) std::int64_t type_idx[L];
     for (std::size_t b = r.begin(); b != r.end(); ++b) {
       const std::size_t i = b * L;
       // Padding lanes past the last owned row take no part.
@@ -137,11 +139,10 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         const B was = B::load_aligned(&act[i]);
         if (!xsimd::any(touching) && !xsimd::any(was != B(0.0))) continue;
         if (!types_loaded) {
-          for (std::size_t l = 0; l < L; ++l) type_idx[l] = i + l < nown ? g.species.type[i + l] : 0;
-          const BatchI ti = BatchI::load_aligned(type_idx);
-          c = {B::gather(cc.kn.data(), ti),    B::gather(cc.kt.data(), ti),    B::gather(cc.kr.data(), ti),
-               B::gather(cc.eta_n.data(), ti), B::gather(cc.eta_t.data(), ti), B::gather(cc.eta_r.data(), ti),
-               B::gather(cc.fs.data(), ti),    B::gather(cc.fr.data(), ti)};
+          // Padding lanes read the type column's padding (zero), a valid species.
+          const std::int32_t* ti = &g.species.type[i];
+          c = {gather32(cc.kn, ti),    gather32(cc.kt, ti),    gather32(cc.kr, ti), gather32(cc.eta_n, ti),
+               gather32(cc.eta_t, ti), gather32(cc.eta_r, ti), gather32(cc.fs, ti), gather32(cc.fr, ti)};
           types_loaded = true;
         }
         const B delta = ri - gap;
