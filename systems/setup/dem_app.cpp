@@ -12,6 +12,7 @@
 #include "systems/fill/state_csv.hpp"
 #include "systems/output/dem_observers.hpp"
 #include "systems/output/summary_json.hpp"
+#include "systems/setup/app.hpp"
 #include "systems/setup/dem_simulation.hpp"
 
 namespace gf {
@@ -43,7 +44,7 @@ void write_final_state(const std::filesystem::path& file, const Grains& g, const
 
 }  // namespace
 
-int check_command(const CliOptions& opt) {
+int check_dem_command(const CliOptions& opt) {
   const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
   const DemScene s = load_dem_scene(doc);
   Schedule step;
@@ -72,7 +73,7 @@ int check_command(const CliOptions& opt) {
   return 0;
 }
 
-int run_command(const CliOptions& opt) {
+int run_dem_command(const CliOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
   const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
   const DemScene s = load_dem_scene(doc);
