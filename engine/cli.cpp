@@ -7,7 +7,7 @@ namespace gf {
 
 std::string usage() {
   return "usage:\n"
-         "  grainflow run SCENE [--out DIR] [--threads N] [--steps N] [--set key=value]... [--quiet]\n"
+         "  grainflow run SCENE [--out DIR] [--threads N] [--steps N] [--set key=value]... [--resume CHECKPOINT] [--quiet]\n"
          "  grainflow check SCENE [--set key=value]...\n";
 }
 
@@ -37,6 +37,8 @@ CliOptions parse_cli(int argc, char** argv) {
       o.out = value();
     else if (flag == "--threads" && o.command == "run")
       o.threads = static_cast<int>(to_int(flag, value(), 1));
+    else if (flag == "--resume" && o.command == "run")
+      o.resume = value();
     else if (flag == "--steps" && o.command == "run")
       o.steps = to_int(flag, value(), 0);
     else if (flag == "--set") {

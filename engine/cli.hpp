@@ -19,6 +19,7 @@ struct CliOptions {
   std::optional<std::int64_t> steps;         // main-stage steps instead of the scene's duration
   std::vector<std::string> overrides;        // key=value
   bool quiet = false;                        // no progress lines
+  std::optional<std::filesystem::path> resume;  // continue from this checkpoint
 };
 
 // Parses argv; throws std::invalid_argument with a usage hint on bad arguments.

@@ -26,6 +26,13 @@ void for_each_column(Component& c, F&& f) {
     c.visit_columns(f);
 }
 
+// An untyped view of one column, for code that moves whole tables as bytes (checkpoints).
+struct RawColumn {
+  void* data;
+  std::size_t elem_size;
+  std::size_t size;
+};
+
 class ExtraComponents {
  public:
   template <class C>
@@ -63,6 +70,12 @@ class ExtraComponents {
     for (auto& e : extras_) b += e->bytes();
     return b;
   }
+  // Every attached column in attach order, then column order within each component.
+  std::vector<RawColumn> raw_columns() {
+    std::vector<RawColumn> out;
+    for (auto& e : extras_) e->raw(out);
+    return out;
+  }
 
  private:
   struct Base {
@@ -70,6 +83,7 @@ class ExtraComponents {
     virtual void resize(std::size_t n) = 0;
     virtual void permute(std::span<const std::uint32_t> perm) = 0;
     virtual std::size_t bytes() const = 0;
+    virtual void raw(std::vector<RawColumn>& out) = 0;
     std::size_t key = 0;
   };
   template <class C>
@@ -85,6 +99,9 @@ class ExtraComponents {
       std::size_t b = 0;
       for_each_column(const_cast<C&>(value), [&b](auto& col) { b += col.bytes(); });
       return b;
+    }
+    void raw(std::vector<RawColumn>& out) override {
+      for_each_column(value, [&out](auto& col) { out.push_back({col.data(), sizeof(*col.data()), col.size()}); });
     }
   };
   std::vector<std::unique_ptr<Base>> extras_;

@@ -34,6 +34,9 @@ using Catch::Contains;
 using gf::test::lines_of;
 using gf::test::read_file;
 using gf::test::read_lines;
+using gf::test::Exit;
+using gf::test::quote;
+using gf::test::run_cli;
 using gf::test::TempDir;
 
 namespace {
@@ -130,28 +133,6 @@ double number_after(const std::string& text, const std::string& prefix) {
 
 // ---------------------------------------------------------------------------------------------------------------------
 // Running the real binary.
-
-struct Exit {
-  bool exited = false;  // false: killed by a signal (a crash)
-  int code = -1;
-  std::string out, err;
-};
-
-std::string quote(const std::string& s) { return "'" + s + "'"; }
-
-Exit run_cli(const TempDir& dir, const std::string& args) {
-  const fs::path out = dir.path / "stdout.txt", err = dir.path / "stderr.txt";
-  const std::string cmd = quote(GRAINFLOW_BINARY) + " " + args + " > " + quote(out.string()) + " 2> " +
-                          quote(err.string()) + " < /dev/null";
-  const int status = std::system(cmd.c_str());
-  Exit e;
-  // std::system runs sh -c; a child killed by a signal shows as exit code 128 + signal there.
-  e.exited = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) < 128;
-  e.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  e.out = read_file(out);
-  e.err = read_file(err);
-  return e;
-}
 
 // Every field of a series.csv row as a number: the whole field must parse.
 std::vector<double> fields(const std::string& row) {

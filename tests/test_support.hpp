@@ -12,9 +12,11 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <cstdlib>
 #include <system_error>
 #include <vector>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "engine/grains.hpp"
@@ -121,6 +123,30 @@ inline std::string binary_box_scene(int small, int large, double gravity = 9.81)
     << "region = { shape = \"box\", lo = [0.0, 0.0, 0.0], hi = [0.02, 0.03, 0.02] }\n"
     << "count = { small = " << small << ", large = " << large << " }\n";
   return s.str();
+}
+
+// The grainflow binary run with `args` (shell words, quoted by the caller), stdout and stderr captured
+// in files of `dir`.
+struct Exit {
+  bool exited = false;  // false: killed by a signal (a crash)
+  int code = -1;
+  std::string out, err;
+};
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+Exit run_cli(const TempDir& dir, const std::string& args) {
+  const std::filesystem::path out = dir.path / "stdout.txt", err = dir.path / "stderr.txt";
+  const std::string cmd = quote(GRAINFLOW_BINARY) + " " + args + " > " + quote(out.string()) + " 2> " +
+                          quote(err.string()) + " < /dev/null";
+  const int status = std::system(cmd.c_str());
+  Exit e;
+  // std::system runs sh -c; a child killed by a signal shows as exit code 128 + signal there.
+  e.exited = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) < 128;
+  e.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  e.out = read_file(out);
+  e.err = read_file(err);
+  return e;
 }
 
 }  // namespace gf::test

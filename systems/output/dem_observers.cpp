@@ -17,11 +17,22 @@ double next_sample(double t, double next, double interval, double dt) {
 }  // namespace
 
 SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
-  if (s_.csv)
-    csv_ = std::make_unique<SeriesCsv>(*s_.csv,
-                                       std::vector<std::string>{"time", "angle", "ke_translational", "ke_rotational",
-                                                                "contacts", "wall_contacts", "max_overlap_ratio",
-                                                                "segregation_index"});
+  if (!s_.csv) return;
+  std::vector<std::string> columns{"time",           "angle",         "ke_translational",  "ke_rotational",
+                                   "contacts",       "wall_contacts", "max_overlap_ratio", "segregation_index"};
+  if (s_.resume_rows)
+    csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, std::move(columns), *s_.resume_rows));
+  else
+    csv_ = std::make_unique<SeriesCsv>(*s_.csv, std::move(columns));
+}
+
+void SeriesOutput::save(CheckpointWriter& out) const {
+  out.value("series_output.next", next_);
+  out.value("series_output.rows", static_cast<std::uint64_t>(rows_));
+}
+void SeriesOutput::restore(const CheckpointReader& in) {
+  next_ = in.value<double>("series_output.next");
+  rows_ = in.value<std::uint64_t>("series_output.rows");
 }
 
 void SeriesOutput::run(World& world) {
@@ -69,6 +80,7 @@ void SeriesOutput::sample(World& world) {
                                   row.max_overlap_ratio,
                                   row.segregation_index};
     csv_->append(v);
+    ++rows_;
   }
   char buf[256];
   if (!cs.finite || !std::isfinite(e.translational) || !std::isfinite(e.rotational)) {
@@ -87,6 +99,20 @@ void SeriesOutput::sample(World& world) {
 
 FrameOutput::FrameOutput(std::filesystem::path dir, double interval, FrameFields fields)
     : series_(std::move(dir)), interval_(interval), fields_(fields) {}
+
+void FrameOutput::save(CheckpointWriter& out) const {
+  out.value("frame_output.next", next_);
+  out.value("frame_output.last_written", last_written_);
+  out.vector("frame_output.times", series_.times());
+}
+
+void FrameOutput::restore(const CheckpointReader& in) {
+  next_ = in.value<double>("frame_output.next");
+  last_written_ = in.value<double>("frame_output.last_written");
+  std::vector<double> times;
+  in.vector("frame_output.times", times);
+  series_.resume(times);
+}
 
 void FrameOutput::run(World& world) {
   const double t = world.clock.t;

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "engine/checkpoint_file.hpp"
 #include "engine/system.hpp"
 #include "systems/analysis/metrics.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
@@ -35,9 +36,10 @@ struct SeriesSettings {
   int segregation_type = -1;
   double segregation_cell = 0;
   double max_overlap = 0.1;
+  std::optional<std::size_t> resume_rows;  // continue an existing csv, keeping this many rows
 };
 
-class SeriesOutput : public SystemBase<SeriesOutput> {
+class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
  public:
   using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Mass, Species, NeighborList, Walls, Clock>;
   using Writes = gf::Writes<SeriesRow>;
@@ -46,15 +48,18 @@ class SeriesOutput : public SystemBase<SeriesOutput> {
   void run(World& world) override;
   // Samples the last state too (summary.json reports it) unless the latest row already is it.
   void finish(World& world);
+  void save(CheckpointWriter& out) const override;
+  void restore(const CheckpointReader& in) override;
 
  private:
   void sample(World& world);
   SeriesSettings s_;
   std::unique_ptr<SeriesCsv> csv_;
   double next_ = 0;
+  std::size_t rows_ = 0;  // written to the csv by this run and the runs it continues
 };
 
-class FrameOutput : public SystemBase<FrameOutput> {
+class FrameOutput : public SystemBase<FrameOutput>, public Checkpointable {
  public:
   using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ParticleId, Force, WallForce, Clock>;
   using Writes = gf::Writes<FrameSeries>;
@@ -64,6 +69,8 @@ class FrameOutput : public SystemBase<FrameOutput> {
   // Writes the last state as a frame unless the latest frame already shows it.
   void finish(World& world);
   std::size_t frames() const { return series_.count(); }
+  void save(CheckpointWriter& out) const override;
+  void restore(const CheckpointReader& in) override;
 
  private:
   FrameSeries series_;

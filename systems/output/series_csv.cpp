@@ -1,33 +1,71 @@
 #include "systems/output/series_csv.hpp"
 
 #include <cerrno>
+#include <algorithm>
 #include <charconv>
 #include <stdexcept>
+#include <fstream>
 #include <system_error>
+
+#include "engine/atomic_file.hpp"
 
 namespace gf {
 
-SeriesCsv::SeriesCsv(std::filesystem::path file, std::vector<std::string> columns)
-    : file_(std::move(file)), columns_(std::move(columns)) {
+void SeriesCsv::check_columns() const {
   if (columns_.empty())
     throw std::invalid_argument("time series '" + file_.string() + "' needs at least one column");
   for (const std::string& c : columns_)
     if (c.empty() || c.find_first_of(",\"\r\n") != std::string::npos)
       throw std::invalid_argument("time series '" + file_.string() + "': column name '" + c +
                                   "' must be non-empty and contain no comma, quote or line break");
+}
 
+std::string SeriesCsv::header() const {
+  std::string h;
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    if (i) h += ',';
+    h += columns_[i];
+  }
+  return h + '\n';
+}
+
+SeriesCsv::SeriesCsv(std::filesystem::path file, std::vector<std::string> columns)
+    : file_(std::move(file)), columns_(std::move(columns)) {
+  check_columns();
   out_.reset(std::fopen(file_.c_str(), "w"));
   if (!out_)
     throw std::runtime_error("cannot open time series '" + file_.string() +
                              "' for writing: " + std::system_category().message(errno));
+  put(header());
+}
 
-  std::string header;
-  for (std::size_t i = 0; i < columns_.size(); ++i) {
-    if (i) header += ',';
-    header += columns_[i];
+SeriesCsv SeriesCsv::resume(std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows) {
+  return SeriesCsv(Resume{}, std::move(file), std::move(columns), keep_rows);
+}
+
+SeriesCsv::SeriesCsv(Resume, std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows)
+    : file_(std::move(file)), columns_(std::move(columns)) {
+  check_columns();
+  std::string kept = header();
+  if (std::ifstream in{file_}) {
+    std::string line;
+    std::getline(in, line);
+    if (line + '\n' != kept)
+      throw std::runtime_error("cannot resume time series '" + file_.string() + "': its header is '" + line +
+                               "', this run writes '" + kept.substr(0, kept.size() - 1) +
+                               "'. Fix: resume into the folder of the run that wrote the checkpoint (--out), or "
+                               "into a new folder");
+    // A row cut short by a kill (no line end) is dropped too: the resumed run writes it again.
+    for (std::size_t r = 0; r < keep_rows && std::getline(in, line) && !in.eof(); ++r) {
+      kept += line;
+      kept += '\n';
+    }
   }
-  header += '\n';
-  put(header);
+  write_file_atomic(file_, kept);
+  out_.reset(std::fopen(file_.c_str(), "a"));
+  if (!out_)
+    throw std::runtime_error("cannot open time series '" + file_.string() +
+                             "' for appending: " + std::system_category().message(errno));
 }
 
 void SeriesCsv::append(std::span<const double> values) {

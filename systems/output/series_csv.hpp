@@ -19,6 +19,13 @@ class SeriesCsv {
   // cannot be opened or written.
   SeriesCsv(std::filesystem::path file, std::vector<std::string> columns);
 
+  // Continues the series of a resumed run: keeps the first `keep_rows` rows of an existing `file`
+  // (those written up to the checkpoint), drops later ones (written after it by the run that was
+  // stopped, a final sample included), and appends from there. The file is rewritten atomically
+  // before appending. A file with fewer complete rows, or none, is continued from what it has
+  // (the rows cannot be made up); one whose header names other columns is a std::runtime_error.
+  static SeriesCsv resume(std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows);
+
   // Writes one row in the columns' order, in the shortest form that reads back as the same
   // double, then flushes. std::invalid_argument if values.size() != columns().size().
   void append(std::span<const double> values);
@@ -27,6 +34,10 @@ class SeriesCsv {
   const std::filesystem::path& path() const { return file_; }
 
  private:
+  struct Resume {};
+  SeriesCsv(Resume, std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows);
+  void check_columns() const;
+  std::string header() const;
   struct Closer {
     void operator()(std::FILE* f) const { std::fclose(f); }
   };

@@ -161,12 +161,8 @@ std::filesystem::path FrameSeries::write(const Grains& g, double time, const Fra
   if (!std::isfinite(time))
     throw std::invalid_argument("frame time must be finite, got " + shortest(time));
 
-  // Six digits sort correctly in file browsers up to a million frames; past that the name
-  // simply grows a digit and stays unique.
-  char name[40];
-  std::snprintf(name, sizeof name, "frame_%06zu.vtp", frames_.size());
-  const std::string rel = std::string("frames/") + name;
-  const std::filesystem::path path = dir_ / "frames" / name;
+  const std::string rel = frame_name(frames_.size());
+  const std::filesystem::path path = dir_ / rel;
 
   // Frame first, index second: the .pvd never names a frame that is not complete on disk.
   write_file_atomic(path, vtp_bytes(g, fields));
@@ -179,6 +175,26 @@ std::filesystem::path FrameSeries::write(const Grains& g, double time, const Fra
     throw;
   }
   return path;
+}
+
+std::string FrameSeries::frame_name(std::size_t index) {
+  // Six digits sort correctly in file browsers up to a million frames; past that the name
+  // simply grows a digit and stays unique.
+  char name[40];
+  std::snprintf(name, sizeof name, "frame_%06zu.vtp", index);
+  return std::string("frames/") + name;
+}
+
+std::vector<double> FrameSeries::times() const {
+  std::vector<double> t;
+  for (const Entry& e : frames_) t.push_back(e.time);
+  return t;
+}
+
+void FrameSeries::resume(const std::vector<double>& times) {
+  frames_.clear();
+  for (double t : times) frames_.push_back({t, frame_name(frames_.size())});
+  write_file_atomic(pvd_path(), pvd_bytes());
 }
 
 std::string FrameSeries::pvd_bytes() const {

@@ -39,9 +39,15 @@ class FrameSeries {
   std::filesystem::path write(const Grains& g, double time, const FrameFields& fields = {});
 
   std::size_t count() const { return frames_.size(); }
+  std::vector<double> times() const;
+  // Continues the frames of a resumed run: the index lists the frames at `times` (those written up
+  // to the checkpoint, as frame_000000.vtp ...) and is rewritten atomically; later frames are
+  // written again under the same names.
+  void resume(const std::vector<double>& times);
   std::filesystem::path pvd_path() const { return dir_ / "frames.pvd"; }
 
  private:
+  static std::string frame_name(std::size_t index);
   struct Entry {
     double time;
     std::string file;  // relative to dir_, '/'-separated as VTK expects

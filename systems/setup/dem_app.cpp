@@ -1,5 +1,7 @@
 // `grainflow run` and `grainflow check` for DEM scenes.
+#include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -10,9 +12,11 @@
 #include "engine/run_loop.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/fill/state_csv.hpp"
+#include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
 #include "systems/output/summary_json.hpp"
 #include "systems/setup/app.hpp"
+#include "systems/setup/dem_checkpoint.hpp"
 #include "systems/setup/dem_simulation.hpp"
 
 namespace gf {
@@ -83,9 +87,17 @@ int run_dem_command(const CliOptions& opt) {
   DemSimulation sim(s);
   World& world = sim.world();
   Schedule& step = sim.step();
+  std::optional<CheckpointReader> ckpt;
+  if (opt.resume) {
+    ckpt.emplace(*opt.resume);
+    sim.resume(*ckpt);
+  }
   const std::size_t n = world.grains.n_owned;
   std::fprintf(stderr, "grainflow: %s: %zu grains, dt = %.3g s (%.3f of the critical period), %zu threads -> %s\n",
                s.file.string().c_str(), n, s.dt, s.dt / s.critical.period, threads_in_use(), out.string().c_str());
+  if (ckpt)
+    std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", ckpt->file().string().c_str(),
+                 static_cast<long long>(world.clock.step), world.clock.t);
 
   nlohmann::json summary;
   summary["scene"] = s.file.string();
@@ -96,9 +108,11 @@ int run_dem_command(const CliOptions& opt) {
   summary["critical_period"] = s.critical.period;
   summary["critical_term"] = s.critical.term;
   summary["status"] = "running";
+  if (ckpt) summary["resumed_from"] = {{"checkpoint", ckpt->file().string()}, {"step", world.clock.step}, {"time", world.clock.t}};
   write_summary_json(out / "summary.json", summary);
 
-  const StageReport settle = sim.settle(opt.quiet ? 0.0 : 2.0);
+  // A resumed run continues the main stage; its settling was done by the run that wrote the checkpoint.
+  const StageReport settle = ckpt ? StageReport{} : sim.settle(opt.quiet ? 0.0 : 2.0);
   step.reset_timings();
 
   Schedule observe;
@@ -109,17 +123,36 @@ int run_dem_command(const CliOptions& opt) {
   ss.segregation_type = s.segregation_type;
   ss.segregation_cell = s.segregation_cell;
   ss.max_overlap = s.max_overlap;
+  if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");
   SeriesOutput& series = observe.emplace<SeriesOutput>(ss);
   FrameOutput* frames = nullptr;
   if (s.output.frame_interval > 0) frames = &observe.emplace<FrameOutput>(out, s.output.frame_interval, s.output.fields);
+  std::vector<const Checkpointable*> parts{&series};
+  if (frames) parts.push_back(frames);
+  CheckpointOutput& checkpoints = observe.emplace<CheckpointOutput>(
+      CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
+      [&s](CheckpointWriter& w, World& wd) { save_dem_state(w, wd, s); }, parts);
   observe.build(world);
+  if (ckpt) {
+    series.restore(*ckpt);
+    if (frames) {
+      if (!ckpt->has("frame_output.next"))
+        ckpt->fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
+      frames->restore(*ckpt);
+    }
+    checkpoints.restore(*ckpt);
+  }
 
   StageOptions so;
   so.progress_seconds = opt.quiet ? 0.0 : 2.0;
   so.label = "run";
-  so.steps = opt.steps ? *opt.steps : s.main_steps();
+  // --steps and the scene's duration count the whole main stage, so a resumed run ends where the
+  // uninterrupted one would.
+  const std::int64_t total_steps = opt.steps ? *opt.steps : s.main_steps();
+  so.steps = std::max<std::int64_t>(0, total_steps - world.clock.step);
   so.observe = &observe;
   StageReport main;
+  std::string checkpoint_file;
   std::string status = "completed";
   std::string failure;
   int rc = 0;
@@ -130,11 +163,20 @@ int run_dem_command(const CliOptions& opt) {
   } catch (const std::exception& e) {
     status = "failed";
     failure = e.what();
-    main.steps = world.clock.step;
+    main.steps = world.clock.step - (ckpt ? ckpt->value<std::int64_t>("clock.step") : 0);
     main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
     rc = 3;
   }
 
+  if (status != "failed" && s.output.checkpoint_at_end) {
+    try {
+      checkpoint_file = checkpoints.write(world).string();
+    } catch (const std::exception& e) {
+      status = "failed";
+      failure = e.what();
+      rc = 3;
+    }
+  }
   if (status != "failed") {
     try {
       series.finish(world);
@@ -150,7 +192,10 @@ int run_dem_command(const CliOptions& opt) {
   summary["status"] = status;
   if (!failure.empty()) summary["failure"] = failure;
   summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle.wall_seconds}};
-  summary["steps"] = main.steps;
+  summary["steps"] = world.clock.step;
+  summary["steps_this_run"] = main.steps;
+  summary["checkpoints_written"] = checkpoints.written();
+  if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
   summary["simulated_time"] = world.clock.t;
   summary["wall_seconds"] = main.wall_seconds;
   summary["total_wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -44,6 +44,9 @@ struct OutputSpec {
   double series_interval = 0;  // s, 0 = no series
   double frame_interval = 0;   // s, 0 = no frames
   FrameFields fields;
+  double checkpoint_interval = 0;  // s, 0 = none during the run
+  bool checkpoint_keep_all = false;
+  bool checkpoint_at_end = true;   // also when the run is interrupted
 };
 
 struct DemScene {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "systems/broadphase/neighbor_list.hpp"
+#include "systems/setup/dem_checkpoint.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -49,6 +50,11 @@ StageReport DemSimulation::settle(double progress_seconds) {
   world_->clock.t = 0.0;
   world_->clock.step = 0;
   return rep;
+}
+
+void DemSimulation::resume(const CheckpointReader& in) {
+  restore_dem_state(in, *world_, scene_);
+  primed_ = true;
 }
 
 void DemSimulation::advance(std::int64_t n) {

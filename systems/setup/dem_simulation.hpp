@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "engine/checkpoint_file.hpp"
 #include "engine/run_loop.hpp"
 #include "systems/setup/dem_scene.hpp"
 
@@ -24,6 +25,8 @@ class DemSimulation {
   StageReport settle(double progress_seconds = 0.0);
   // Advances n steps with no observers; primes first if that has not been done.
   void advance(std::int64_t n);
+  // Replaces the state by a checkpoint's (see dem_checkpoint.hpp); the run then continues from it.
+  void resume(const CheckpointReader& in);
 
   DemScene& scene() { return scene_; }
   World& world() { return *world_; }

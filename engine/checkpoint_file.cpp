@@ -1,0 +1,98 @@
+#include "engine/checkpoint_file.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "engine/atomic_file.hpp"
+
+namespace gf {
+
+namespace {
+
+constexpr std::string_view kMagic = "grainflow-checkpoint 1\n";
+
+std::uint64_t fnv1a(std::string_view bytes) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const char c : bytes) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+template <class T>
+void put(std::string& buf, T v) {
+  buf.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+}  // namespace
+
+void CheckpointWriter::raw(const std::string& name, const void* data, std::size_t elem_size, std::size_t count) {
+  if (buf_.empty()) buf_.append(kMagic);
+  put(buf_, static_cast<std::uint32_t>(name.size()));
+  buf_.append(name);
+  put(buf_, static_cast<std::uint64_t>(elem_size));
+  put(buf_, static_cast<std::uint64_t>(count));
+  if (count) buf_.append(static_cast<const char*>(data), elem_size * count);
+}
+
+void CheckpointWriter::write(const std::filesystem::path& file) const {
+  std::string out = buf_.empty() ? std::string(kMagic) : buf_;
+  put(out, fnv1a(out));
+  write_file_atomic(file, out);
+}
+
+void CheckpointReader::fail(const std::string& problem, const std::string& fix) const {
+  throw CheckpointError(file_.string() + ": " + problem + ". Fix: " + fix);
+}
+
+CheckpointReader::CheckpointReader(const std::filesystem::path& file) : file_(file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) fail("cannot open the checkpoint", "give the path of a checkpoint a run wrote (checkpoints/*.gfc)");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  data_ = std::move(ss).str();
+  const std::string_view all(data_);
+  if (all.substr(0, kMagic.size()) != kMagic)
+    fail("not a grainflow checkpoint (or one of another format version)",
+         "give a checkpoint written by this version of grainflow");
+  if (all.size() < kMagic.size() + 8) fail("the file is truncated", "resume from an earlier checkpoint");
+  std::uint64_t stored = 0;
+  std::memcpy(&stored, all.data() + all.size() - 8, 8);
+  if (fnv1a(all.substr(0, all.size() - 8)) != stored)
+    fail("the checksum does not match: the file is truncated or corrupt", "resume from an earlier checkpoint");
+  std::size_t p = kMagic.size();
+  const std::size_t end = all.size() - 8;
+  auto take = [&](std::size_t n) {
+    if (end - p < n) fail("a section runs past the end of the file", "resume from an earlier checkpoint");
+    const std::size_t at = p;
+    p += n;
+    return at;
+  };
+  while (p < end) {
+    std::uint32_t len = 0;
+    std::memcpy(&len, all.data() + take(4), 4);
+    const std::string name(all.substr(take(len), len));
+    std::uint64_t elem = 0, count = 0;
+    std::memcpy(&elem, all.data() + take(8), 8);
+    std::memcpy(&count, all.data() + take(8), 8);
+    if (elem != 0 && count > (end - p) / elem) fail("section '" + name + "' runs past the end of the file",
+                                                    "resume from an earlier checkpoint");
+    sections_[name] = {elem, count, take(elem * count)};
+  }
+}
+
+std::span<const char> CheckpointReader::need(const std::string& name, std::size_t elem, long long count) const {
+  auto it = sections_.find(name);
+  if (it == sections_.end())
+    fail("section '" + name + "' is missing", "resume with the scene and grainflow version that wrote it");
+  const Section& s = it->second;
+  if (s.elem != elem || (count >= 0 && s.count != static_cast<std::size_t>(count)))
+    fail("section '" + name + "' has " + std::to_string(s.count) + " elements of " + std::to_string(s.elem) +
+             " bytes, expected " + (count >= 0 ? std::to_string(count) : std::string("some")) + " of " +
+             std::to_string(elem),
+         "resume with the scene and grainflow version that wrote it");
+  return {data_.data() + s.offset, s.elem * s.count};
+}
+
+}  // namespace gf

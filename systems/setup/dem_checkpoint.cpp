@@ -1,0 +1,117 @@
+#include "systems/setup/dem_checkpoint.hpp"
+
+#include <cstring>
+#include <string>
+
+#include "systems/broadphase/broadphase.hpp"
+#include "systems/integrate/integrate.hpp"
+#include "systems/walls/walls.hpp"
+
+namespace gf {
+
+namespace {
+
+std::string g(std::size_t k) { return "grains.column." + std::to_string(k); }
+std::string x(std::size_t k) { return "grains.attached." + std::to_string(k); }
+
+// The neighbour list and springs, under fixed names, for both directions.
+template <class Io, class List, class History, class State>
+void list_sections(Io& io, List& list, History& h, State& bp) {
+  io.vector("neighbors.offsets", list.offsets);
+  io.vector("neighbors.i", list.i);
+  io.vector("neighbors.j", list.j);
+  io.column("neighbors.i_lane", list.i_lane);
+  io.column("neighbors.j_lane", list.j_lane);
+  io.column("neighbors.type_pair", list.type_pair);
+  io.vector("neighbors.key", list.key);
+  io.vector("neighbors.in_offsets", list.in_offsets);
+  io.vector("neighbors.in_pairs", list.in_pairs);
+  io.column("springs.pair", h.pair);
+  io.column("springs.sx", h.sx);
+  io.column("springs.sy", h.sy);
+  io.column("springs.sz", h.sz);
+  io.column("springs.rx", h.rx);
+  io.column("springs.ry", h.ry);
+  io.column("springs.rz", h.rz);
+  io.column("broadphase.ref_x", bp.ref_x);
+  io.column("broadphase.ref_y", bp.ref_y);
+  io.column("broadphase.ref_z", bp.ref_z);
+}
+
+template <class T>
+void require_equal(const CheckpointReader& in, const char* what, T stored, T now, const std::string& fix) {
+  if (stored != now)
+    in.fail(std::string("it was written with ") + what + " = " + std::to_string(stored) + ", the scene now gives " +
+                std::to_string(now),
+            fix);
+}
+
+}  // namespace
+
+void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) {
+  Grains& gr = world.grains;
+  out.value("clock.t", world.clock.t);
+  out.value("clock.dt", world.clock.dt);
+  out.value("clock.step", world.clock.step);
+  out.value("scene.species", static_cast<std::uint64_t>(scene.species.size()));
+  out.value("scene.walls", static_cast<std::uint64_t>(scene.walls.size()));
+  out.value("grains.n_owned", static_cast<std::uint64_t>(gr.n_owned));
+  out.value("grains.n", static_cast<std::uint64_t>(gr.n));
+  std::size_t k = 0;
+  gr.for_each_core_column([&](auto& col) { out.column(g(k++), col); });
+  k = 0;
+  for (const RawColumn& c : gr.extras.raw_columns()) out.raw(x(k++), c.data, c.elem_size, c.size);
+
+  auto& bp = world.resources.get<BroadphaseState>();
+  out.value("broadphase.skin", bp.skin);
+  out.value("broadphase.valid", bp.valid);
+  out.value("broadphase.force_rebuild", bp.force_rebuild);
+  out.value("broadphase.rebuilds", bp.rebuilds);
+  out.value("broadphase.checks", bp.checks);
+  out.value("walls.rotation_enabled", world.resources.get<Walls>().rotation_enabled);
+  list_sections(out, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp);
+}
+
+void restore_dem_state(const CheckpointReader& in, World& world, const DemScene& scene) {
+  const std::string same_scene = "resume with the scene (and --set overrides) of the run that wrote the checkpoint";
+  require_equal<double>(in, "run.dt", in.value<double>("clock.dt"), scene.dt,
+                        "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
+  require_equal<std::uint64_t>(in, "species count", in.value<std::uint64_t>("scene.species"), scene.species.size(),
+                               same_scene);
+  require_equal<std::uint64_t>(in, "wall count", in.value<std::uint64_t>("scene.walls"), scene.walls.size(),
+                               same_scene);
+  Grains& gr = world.grains;
+  const auto n_owned = in.value<std::uint64_t>("grains.n_owned");
+  require_equal<std::uint64_t>(in, "grain count", n_owned, gr.n_owned, same_scene);
+  auto& bp = world.resources.get<BroadphaseState>();
+  require_equal<double>(in, "run.skin", in.value<double>("broadphase.skin"), bp.skin, "resume with the same run.skin");
+
+  world.clock.t = in.value<double>("clock.t");
+  world.clock.dt = in.value<double>("clock.dt");
+  world.clock.step = in.value<std::int64_t>("clock.step");
+  gr.resize(in.value<std::uint64_t>("grains.n"));
+  gr.n_owned = n_owned;
+  std::size_t k = 0;
+  gr.for_each_core_column([&](auto& col) {
+    const std::size_t rows = col.size();
+    in.column(g(k++), col);
+    if (col.size() != rows) in.fail("a grain column has the wrong length", same_scene);
+  });
+  k = 0;
+  for (const RawColumn& c : gr.extras.raw_columns()) {
+    // Attached columns are sized with the table; the checkpoint must hold exactly that many rows.
+    if (!in.has(x(k))) in.fail("attached grain column " + std::to_string(k) + " is missing", same_scene);
+    in.copy_raw(x(k++), c.data, c.elem_size, c.size);
+  }
+
+  bp.valid = in.value<bool>("broadphase.valid");
+  bp.force_rebuild = in.value<bool>("broadphase.force_rebuild");
+  bp.rebuilds = in.value<std::int64_t>("broadphase.rebuilds");
+  bp.checks = in.value<std::int64_t>("broadphase.checks");
+  Walls& walls = world.resources.get<Walls>();
+  walls.rotation_enabled = in.value<bool>("walls.rotation_enabled");
+  walls.place(world.clock.t);
+  list_sections(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp);
+}
+
+}  // namespace gf
