@@ -45,4 +45,60 @@ inline BatchD gather32(const double* base, const std::int32_t* idx) {
 #endif
 }
 
+// The same, where a negative index gives 0.0 (a missing entry) and reads nothing.
+inline BatchD gather32_or_zero(const double* base, const std::int32_t* idx) {
+#if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(GRAINFLOW_SIMD_256)
+  const __m256i i = _mm256_load_si256(reinterpret_cast<const __m256i*>(idx));
+  const __mmask8 m = _mm256_cmpge_epi32_mask(i, _mm256_setzero_si256());
+  return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), m, i, base, 8);
+#elif defined(__AVX2__)
+  const __m128i i = _mm_load_si128(reinterpret_cast<const __m128i*>(idx));
+  const __m256d m = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpgt_epi32(i, _mm_set1_epi32(-1))));
+  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, i, m, 8);
+#else
+  alignas(64) double lanes[kLanes];
+  for (std::size_t l = 0; l < kLanes; ++l) lanes[l] = idx[l] >= 0 ? base[idx[l]] : 0.0;
+  return BatchD::load_aligned(lanes);
+#endif
+}
+
+// kLanes values base[idx[l]] where every idx[l] lies in [idx[0], idx[0] + kLanes) (the owners of a
+// batch of pairs in owner order are a few adjacent rows): one unaligned load of that window and a
+// lane permute instead of a gather. row_window checks the lanes once per batch; load_rows falls
+// back to a gather when they spread wider, or when the window would pass `rows` (the columns'
+// allocated length).
+struct RowWindow {
+  const std::int32_t* idx = nullptr;
+  std::int32_t first = 0;
+  bool fits = false;
+#if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(GRAINFLOW_SIMD_256)
+  __m512i perm{};
+#endif
+};
+
+inline RowWindow row_window(const std::int32_t* idx, std::size_t rows) {
+  RowWindow w;
+  w.idx = idx;
+  w.first = idx[0];
+#if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(GRAINFLOW_SIMD_256)
+  // Every lane within [first, first + kLanes) (unsigned: below first wraps high), so padding lanes
+  // or an unsorted batch fall back to the gather.
+  const __m256i rel =
+      _mm256_sub_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(idx)), _mm256_set1_epi32(idx[0]));
+  w.fits = _mm256_cmplt_epu32_mask(rel, _mm256_set1_epi32(static_cast<int>(kLanes))) == 0xff &&
+           static_cast<std::size_t>(idx[0]) + kLanes <= rows;
+  if (w.fits) w.perm = _mm512_cvtepi32_epi64(rel);
+#else
+  (void)rows;
+#endif
+  return w;
+}
+
+inline BatchD load_rows(const double* base, const RowWindow& w) {
+#if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(GRAINFLOW_SIMD_256)
+  if (w.fits) return _mm512_permutexvar_pd(w.perm, _mm512_loadu_pd(base + w.first));
+#endif
+  return gather32(base, w.idx);
+}
+
 }  // namespace gf

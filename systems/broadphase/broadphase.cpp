@@ -237,6 +237,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     history.rz[e] = sign * old.values[5][slot];
     ++e;
   }
+  history.map_slots(np);
 
   // Transposed incidence in pair order: deterministic per-row force sums.
   list.in_offsets.assign(n + 1, 0);

@@ -32,16 +32,28 @@ struct NeighborList {
 // Contact history (seed 000 Table 1 springs) of the pairs in contact at the last evaluation, packed
 // in list order: `pair` holds each spring's list index, increasing, and the six columns its values.
 // Pairs apart have no entry, which is a zero spring. Springs are seen from the pair's owner row i.
+// `slot` is the inverse map, per list pair: its entry, or -1 (any pair past its end has none), so
+// the contact kernel finds a pair's spring with one load instead of a merge.
 struct PairHistory {
   Column<std::int32_t> pair;
   ColumnD sx, sy, sz;  // tangential spring, m
   ColumnD rx, ry, rz;  // rolling angle, rad
+  Column<std::int32_t> slot;
   std::size_t size() const { return pair.size(); }
+  // Sets the number of entries; `slot` is then stale until map_slots.
   void resize(std::size_t n) {
     pair.resize(n);
     for (ColumnD* c : {&sx, &sy, &sz, &rx, &ry, &rz}) c->resize(n);
   }
-  void clear() { resize(0); }
+  // Rebuilds `slot` for a list of `pairs` list pairs from `pair`.
+  void map_slots(std::size_t pairs) {
+    slot.assign(pairs, -1);
+    for (std::size_t e = 0; e < size(); ++e) slot[static_cast<std::size_t>(pair[e])] = static_cast<std::int32_t>(e);
+  }
+  void clear() {
+    resize(0);
+    std::fill(slot.begin(), slot.end(), -1);
+  }
   // Entry of list pair k, or -1 when it has no spring.
   std::int64_t find(std::size_t k) const {
     const std::int32_t* b = pair.begin();

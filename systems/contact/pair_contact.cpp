@@ -14,30 +14,102 @@ namespace {
 // Pairs per prefilter block: a multiple of the batch width, small enough for load balance.
 constexpr std::size_t kBlock = 2048;
 
-// Force columns hold one extra slot, kept zero, that pairs apart point at: the per-row sums then
-// add without a branch (half the list pairs are apart, at random, which a branch mispredicts).
+// The record column holds one extra record, kept zero, that pairs apart point at: the per-row sums
+// then add without a branch (half the list pairs are apart, at random, which a branch mispredicts).
 void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
-  for (Column<std::int32_t>* c : {&out.pair, &out.ci, &out.cj, &out.ctype}) c->resize(nc + 1);
+  for (Column<std::int32_t>* c : {&out.pair, &out.ci, &out.cj, &out.ctype, &out.cslot}) c->resize(nc + 1);
   out.rank.resize(np + 1);
   out.contact_of.resize(np);
   out.next.resize(nc);
+  out.next.slot.resize(np);
+  std::fill(out.next.slot.begin() + np, out.next.slot.begin() + out.next.slot.padded(), -1);
   out.record.resize((nc + 1) * PairForces::kRecord);
+  for (ColumnD* c : {&out.tix, &out.tiy, &out.tiz}) c->resize(nc);
   std::fill(&out.record[nc * PairForces::kRecord], &out.record[(nc + 1) * PairForces::kRecord], 0.0);
 }
 
-// Springs of the last evaluation for contact c (list pair k), found by walking the old packed
-// springs, which are in list order like the contacts; zero for a new contact.
-void carry_spring(const PairHistory& old, std::size_t& e, std::size_t k, PairHistory& next, std::size_t c) {
-  const auto key = static_cast<std::int32_t>(k);
-  while (e < old.size() && old.pair[e] < key) ++e;
-  const bool found = e < old.size() && old.pair[e] == key;
-  next.pair[c] = key;
+// Springs of the last evaluation for contact c (entry `slot` of the old history, -1 for a new
+// contact, which starts from zero).
+void carry_spring(const PairHistory& old, std::int32_t slot, PairHistory& next, std::size_t c) {
+  const bool found = slot >= 0;
+  const auto e = static_cast<std::size_t>(found ? slot : 0);
   next.sx[c] = found ? old.sx[e] : 0.0;
   next.sy[c] = found ? old.sy[e] : 0.0;
   next.sz[c] = found ? old.sz[e] : 0.0;
   next.rx[c] = found ? old.rx[e] : 0.0;
   next.ry[c] = found ? old.ry[e] : 0.0;
   next.rz[c] = found ? old.rz[e] : 0.0;
+}
+
+// Compaction of list pairs [k0, k1) into contacts from index c: the contact's indices, the map
+// from list pair to contact (rank, contact_of, the new history's slot). One pair at a time.
+std::int32_t compact_scalar(const NeighborList& list, const PairHistory& h, PairForces& out, std::size_t k0,
+                            std::size_t k1, std::int32_t c, std::int32_t none) {
+  for (std::size_t k = k0; k < k1; ++k) {
+    const std::int32_t t = out.touching[k];
+    out.rank[k] = c;
+    out.contact_of[k] = t ? c : none;
+    out.next.slot[k] = t ? c : -1;
+    // Only touching pairs write their slot: a block's slot past its last contact is the next
+    // block's first, written concurrently by another thread.
+    if (t) {
+      out.pair[c] = static_cast<std::int32_t>(k);
+      out.next.pair[c] = static_cast<std::int32_t>(k);
+      out.ci[c] = list.i_lane[k];
+      out.cj[c] = list.j_lane[k];
+      out.ctype[c] = list.type_pair[k];
+      out.cslot[c] = h.slot[k];
+    }
+    c += t;
+  }
+  return c;
+}
+
+#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__) && defined(__AVX512VPOPCNTDQ__)
+#define GF_COMPACT_AVX512 1
+// The same, sixteen pairs at a time: the touching lanes' indices are compressed in registers and
+// stored whole (the lanes past this group's contacts are overwritten by the next group), except
+// within sixteen of `c_end`, the block's last contact, past which the next block writes: there
+// under a mask. Each pair's rank is the group's base plus the count of touching lanes below it.
+std::int32_t compact_avx512(const NeighborList& list, const PairHistory& h, PairForces& out, std::size_t k0,
+                            std::size_t k1, std::int32_t c, std::int32_t c_end, std::int32_t none) {
+  const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __m512i below = _mm512_setr_epi32(0x0, 0x1, 0x3, 0x7, 0xf, 0x1f, 0x3f, 0x7f, 0xff, 0x1ff, 0x3ff, 0x7ff,
+                                          0xfff, 0x1fff, 0x3fff, 0x7fff);
+  const __m512i vnone = _mm512_set1_epi32(none), vminus = _mm512_set1_epi32(-1);
+  std::size_t k = k0;
+  for (; k + 16 <= k1; k += 16) {
+    const __m128i tb = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&out.touching[k]));
+    const __mmask16 m = _mm_test_epi8_mask(tb, tb);
+    const __m512i rank = _mm512_add_epi32(
+        _mm512_set1_epi32(c), _mm512_popcnt_epi32(_mm512_and_si512(_mm512_set1_epi32(m), below)));
+    _mm512_storeu_si512(&out.rank[k], rank);
+    _mm512_storeu_si512(&out.contact_of[k], _mm512_mask_blend_epi32(m, vnone, rank));
+    _mm512_storeu_si512(&out.next.slot[k], _mm512_mask_blend_epi32(m, vminus, rank));
+    const int cnt = __builtin_popcount(m);
+    if (cnt == 0) continue;
+    const auto w = static_cast<__mmask16>(c + 16 <= c_end ? 0xffffu : (1u << cnt) - 1u);
+    const __m512i kk = _mm512_maskz_compress_epi32(m, _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(k)), iota));
+    _mm512_mask_storeu_epi32(&out.pair[c], w, kk);
+    _mm512_mask_storeu_epi32(&out.next.pair[c], w, kk);
+    auto pack = [&](std::int32_t* dst, const std::int32_t* src) {
+      _mm512_mask_storeu_epi32(dst, w, _mm512_maskz_compress_epi32(m, _mm512_loadu_si512(src + k)));
+    };
+    pack(&out.ci[c], list.i_lane.data());
+    pack(&out.cj[c], list.j_lane.data());
+    pack(&out.ctype[c], list.type_pair.data());
+    pack(&out.cslot[c], h.slot.data());
+    c += cnt;
+  }
+  return compact_scalar(list, h, out, k, k1, c, none);
+}
+#endif
+
+// True when the batch of slots is one increasing run (s, s+1, ...).
+inline bool is_run(const std::int32_t* sl) {
+  for (std::size_t l = 1; l < kLanes; ++l)
+    if (sl[l] != sl[0] + static_cast<std::int32_t>(l)) return false;
+  return true;
 }
 
 // Law, lever arms and torques for one contact; shared by the scalar tail and the scalar driver.
@@ -70,9 +142,9 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
   rec[PairForces::Fx] = res.force.x;
   rec[PairForces::Fy] = res.force.y;
   rec[PairForces::Fz] = res.force.z;
-  rec[PairForces::Tix] = li * nxf.x + res.rolling_torque.x;
-  rec[PairForces::Tiy] = li * nxf.y + res.rolling_torque.y;
-  rec[PairForces::Tiz] = li * nxf.z + res.rolling_torque.z;
+  out.tix[c] = li * nxf.x + res.rolling_torque.x;
+  out.tiy[c] = li * nxf.y + res.rolling_torque.y;
+  out.tiz[c] = li * nxf.z + res.rolling_torque.z;
   // On j the force is -F and the lever -L_j n: the tangential torque has the same sign as i's.
   rec[PairForces::Tjx] = lj * nxf.x - res.rolling_torque.x;
   rec[PairForces::Tjy] = lj * nxf.y - res.rolling_torque.y;
@@ -81,6 +153,8 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
 
 // Per row: own contacts (a contiguous run of list pairs), then incoming ones, in list order.
 void reduce_rows(Grains& g, const NeighborList& list, const PairForces& out) {
+  constexpr std::uint32_t kPrefetch = 24;
+  const auto n_in = static_cast<std::uint32_t>(list.in_pairs.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t a = r.begin(); a != r.end(); ++a) {
       double fx = 0, fy = 0, fz = 0, tx = 0, ty = 0, tz = 0;
@@ -92,11 +166,15 @@ void reduce_rows(Grains& g, const NeighborList& list, const PairForces& out) {
         fx += q[PairForces::Fx];
         fy += q[PairForces::Fy];
         fz += q[PairForces::Fz];
-        tx += q[PairForces::Tix];
-        ty += q[PairForces::Tiy];
-        tz += q[PairForces::Tiz];
+        tx += out.tix[c];
+        ty += out.tiy[c];
+        tz += out.tiz[c];
       }
-      for (std::uint32_t q = list.in_offsets[a]; q < list.in_offsets[a + 1]; ++q) {
+      const std::uint32_t q_end = list.in_offsets[a + 1];
+      for (std::uint32_t q = list.in_offsets[a]; q < q_end; ++q) {
+        // Incoming records are scattered over the whole contact list: ask for the one a few rows
+        // ahead now, so several misses are in flight instead of one at a time.
+        if (q + kPrefetch < n_in) __builtin_prefetch(rec + static_cast<std::size_t>(out.contact_of[list.in_pairs[q + kPrefetch]]) * R);
         const double* p = rec + static_cast<std::size_t>(out.contact_of[list.in_pairs[q]]) * R;
         fx -= p[PairForces::Fx];
         fy -= p[PairForces::Fy];
@@ -129,21 +207,13 @@ void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory
     out.touching[k] = dx * dx + dy * dy + dz * dz < rs * rs;
     nc += out.touching[k];
   }
+  if (h.slot.size() != np) h.map_slots(np);
   size_outputs(out, np, nc);
-  std::size_t c = 0, e = 0;
-  for (std::size_t k = 0; k < np; ++k) {
-    out.rank[k] = static_cast<std::int32_t>(c);
-    if (!out.touching[k]) {
-      out.contact_of[k] = static_cast<std::int32_t>(nc);
-      continue;
-    }
-    out.contact_of[k] = static_cast<std::int32_t>(c);
-    out.pair[c] = static_cast<std::int32_t>(k);
-    out.ci[c] = static_cast<std::int32_t>(list.i[k]);
-    out.cj[c] = static_cast<std::int32_t>(list.j[k]);
-    carry_spring(h, e, k, out.next, c);
+  compact_scalar(list, h, out, 0, np, 0, static_cast<std::int32_t>(nc));
+  for (std::size_t c = 0; c < nc; ++c) {
+    const auto k = static_cast<std::size_t>(out.pair[c]);
+    carry_spring(h, out.cslot[c], out.next, c);
     evaluate_one(g, list.i[k], list.j[k], out.next, table.pair_data(), table.types(), dt, out, c);
-    ++c;
   }
   out.rank[np] = static_cast<std::int32_t>(nc);
   std::swap(h, out.next);
@@ -158,6 +228,9 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   const std::size_t np = list.pairs();
   out.touching.resize(padded_size(np));
 
+  // Every column of the table is allocated to this many rows (whole batches).
+  const std::size_t rows = g.pos.x.padded();
+
   // 1. Overlap test per pair; counts per block of pairs.
   const std::size_t nblocks = (np + kBlock - 1) / kBlock;
   out.block_start.assign(nblocks + 1, 0);
@@ -166,12 +239,13 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
     alignas(64) bool lane[L];
     std::uint32_t count = 0;
     for (std::size_t k = k0; k < k1; k += L) {
-      const std::int32_t* bi = &list.i_lane[k];
+      // Pairs are in owner order: the owners of a batch are a few adjacent rows.
+      const RowWindow wi = row_window(&list.i_lane[k], rows);
       const std::int32_t* bj = &list.j_lane[k];
-      const B dx = gather32(g.pos.x.data(), bj) - gather32(g.pos.x.data(), bi);
-      const B dy = gather32(g.pos.y.data(), bj) - gather32(g.pos.y.data(), bi);
-      const B dz = gather32(g.pos.z.data(), bj) - gather32(g.pos.z.data(), bi);
-      const B rs = gather32(g.radius.r.data(), bj) + gather32(g.radius.r.data(), bi);
+      const B dx = gather32(g.pos.x.data(), bj) - load_rows(g.pos.x.data(), wi);
+      const B dy = gather32(g.pos.y.data(), bj) - load_rows(g.pos.y.data(), wi);
+      const B dz = gather32(g.pos.z.data(), bj) - load_rows(g.pos.z.data(), wi);
+      const B rs = gather32(g.radius.r.data(), bj) + load_rows(g.radius.r.data(), wi);
       (dx * dx + dy * dy + dz * dz < rs * rs).store_aligned(lane);
       const std::size_t m = std::min(L, k1 - k);
       for (std::size_t l = 0; l < m; ++l) {
@@ -185,29 +259,18 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   const std::size_t nc = out.block_start[nblocks];
   size_outputs(out, np, nc);
 
-  // 2. Packed contact list in list order, each contact with its spring from the last evaluation.
+  // 2. Packed contact list in list order, each contact with the slot of its spring.
+  if (h.slot.size() != np) h.map_slots(np);
   const std::size_t ntypes = table.types();
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
     const std::size_t k0 = b * kBlock, k1 = std::min(np, k0 + kBlock);
-    std::int32_t c = static_cast<std::int32_t>(out.block_start[b]);
+    const auto c = static_cast<std::int32_t>(out.block_start[b]);
     const auto none = static_cast<std::int32_t>(nc);
-    std::size_t e = static_cast<std::size_t>(
-        std::lower_bound(h.pair.begin(), h.pair.end(), static_cast<std::int32_t>(k0)) - h.pair.begin());
-    for (std::size_t k = k0; k < k1; ++k) {
-      const std::int32_t t = out.touching[k];
-      out.rank[k] = c;
-      out.contact_of[k] = t ? c : none;
-      // Only touching pairs write their slot: a block's slot past its last contact is the next
-      // block's first, written concurrently by another thread.
-      if (t) {
-        out.pair[c] = static_cast<std::int32_t>(k);
-        out.ci[c] = list.i_lane[k];
-        out.cj[c] = list.j_lane[k];
-        out.ctype[c] = list.type_pair[k];
-        carry_spring(h, e, k, out.next, static_cast<std::size_t>(c));
-      }
-      c += t;
-    }
+#ifdef GF_COMPACT_AVX512
+    compact_avx512(list, h, out, k0, k1, c, static_cast<std::int32_t>(out.block_start[b + 1]), none);
+#else
+    compact_scalar(list, h, out, k0, k1, c, none);
+#endif
   });
   out.rank[np] = static_cast<std::int32_t>(nc);
 
@@ -231,29 +294,41 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, full, 64), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t bt = r.begin(); bt != r.end(); ++bt) {
       const std::size_t c0 = bt * L;
-      const std::int32_t* bi = &out.ci[c0];
+      // Contacts are in owner order: the owners of a batch are a few adjacent rows, loaded whole
+      // and permuted into lanes; partners are scattered and gathered.
+      const RowWindow bi = row_window(&out.ci[c0], rows);
       const std::int32_t* bj = &out.cj[c0];
       const std::int32_t* bt_idx = &out.ctype[c0];
-      const V d{gather32(g.pos.x.data(), bj) - gather32(g.pos.x.data(), bi),
-                gather32(g.pos.y.data(), bj) - gather32(g.pos.y.data(), bi),
-                gather32(g.pos.z.data(), bj) - gather32(g.pos.z.data(), bi)};
-      const B ri = gather32(g.radius.r.data(), bi), rj = gather32(g.radius.r.data(), bj);
+      const V d{gather32(g.pos.x.data(), bj) - load_rows(g.pos.x.data(), bi),
+                gather32(g.pos.y.data(), bj) - load_rows(g.pos.y.data(), bi),
+                gather32(g.pos.z.data(), bj) - load_rows(g.pos.z.data(), bi)};
+      const B ri = load_rows(g.radius.r.data(), bi), rj = gather32(g.radius.r.data(), bj);
       const B dist = xsimd::sqrt(dot(d, d));
       const B inv = B(1.0) / dist;
       const V n = inv * d;
       const B delta = ri + rj - dist;
       const B li = ri - B(0.5) * delta, lj = rj - B(0.5) * delta;
-      const V wi{gather32(g.omega.x.data(), bi), gather32(g.omega.y.data(), bi), gather32(g.omega.z.data(), bi)};
+      const V wi{load_rows(g.omega.x.data(), bi), load_rows(g.omega.y.data(), bi), load_rows(g.omega.z.data(), bi)};
       const V wj{gather32(g.omega.x.data(), bj), gather32(g.omega.y.data(), bj), gather32(g.omega.z.data(), bj)};
-      const V vij{gather32(g.vel.x.data(), bi) - gather32(g.vel.x.data(), bj),
-                  gather32(g.vel.y.data(), bi) - gather32(g.vel.y.data(), bj),
-                  gather32(g.vel.z.data(), bi) - gather32(g.vel.z.data(), bj)};
+      const V vij{load_rows(g.vel.x.data(), bi) - gather32(g.vel.x.data(), bj),
+                  load_rows(g.vel.y.data(), bi) - gather32(g.vel.y.data(), bj),
+                  load_rows(g.vel.z.data(), bi) - gather32(g.vel.z.data(), bj)};
       const V v = vij + cross(li * wi + lj * wj, n);
       const LsdCoeffs<B> cf{coeff(0, bt_idx), coeff(1, bt_idx), coeff(2, bt_idx), coeff(3, bt_idx),
                             coeff(4, bt_idx), coeff(5, bt_idx), coeff(6, bt_idx), coeff(7, bt_idx)};
       PairHistory& nh = out.next;
-      LsdState<B> s{{B::load_aligned(&nh.sx[c0]), B::load_aligned(&nh.sy[c0]), B::load_aligned(&nh.sz[c0])},
-                    {B::load_aligned(&nh.rx[c0]), B::load_aligned(&nh.ry[c0]), B::load_aligned(&nh.rz[c0])}};
+      // Springs of the last evaluation: between rebuilds a batch's contacts usually all persist
+      // and sit in a run of the old history, read with plain loads; otherwise gathered by slot.
+      const std::int32_t* sl = &out.cslot[c0];
+      LsdState<B> s;
+      if (sl[0] >= 0 && sl[L - 1] - sl[0] == static_cast<std::int32_t>(L - 1) && is_run(sl)) {
+        const auto e = static_cast<std::size_t>(sl[0]);
+        s = {{B::load_unaligned(&h.sx[e]), B::load_unaligned(&h.sy[e]), B::load_unaligned(&h.sz[e])},
+             {B::load_unaligned(&h.rx[e]), B::load_unaligned(&h.ry[e]), B::load_unaligned(&h.rz[e])}};
+      } else {
+        s = {{gather32_or_zero(h.sx.data(), sl), gather32_or_zero(h.sy.data(), sl), gather32_or_zero(h.sz.data(), sl)},
+             {gather32_or_zero(h.rx.data(), sl), gather32_or_zero(h.ry.data(), sl), gather32_or_zero(h.rz.data(), sl)}};
+      }
       const auto all = B(0.0) == B(0.0);
       const LsdResult<B> res = LinearSpringDashpot::evaluate(all, n, delta, v, wi - wj, cf, B(dt), s);
       s.shear.x.store_aligned(&nh.sx[c0]);
@@ -263,24 +338,26 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       s.roll.y.store_aligned(&nh.ry[c0]);
       s.roll.z.store_aligned(&nh.rz[c0]);
       const V nxf = cross(n, res.force_t);
-      // Lanes to records: store the nine batches, then interleave them.
-      alignas(64) double lanes[PairForces::kRecord][L];
+      (li * nxf.x + res.rolling_torque.x).store_aligned(&out.tix[c0]);
+      (li * nxf.y + res.rolling_torque.y).store_aligned(&out.tiy[c0]);
+      (li * nxf.z + res.rolling_torque.z).store_aligned(&out.tiz[c0]);
+      // Lanes to records: store the six batches, then interleave them.
+      constexpr std::size_t F = 6;
+      alignas(64) double lanes[F][L];
       res.force.x.store_aligned(lanes[PairForces::Fx]);
       res.force.y.store_aligned(lanes[PairForces::Fy]);
       res.force.z.store_aligned(lanes[PairForces::Fz]);
-      (li * nxf.x + res.rolling_torque.x).store_aligned(lanes[PairForces::Tix]);
-      (li * nxf.y + res.rolling_torque.y).store_aligned(lanes[PairForces::Tiy]);
-      (li * nxf.z + res.rolling_torque.z).store_aligned(lanes[PairForces::Tiz]);
       (lj * nxf.x - res.rolling_torque.x).store_aligned(lanes[PairForces::Tjx]);
       (lj * nxf.y - res.rolling_torque.y).store_aligned(lanes[PairForces::Tjy]);
       (lj * nxf.z - res.rolling_torque.z).store_aligned(lanes[PairForces::Tjz]);
       double* rec = &out.record[c0 * PairForces::kRecord];
       for (std::size_t l = 0; l < L; ++l)
-        for (std::size_t f = 0; f < PairForces::kRecord; ++f) rec[l * PairForces::kRecord + f] = lanes[f][l];
+        for (std::size_t f = 0; f < F; ++f) rec[l * PairForces::kRecord + f] = lanes[f][l];
     }
   });
   for (std::size_t c = full * L; c < nc; ++c) {
     const std::size_t k = static_cast<std::size_t>(out.pair[c]);
+    carry_spring(h, out.cslot[c], out.next, c);
     evaluate_one(g, list.i[k], list.j[k], out.next, coeffs, ntypes, dt, out, c);
   }
   std::swap(h, out.next);

@@ -29,17 +29,19 @@ struct PairForces {
   Column<std::int32_t> pair;       // list index of each contact
   Column<std::int32_t> ci, cj;     // its rows
   Column<std::int32_t> ctype;      // its type-pair index (NeighborList::type_pair)
-  // One record of kRecord doubles per contact, plus a last all-zero record that stands for
-  // "apart": force on the owner row i (N), torque on i, torque on j (N m). Records, not columns:
-  // the per-row sums read a contact's nine values from one or two cache lines instead of nine.
-  static constexpr std::size_t kRecord = 9;
-  enum Field : std::size_t { Fx, Fy, Fz, Tix, Tiy, Tiz, Tjx, Tjy, Tjz };
+  Column<std::int32_t> cslot;      // its spring's entry in the history of the last evaluation, or -1
+  // What the partner row j reads: one 64-byte record per contact, plus a last all-zero record
+  // that stands for "apart": force on the owner i (N; j gets minus it) and torque on j (N m).
+  // The per-row sums read incoming contacts at random, so each costs one cache line.
+  static constexpr std::size_t kRecord = 8;
+  enum Field : std::size_t { Fx, Fy, Fz, Tjx, Tjy, Tjz };
   ColumnD record;
+  ColumnD tix, tiy, tiz;  // torque on the owner i (N m), read in contact order by i's own sum
   double at(std::size_t c, Field f) const { return record[c * kRecord + f]; }
   // Per list pair.
   std::vector<std::int32_t> rank;        // contacts before this list pair (size pairs + 1)
   std::vector<std::int32_t> contact_of;  // contact index, or contacts() (a zero row) when apart
-  std::vector<std::uint8_t> touching;  // overlap flag per list pair
+  Column<std::uint8_t> touching;       // overlap flag per list pair
   PairHistory next;                    // springs being written, swapped with the live ones
   std::vector<std::uint32_t> block_start;
   std::vector<double> coeff[8];  // law constants per type pair: kn kt kr eta_n eta_t eta_r fs fr

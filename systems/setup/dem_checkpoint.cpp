@@ -33,6 +33,7 @@ void list_sections(Io& io, List& list, History& h, State& bp) {
   io.column("springs.rx", h.rx);
   io.column("springs.ry", h.ry);
   io.column("springs.rz", h.rz);
+  io.column("springs.slot", h.slot);
   io.column("broadphase.ref_x", bp.ref_x);
   io.column("broadphase.ref_y", bp.ref_y);
   io.column("broadphase.ref_z", bp.ref_z);
