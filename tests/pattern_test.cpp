@@ -187,6 +187,21 @@ TEST_CASE("a random well-mixed bed is neither petals nor a moon", "[pattern]") {
   }
 }
 
+TEST_CASE("a bed with too few grains in the band is undecided, not counted", "[pattern]") {
+  const Surface s;
+  const Bed full = make_bed(s, petals(s, 5), 51);
+  REQUIRE(classify(full).petals == 5);
+  // Every 100th grain: ~420 grains, ~130 in the band, a grain or two per 2-degree bin.
+  Bed thin;
+  for (std::size_t i = 0; i < full.x.size(); i += 100) {
+    thin.x.push_back(full.x[i]), thin.y.push_back(full.y[i]), thin.z.push_back(full.z[i]);
+    thin.r.push_back(full.r[i]), thin.type.push_back(full.type[i]);
+  }
+  const gf::Pattern p = classify(thin);
+  CHECK(p.kind == PatternKind::Undecided);
+  CHECK(p.petals == 0);
+}
+
 TEST_CASE("the free-surface angle is the tilt of the bed's top", "[pattern]") {
   // The third-highest grain top in 6 mm columns sits within ~0.3 mm of the surface line; over a fit
   // span of ~80 mm that bounds the slope error near 0.005 rad. 0.02 rad (1.1 degrees) leaves margin.

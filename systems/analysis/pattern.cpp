@@ -94,15 +94,19 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
   const int nb = s.bins;
   std::vector<double> large(nb, 0.0), total(nb, 0.0);
   const double r_in2 = r_in * r_in;
+  std::size_t in_band = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double u = drum.u(g.x[i], g.y[i], g.z[i]), v = drum.v(g.x[i], g.y[i], g.z[i]);
     if (u * u + v * v < r_in2) continue;
+    ++in_band;
     const double th = std::atan2(v, u) + std::numbers::pi;  // [0, 2 pi]
     const int b = std::min(nb - 1, static_cast<int>(th / (2 * std::numbers::pi) * nb));
     const double vol = g.r[i] * g.r[i] * g.r[i];
     total[b] += vol;
     if (g.type[i] == s.large_type) large[b] += vol;
   }
+
+  if (in_band < s.min_band_grains) return out;
 
   // The bed's arc: the longest circular run of bins whose 5-bin window holds at least 0.3 of a
   // typical filled window (single 2-degree bins hold only a few large grains: too noisy alone).

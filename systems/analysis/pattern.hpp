@@ -10,10 +10,11 @@
 // the large-grain volume fraction f(theta) is binned by the angle about the drum axis, over the
 // bed's arc (the longest run of filled bins; its ends, where the free surface cuts the band, are
 // trimmed), smoothed with a Gaussian in angle (ratio of smoothed volumes) and normalised:
-// s = (f - p) / sqrt(p (1 - p)), p the large volume fraction of the whole bed (s = +1 all large,
-// -1 all small). Lobes are runs of s below m - w, left only when s rises above m + w (hysteresis, so
+// s = (f - p) / sqrt(p (1 - p)), p the large volume fraction of the whole bed (at p = 1/2, s = +1
+// all large, -1 all small). Lobes are runs of s below m - w, left only when s rises above m + w (hysteresis, so
 // noise about one level cannot make a run), m the mean of s over the arc and w the larger of h and
 // 0.2 of the range of s. Decision:
+//   fewer than min_band_grains grains in the band       -> undecided (too few to tell)
 //   contrast = mean |s| over the arc < min_contrast   -> undecided (mixed, no structure)
 //   2 or more lobes                                   -> petals, count = lobes
 //   no lobe and a large-rich band (mean s > h)        -> moon
@@ -42,6 +43,7 @@ struct PatternSettings {
   double smooth_bins = 1.5;     // Gaussian sigma of the smoothing, in bins (3 degrees)
   double trim_bins = 5;         // bins dropped at each end of the bed's arc (10 degrees: the surface cuts there)
   double hysteresis = 0.25;     // h, in units of sqrt(p (1 - p)); smoothed noise of a mixed bed is ~0.1
+  std::size_t min_band_grains = 500;  // fewer in the band (a few per bin): too few to tell, undecided
   double min_contrast = 0.2;    // below it the band shows no structure: undecided (mixed beds: < 0.1)
 };
 
