@@ -56,7 +56,8 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
   // Pass 1: volumes (r^3; the 4/3 pi cancels in every ratio), radial histogram, column tops.
   double r_max = 0;
   for (std::size_t i = 0; i < n; ++i) r_max = std::max(r_max, g.r[i]);
-  const double col_w = std::max(4.0 * r_max, R / 50.0);
+  // Two large diameters, but at least ten columns across a drum that is small for its grains.
+  const double col_w = std::max(std::min(4.0 * r_max, R / 10.0), R / 50.0);
   const int n_cols = static_cast<int>(std::ceil(2.0 * R / col_w));
   std::vector<std::array<double, 3>> tops(n_cols, {-INFINITY, -INFINITY, -INFINITY});
   std::vector<int> col_count(n_cols, 0);
@@ -93,6 +94,7 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
   // Pass 2: the band's composition against the angle about the axis.
   const int nb = s.bins;
   std::vector<double> large(nb, 0.0), total(nb, 0.0);
+  std::vector<int> large_count(nb, 0);
   const double r_in2 = r_in * r_in;
   std::size_t in_band = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -103,7 +105,7 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
     const int b = std::min(nb - 1, static_cast<int>(th / (2 * std::numbers::pi) * nb));
     const double vol = g.r[i] * g.r[i] * g.r[i];
     total[b] += vol;
-    if (g.type[i] == s.large_type) large[b] += vol;
+    if (g.type[i] == s.large_type) large[b] += vol, ++large_count[b];
   }
 
   if (in_band < s.min_band_grains) return out;
@@ -135,6 +137,13 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
 
   // Smoothed, normalised profile along the arc (volumes smoothed, then divided).
   const double norm = std::sqrt(p * (1 - p));
+  // Noise of s in a random mixture: the large volume in a smoothing window is a count of N large
+  // grains, relative spread 1/sqrt(N) (small grains are many more), so s spreads by
+  // sqrt(p (1 - p) / N). The window holds the large grains of 2 sqrt(pi) sigma bins.
+  double large_in_arc = 0;
+  for (int k = 0; k < len; ++k) large_in_arc += large_count[(first + k) % nb];
+  const double window_bins = std::max(1.0, 2.0 * std::sqrt(std::numbers::pi) * s.smooth_bins);
+  out.noise = std::sqrt(p * (1 - p) / std::max(1.0, large_in_arc * window_bins / len));
   const int reach = static_cast<int>(std::ceil(3 * s.smooth_bins));
   std::vector<double> prof(len);
   double sum_abs = 0, sum = 0;
@@ -158,7 +167,7 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
   // noise (which pulls both levels towards p) do not shift the count; a run needs a swing of at
   // least 2 h and of 0.4 of the profile's range, so noise within one level does not make one.
   const auto [lo_it, hi_it] = std::minmax_element(prof.begin(), prof.end());
-  const double mid = mean, half = std::max(s.hysteresis, 0.2 * (*hi_it - *lo_it));
+  const double mid = mean, half = std::max({s.hysteresis, 0.2 * (*hi_it - *lo_it), 2.5 * out.noise});
   int lobes = 0, small_bins = 0;
   bool in_small = false;
   for (double v : prof) {
@@ -167,7 +176,7 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
     small_bins += in_small;
   }
 
-  if (out.contrast < s.min_contrast) return out;
+  if (out.contrast < std::max(s.min_contrast, 2.0 * out.noise)) return out;
   if (lobes >= 2) {
     out.kind = PatternKind::Petals;
     out.petals = lobes;

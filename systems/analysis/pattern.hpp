@@ -12,18 +12,21 @@
 // trimmed), smoothed with a Gaussian in angle (ratio of smoothed volumes) and normalised:
 // s = (f - p) / sqrt(p (1 - p)), p the large volume fraction of the whole bed (at p = 1/2, s = +1
 // all large, -1 all small). Lobes are runs of s below m - w, left only when s rises above m + w (hysteresis, so
-// noise about one level cannot make a run), m the mean of s over the arc and w the larger of h and
-// 0.2 of the range of s. Decision:
+// noise about one level cannot make a run), m the mean of s over the arc and w the largest of h,
+// 0.2 of the range of s and 2.5 sigma, sigma the spread of s expected in a random mixture from
+// the number of large grains per smoothing window (a bed with few large grains is noisier).
+// Decision:
 //   fewer than min_band_grains grains in the band       -> undecided (too few to tell)
-//   contrast = mean |s| over the arc < min_contrast   -> undecided (mixed, no structure)
+//   contrast = mean |s| over the arc < max(min_contrast, 2 sigma) -> undecided (mixed)
 //   2 or more lobes                                   -> petals, count = lobes
 //   no lobe and a large-rich band (mean s > h)        -> moon
 //   one lobe covering at most a third of the arc, band large-rich on average -> moon (the core
 //                                                        bulges to the rim once: "slight undulation")
 //   anything else                                     -> undecided
 // The free-surface angle is a least-squares line through the top of the bed: in vertical columns
-// two large diameters wide, the third-highest grain top (v + r; so one or two grains in flight do
-// not lift it), over the middle 60 % of the bed's width (the ends curve up the wall).
+// two large diameters wide (narrower if that leaves fewer than ten across the drum), the
+// third-highest grain top (v + r; so one or two grains in flight do not lift it), over the middle
+// 60 % of the bed's width (the ends curve up the wall).
 // Cost: two passes over the rows and an atan2 per band grain; no state between calls.
 #pragma once
 
@@ -42,7 +45,7 @@ struct PatternSettings {
   int bins = 180;               // angular bins over the full circle (2 degrees)
   double smooth_bins = 1.5;     // Gaussian sigma of the smoothing, in bins (3 degrees)
   double trim_bins = 5;         // bins dropped at each end of the bed's arc (10 degrees: the surface cuts there)
-  double hysteresis = 0.25;     // h, in units of sqrt(p (1 - p)); smoothed noise of a mixed bed is ~0.1
+  double hysteresis = 0.25;     // h, in units of sqrt(p (1 - p)); seed 000's bed: sigma ~0.1
   std::size_t min_band_grains = 500;  // fewer in the band (a few per bin): too few to tell, undecided
   double min_contrast = 0.2;    // below it the band shows no structure: undecided (mixed beds: < 0.1)
 };
@@ -55,6 +58,7 @@ struct Pattern {
                                // (counter-clockwise in the picture); NaN if the bed has no surface to fit
   double band_inner = 0;       // m, r_in
   double arc = 0;              // rad, the bed's arc in the band after trimming
+  double noise = 0;            // sigma: spread of s a random mixture of this bed would show
   double large_fraction = 0;   // p
 };
 
