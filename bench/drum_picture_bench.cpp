@@ -1,10 +1,9 @@
 // Cost of one drum picture of the standard settled drum (47,108 grains, 800 px): rendering alone,
 // and rendering plus PNG encoding and the atomic write.
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <filesystem>
-
-#include <unistd.h>
 
 #include "bench/settled_drum.hpp"
 #include "systems/integrate/integrate.hpp"
@@ -31,7 +30,7 @@ bool setup(benchmark::State& state, Setup& s) {
     return false;
   }
   const std::size_t n = g.n_owned;
-  s.grains = {{g.pos.x.data(), n}, {g.pos.y.data(), n}, {g.pos.z.data(), n},
+  s.grains = {{g.pos.x.data(), n},    {g.pos.y.data(), n},        {g.pos.z.data(), n},
               {g.radius.r.data(), n}, {g.species.type.data(), n}, {}};
   s.section = gf::drum_section(walls.list[*drum], {gr.x, gr.y, gr.z});
   std::vector<double> d;

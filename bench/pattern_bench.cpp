@@ -22,8 +22,11 @@ void BM_ClassifyPattern(benchmark::State& state) {
   }
   const gf::DrumSection section = gf::drum_section(walls.list[*drum], {gr.x, gr.y, gr.z});
   const std::size_t n = g.n_owned;
-  const gf::PatternGrains pg{{g.pos.x.data(), n}, {g.pos.y.data(), n}, {g.pos.z.data(), n},
-                             {g.radius.r.data(), n}, {g.species.type.data(), n}};
+  const gf::PatternGrains pg{{g.pos.x.data(), n},
+                             {g.pos.y.data(), n},
+                             {g.pos.z.data(), n},
+                             {g.radius.r.data(), n},
+                             {g.species.type.data(), n}};
   gf::PatternSettings settings;
   settings.large_type = sim->scene().segregation_type;
   for (auto _ : state) benchmark::DoNotOptimize(gf::classify_pattern(pg, section, settings));

@@ -1,21 +1,22 @@
 // Drum pictures: rendered, encoded, read back with libpng, and checked pixel by pixel at known
 // places (disc centres, outside the drum, the outline); the projection and draw order; and the
 // observer that draws them at requested rotation angles in a real run.
-#include <catch2/catch.hpp>
+#include "systems/output/drum_picture.hpp"
 
 #include <png.h>
 
+#include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "systems/fill/state_csv.hpp"
-#include "systems/output/drum_picture.hpp"
+#include "systems/output/dem_observers.hpp"
+#include "systems/setup/dem_simulation.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -302,5 +303,32 @@ TEST_CASE("picture: a run draws each requested angle once it is reached, and rep
     REQUIRE(rows.size() > 1);
     CHECK(rows[0].ends_with(",segregation_index,pattern,petals,pattern_contrast,surface_angle"));
     fs::remove_all(out);
+  }
+}
+
+TEST_CASE("picture: an interval draws every multiple once, named after the multiple", "[picture]") {
+  gf::DemSimulation sim = gf::DemSimulation::from_text(kDrumScene);
+  TempDir dir("picture_interval");
+  gf::PictureSettings ps;
+  ps.dir = dir.path / "pictures";
+  ps.interval = 0.01;  // rad; at 10 rad/s and dt = 1e-5 s, one picture every 100 steps
+  ps.options.size = 32;
+  ps.options.palette = gf::species_palette(kDiameters);
+  gf::PictureOutput pics(ps);
+  gf::World& w = sim.world();
+  pics.run(w);  // angle 0
+  pics.run(w);  // the same state again: nothing new is due
+  CHECK(pics.pictures() == 1);
+  sim.advance(99);  // 0.0099 rad: the next multiple not yet reached
+  pics.run(w);
+  CHECK(pics.pictures() == 1);
+  sim.advance(1);  // 0.01 rad, up to the clock's round-off
+  pics.run(w);
+  sim.advance(100);
+  pics.run(w);
+  CHECK(pics.pictures() == 3);
+  for (const char* name : {"angle_00.00.png", "angle_00.01.png", "angle_00.02.png"}) {
+    INFO(name);
+    CHECK(read_png(ps.dir / name).width == 32);
   }
 }

@@ -1,8 +1,9 @@
 // The moon/petal classifier on synthetic beds in seed 000's geometry (150 mm drum, 8 mm thick,
 // 1 and 3 mm grains at a 1:1 volume ratio, about half full: ~42k grains), whose pattern is known
 // by construction, and on the shared settled (well-mixed) state.
-#include <catch2/catch.hpp>
+#include "systems/analysis/pattern.hpp"
 
+#include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -11,7 +12,6 @@
 #include <random>
 #include <vector>
 
-#include "systems/analysis/pattern.hpp"
 #include "systems/fill/state_csv.hpp"
 
 using gf::PatternKind;
@@ -195,7 +195,7 @@ TEST_CASE("a bed with too few grains in the band is undecided, not counted", "[p
   const Surface s;
   const Bed full = make_bed(s, petals(s, 5), 51);
   REQUIRE(classify(full).petals == 5);
-  // Every 100th grain: ~420 grains, ~130 in the band, a grain or two per 2-degree bin.
+  // Every 100th grain: ~420 grains of which ~15 large, fewer than 20 of them in the band.
   Bed thin;
   for (std::size_t i = 0; i < full.x.size(); i += 100) {
     thin.x.push_back(full.x[i]), thin.y.push_back(full.y[i]), thin.z.push_back(full.z[i]);
@@ -232,7 +232,8 @@ TEST_CASE("the band's arc and inner radius follow the bed", "[pattern]") {
 }
 
 TEST_CASE("the shared settled state is not a petal pattern", "[pattern]") {
-  const auto rows = gf::read_state_csv(std::filesystem::path(GRAINFLOW_SOURCE_DIR) / "scenes/data/drum_settled_47108.csv");
+  const auto rows =
+      gf::read_state_csv(std::filesystem::path(GRAINFLOW_SOURCE_DIR) / "scenes/data/drum_settled_47108.csv");
   Bed bed;
   for (const auto& row : rows) {
     bed.x.push_back(row.x[0]);

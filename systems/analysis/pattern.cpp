@@ -75,9 +75,12 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
     auto& t = tops[c];
     const double top = v + g.r[i];
     ++col_count[c];
-    if (top > t[0]) t = {top, t[0], t[1]};
-    else if (top > t[1]) t = {t[0], top, t[1]};
-    else if (top > t[2]) t[2] = top;
+    if (top > t[0])
+      t = {top, t[0], t[1]};
+    else if (top > t[1])
+      t = {t[0], top, t[1]};
+    else if (top > t[2])
+      t[2] = top;
   }
   out.surface_angle = surface_angle(tops, col_count, -R, col_w);
   if (!(v_large > 0) || !(v_large < v_all)) return out;
@@ -96,19 +99,18 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
   std::vector<double> large(nb, 0.0), total(nb, 0.0);
   std::vector<int> large_count(nb, 0);
   const double r_in2 = r_in * r_in;
-  std::size_t in_band = 0;
+  std::size_t large_in_band = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double u = drum.u(g.x[i], g.y[i], g.z[i]), v = drum.v(g.x[i], g.y[i], g.z[i]);
     if (u * u + v * v < r_in2) continue;
-    ++in_band;
     const double th = std::atan2(v, u) + std::numbers::pi;  // [0, 2 pi]
     const int b = std::min(nb - 1, static_cast<int>(th / (2 * std::numbers::pi) * nb));
     const double vol = g.r[i] * g.r[i] * g.r[i];
     total[b] += vol;
-    if (g.type[i] == s.large_type) large[b] += vol, ++large_count[b];
+    if (g.type[i] == s.large_type) large[b] += vol, ++large_count[b], ++large_in_band;
   }
 
-  if (in_band < s.min_band_grains) return out;
+  if (large_in_band < s.min_large_in_band) return out;
 
   // The bed's arc: the longest circular run of bins whose 5-bin window holds at least 0.3 of a
   // typical filled window (single 2-degree bins hold only a few large grains: too noisy alone).
@@ -171,16 +173,20 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
   int lobes = 0, small_bins = 0;
   bool in_small = false;
   for (double v : prof) {
-    if (!in_small && v < mid - half) in_small = true, ++lobes;
-    else if (in_small && v > mid + half) in_small = false;
+    if (!in_small && v < mid - half)
+      in_small = true, ++lobes;
+    else if (in_small && v > mid + half)
+      in_small = false;
     small_bins += in_small;
   }
 
-  if (out.contrast < std::max(s.min_contrast, 2.0 * out.noise)) return out;
-  if (lobes >= 2) {
+  // Petals need lobes standing out of the noise; a moon needs a band richer in large grains than
+  // the bed, by more than h and by 3 standard errors of the mean over the arc's independent windows.
+  const double mean_error = out.noise / std::sqrt(std::max(1.0, len / window_bins));
+  if (lobes >= 2 && out.contrast >= std::max(s.min_contrast, 2.0 * out.noise)) {
     out.kind = PatternKind::Petals;
     out.petals = lobes;
-  } else if ((lobes == 0 && mean > s.hysteresis) || (lobes == 1 && 3 * small_bins <= len && mean > 0)) {
+  } else if ((lobes == 0 || (lobes == 1 && 3 * small_bins <= len)) && mean > std::max(s.hysteresis, 3.0 * mean_error)) {
     out.kind = PatternKind::Moon;
   }
   return out;

@@ -163,7 +163,8 @@ void PictureOutput::run(World& world) {
   const Image img = render_drum_picture(pg, drum_section(walls.list[*drum], {gr.x, gr.y, gr.z}), s_.options);
   ensure_directory(s_.dir);
   char title[160];
-  std::snprintf(title, sizeof title, "drum cross-section at rotation angle %.6g rad (t = %.6g s), viewed along the axis",
+  std::snprintf(title, sizeof title,
+                "drum cross-section at rotation angle %.6g rad (t = %.6g s), viewed along the axis",
                 rotation_angle(walls, t), t);
   std::string comment = s_.options.colour == PictureOptions::Colour::Speed
                             ? "colour: speed, viridis from 0 to " + std::to_string(s_.options.speed_max) + " m/s"

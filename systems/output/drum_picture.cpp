@@ -102,12 +102,15 @@ std::vector<Rgb> species_palette(std::span<const double> diameters) {
   const std::size_t n = diameters.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return diameters[a] < diameters[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return diameters[a] < diameters[b]; });
   std::vector<Rgb> out(n, kBlue);
   for (std::size_t rank = 0; rank < n; ++rank) {
     Rgb c = kMiddle[(rank - 1) % kMiddle.size()];
-    if (rank == 0) c = kBlue;
-    else if (rank == n - 1) c = kOrange;
+    if (rank == 0)
+      c = kBlue;
+    else if (rank == n - 1)
+      c = kOrange;
     out[order[rank]] = c;
   }
   return out;
@@ -118,7 +121,8 @@ Rgb speed_colour(double speed, double speed_max) {
   const std::size_t i = std::min(static_cast<std::size_t>(t), kViridis.size() - 2);
   const double f = t - static_cast<double>(i);
   Rgb c;
-  for (int k = 0; k < 3; ++k) c[k] = static_cast<std::uint8_t>(std::lround((1 - f) * kViridis[i][k] + f * kViridis[i + 1][k]));
+  for (int k = 0; k < 3; ++k)
+    c[k] = static_cast<std::uint8_t>(std::lround((1 - f) * kViridis[i][k] + f * kViridis[i + 1][k]));
   return c;
 }
 
@@ -167,7 +171,8 @@ Image render_drum_picture(const PictureGrains& g, const DrumSection& drum, const
         throw std::invalid_argument("picture: species " + std::to_string(t) + " has no colour in the palette");
       c = opt.palette[t];
     }
-    draw_disc(img, sc.px(drum.u(g.x[i], g.y[i], g.z[i])), sc.py(drum.v(g.x[i], g.y[i], g.z[i])), g.r[i] * sc.px_per_m, c);
+    draw_disc(img, sc.px(drum.u(g.x[i], g.y[i], g.z[i])), sc.py(drum.v(g.x[i], g.y[i], g.z[i])), g.r[i] * sc.px_per_m,
+              c);
   }
 
   // The drum's inner circle on top, a ring just outside the wall so it hides no grain.

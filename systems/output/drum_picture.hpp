@@ -28,9 +28,9 @@ Rgb speed_colour(double speed, double speed_max);
 struct PictureOptions {
   enum class Colour { Species, Speed };
   Colour colour = Colour::Species;
-  int size = 800;           // pixels, width = height; the drum's diameter fills 96 % of it
-  double speed_max = 0.5;   // m/s at the top of the speed colour map (seed 000 Fig. 6 uses 0.5)
-  std::vector<Rgb> palette; // per species, for Colour::Species
+  int size = 800;            // pixels, width = height; the drum's diameter fills 96 % of it
+  double speed_max = 0.5;    // m/s at the top of the speed colour map (seed 000 Fig. 6 uses 0.5)
+  std::vector<Rgb> palette;  // per species, for Colour::Species
 };
 
 // What a picture reads; columns of the owned rows. `speed` is read only for Colour::Speed.

@@ -222,6 +222,15 @@ void read_pictures(DemScene& s, const SceneNode& out) {
   if (o.picture_interval > 0 && o.picture_interval < 0.01)
     out.fail("picture_interval", "pictures closer than 0.01 rad would share file names (two decimals)",
              "use an interval of at least 0.01 rad, or 0 for none");
+  if (o.picture_interval > 0)
+    for (double a : o.picture_angles) {
+      const double k = std::round(a / o.picture_interval), m = k * o.picture_interval;
+      if (picture_name(m) == picture_name(a) && m != a)
+        out.fail("picture_angles",
+                 "angle " + fmt(a) + " rad would share the file " + picture_name(a) + " with the interval's " +
+                     fmt(m) + " rad",
+                 "move the angle onto the interval's grid or at least 0.01 rad away from it");
+    }
   const std::string colour = out.get_choice("picture_colour", {"species", "speed"}, "species");
   o.picture.colour = colour == "speed" ? PictureOptions::Colour::Speed : PictureOptions::Colour::Species;
   o.picture.size = static_cast<int>(out.get_int("picture_size", 800, 16, 8192));
