@@ -215,6 +215,41 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
   }
 }
 
+TEST_CASE("dem scene: picture keys are checked before anything runs", "[dem_scene][picture]") {
+  TempDir dir("dem_scene_pictures");
+  SECTION("pictures of a scene without a drum") {
+    const std::string text =
+        with(kScene, "frame_interval = 5.0e-4\n", "frame_interval = 5.0e-4\npicture_angles = [2.0]\n");
+    const fs::path f = dir.write("no_drum.toml", text);
+    const std::string e = scene_error(f);
+    CHECK_THAT(e, Contains(at(f, line_of(text, "picture_angles")) + " key 'output.picture_angles'"));
+    CHECK_THAT(e, Contains("need a drum"));
+  }
+  SECTION("an unknown colouring") {
+    const std::string text =
+        with(kScene, "frame_interval = 5.0e-4\n", "frame_interval = 5.0e-4\npicture_colour = \"size\"\n");
+    const fs::path f = dir.write("colour.toml", text);
+    const std::string e = scene_error(f);
+    CHECK_THAT(e, Contains(at(f, line_of(text, "picture_colour")) + " key 'output.picture_colour'"));
+    CHECK_THAT(e, Contains("species") && Contains("speed"));
+  }
+  SECTION("a size out of range") {
+    const std::string text = with(kScene, "frame_interval = 5.0e-4\n", "frame_interval = 5.0e-4\npicture_size = 4\n");
+    const fs::path f = dir.write("size.toml", text);
+    CHECK_THAT(scene_error(f), Contains(at(f, line_of(text, "picture_size")) + " key 'output.picture_size'"));
+  }
+  SECTION("two angles that would share a file name") {
+    const fs::path f = dir.write("ok.toml", kScene);
+    const std::string e = scene_error(f, {"output.picture_angles=[1.0, 1.001]"});
+    CHECK_THAT(e, Contains("key 'output.picture_angles'") && Contains("angle_01.00.png"));
+  }
+  SECTION("an angle that would share a file name with the interval's") {
+    const fs::path f = dir.write("ok.toml", kScene);
+    const std::string e = scene_error(f, {"output.picture_angles=[0.5, 1.001]", "output.picture_interval=0.5"});
+    CHECK_THAT(e, Contains("key 'output.picture_angles'") && Contains("angle_01.00.png"));
+  }
+}
+
 TEST_CASE("dem scene: a time step above the critical step is refused unless allowed", "[dem_scene]") {
   TempDir dir("dem_scene_dt");
   const double limit = 0.1 * expected_critical_period();  // dt_safety defaults to 0.1

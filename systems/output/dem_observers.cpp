@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <string>
 
+#include "engine/atomic_file.hpp"
+
 namespace gf {
 
 namespace {
@@ -14,12 +16,22 @@ double next_sample(double t, double next, double interval, double dt) {
   while (due(t, next, dt)) next += interval;
   return next;
 }
+
+// Rotation angle (rad) of the first rotating wall at time t; 0 if none rotates.
+double rotation_angle(const Walls& walls, double t) {
+  for (std::size_t w = 0; w < walls.list.size(); ++w)
+    if (walls.list[w].omega != 0.0) return walls.angle(w, t);
+  return 0.0;
+}
+
 }  // namespace
 
 SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
   if (!s_.csv) return;
   std::vector<std::string> columns{"time",           "angle",         "ke_translational",  "ke_rotational",
                                    "contacts",       "wall_contacts", "max_overlap_ratio", "segregation_index"};
+  if (s_.pattern)
+    for (const char* c : {"pattern", "petals", "pattern_contrast", "surface_angle"}) columns.push_back(c);
   if (s_.resume_rows)
     csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, std::move(columns), *s_.resume_rows));
   else
@@ -56,12 +68,7 @@ void SeriesOutput::sample(World& world) {
   const Energies e = kinetic_energy(g);
   const ContactStats cs = contact_stats(g, world.resources.get<NeighborList>(), walls);
   row.time = t;
-  row.angle = 0;
-  for (std::size_t w = 0; w < walls.list.size(); ++w)
-    if (walls.list[w].omega != 0.0) {
-      row.angle = walls.angle(w, t);
-      break;
-    }
+  row.angle = rotation_angle(walls, t);
   row.ke_translational = e.translational;
   row.ke_rotational = e.rotational;
   row.pair_contacts = cs.pair_contacts;
@@ -69,17 +76,35 @@ void SeriesOutput::sample(World& world) {
   row.max_overlap_ratio = cs.max_overlap_ratio;
   row.segregation_index =
       s_.segregation_type >= 0 ? segregation_index(g, s_.segregation_type, s_.segregation_cell) : 0.0;
+  if (s_.pattern) {
+    const auto drum = find_drum(walls);
+    if (!drum) throw std::logic_error("series: pattern columns requested for a scene without a drum wall");
+    const Gravity& gr = world.resources.get<Gravity>();
+    const std::size_t n = g.n_owned;
+    const PatternGrains pg{{g.pos.x.data(), n}, {g.pos.y.data(), n}, {g.pos.z.data(), n},
+                           {g.radius.r.data(), n}, {g.species.type.data(), n}};
+    const Pattern p = classify_pattern(pg, drum_section(walls.list[*drum], {gr.x, gr.y, gr.z}), s_.pattern_settings);
+    row.has_pattern = true;
+    row.pattern = static_cast<int>(p.kind);
+    row.petals = p.petals;
+    row.pattern_contrast = p.contrast;
+    row.surface_angle = p.surface_angle;
+  }
   row.valid = true;
   if (csv_) {
-    const std::array<double, 8> v{row.time,
-                                  row.angle,
-                                  row.ke_translational,
-                                  row.ke_rotational,
-                                  static_cast<double>(row.pair_contacts),
-                                  static_cast<double>(row.wall_contacts),
-                                  row.max_overlap_ratio,
-                                  row.segregation_index};
-    csv_->append(v);
+    const std::array<double, 12> v{row.time,
+                                   row.angle,
+                                   row.ke_translational,
+                                   row.ke_rotational,
+                                   static_cast<double>(row.pair_contacts),
+                                   static_cast<double>(row.wall_contacts),
+                                   row.max_overlap_ratio,
+                                   row.segregation_index,
+                                   static_cast<double>(row.pattern),
+                                   static_cast<double>(row.petals),
+                                   row.pattern_contrast,
+                                   row.surface_angle};
+    csv_->append(std::span<const double>(v.data(), s_.pattern ? 12 : 8));
     ++rows_;
   }
   char buf[256];
@@ -126,6 +151,71 @@ void FrameOutput::finish(World& world) {
   if (world.clock.t == last_written_) return;
   series_.write(world.grains, world.clock.t, fields_);
   last_written_ = world.clock.t;
+}
+
+PictureOutput::PictureOutput(PictureSettings s) : s_(std::move(s)) {}
+
+void PictureOutput::save(CheckpointWriter& out) const {
+  out.value("picture_output.next_angle", static_cast<std::uint64_t>(next_angle_));
+  out.value("picture_output.next_multiple", next_multiple_);
+  out.value("picture_output.written", static_cast<std::uint64_t>(written_));
+}
+
+void PictureOutput::restore(const CheckpointReader& in) {
+  next_angle_ = in.value<std::uint64_t>("picture_output.next_angle");
+  next_multiple_ = in.value<std::int64_t>("picture_output.next_multiple");
+  written_ = in.value<std::uint64_t>("picture_output.written");
+}
+
+double PictureOutput::next_target() const {
+  double t = std::numeric_limits<double>::infinity();
+  if (next_angle_ < s_.angles.size()) t = s_.angles[next_angle_];
+  if (s_.interval > 0) t = std::min(t, static_cast<double>(next_multiple_) * s_.interval);
+  return t;
+}
+
+void PictureOutput::run(World& world) {
+  const Walls& walls = world.resources.get<Walls>();
+  const double t = world.clock.t;
+  double omega = 0;
+  for (const Wall& w : walls.list)
+    if (w.omega != 0.0) {
+      omega = w.omega;
+      break;
+    }
+  // Reached up to round-off of the clock, as the time-based observers are.
+  const double angle = std::abs(rotation_angle(walls, t)) + 1e-6 * std::abs(omega) * world.clock.dt;
+  if (next_target() > angle) return;
+
+  const auto drum = find_drum(walls);
+  if (!drum) throw std::logic_error("pictures requested for a scene without a drum wall");
+  const Gravity& gr = world.resources.get<Gravity>();
+  const Grains& g = world.grains;
+  const std::size_t n = g.n_owned;
+  PictureGrains pg{{g.pos.x.data(), n}, {g.pos.y.data(), n}, {g.pos.z.data(), n}, {g.radius.r.data(), n},
+                   {g.species.type.data(), n}, {}};
+  if (s_.options.colour == PictureOptions::Colour::Speed) {
+    speed_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      speed_[i] = std::sqrt(g.vel.x[i] * g.vel.x[i] + g.vel.y[i] * g.vel.y[i] + g.vel.z[i] * g.vel.z[i]);
+    pg.speed = speed_;
+  }
+  const Image img = render_drum_picture(pg, drum_section(walls.list[*drum], {gr.x, gr.y, gr.z}), s_.options);
+  ensure_directory(s_.dir);
+  char title[160];
+  std::snprintf(title, sizeof title,
+                "drum cross-section at rotation angle %.6g rad (t = %.6g s), viewed along the axis",
+                rotation_angle(walls, t), t);
+  std::string comment = s_.options.colour == PictureOptions::Colour::Speed
+                            ? "colour: speed, viridis from 0 to " + std::to_string(s_.options.speed_max) + " m/s"
+                            : "colour: species, " + s_.legend;
+  // Every target reached by this step gets its file (more than one only if targets are closer than omega dt).
+  for (double target = next_target(); target <= angle; target = next_target()) {
+    write_png(s_.dir / picture_name(target), img, {{"Title", title}, {"Comment", comment}, {"Software", "grainflow"}});
+    ++written_;
+    if (next_angle_ < s_.angles.size() && s_.angles[next_angle_] == target) ++next_angle_;
+    if (s_.interval > 0 && static_cast<double>(next_multiple_) * s_.interval == target) ++next_multiple_;
+  }
 }
 
 }  // namespace gf

@@ -1,8 +1,10 @@
 // Observers of a DEM run, scheduled after each step: the time series (with the stability checks
-// every long run needs) and the VTK frames. Each decides itself whether it is due.
+// every long run needs), the VTK frames and the drum pictures. Each decides itself whether it is due.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -10,7 +12,10 @@
 #include "engine/checkpoint_file.hpp"
 #include "engine/system.hpp"
 #include "systems/analysis/metrics.hpp"
+#include "systems/analysis/pattern.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
+#include "systems/integrate/integrate.hpp"
+#include "systems/output/drum_picture.hpp"
 #include "systems/output/series_csv.hpp"
 #include "systems/output/vtk_frames.hpp"
 #include "systems/walls/walls.hpp"
@@ -27,6 +32,12 @@ struct SeriesRow {
   double time = 0, angle = 0, ke_translational = 0, ke_rotational = 0;
   std::int64_t pair_contacts = 0, wall_contacts = 0;
   double max_overlap_ratio = 0, segregation_index = 0;
+  // Drum pattern (scenes with a drum and two species, else has_pattern is false): pattern is the
+  // PatternKind (-1 undecided, 0 moon, 1 petals), petals the lobe count, surface_angle in rad.
+  bool has_pattern = false;
+  int pattern = -1, petals = 0;
+  double pattern_contrast = std::numeric_limits<double>::quiet_NaN();
+  double surface_angle = std::numeric_limits<double>::quiet_NaN();
   bool valid = false;
 };
 
@@ -37,11 +48,14 @@ struct SeriesSettings {
   double segregation_cell = 0;
   double max_overlap = 0.1;
   std::optional<std::size_t> resume_rows;  // continue an existing csv, keeping this many rows
+  bool pattern = false;  // classify the drum pattern at each row (needs a drum wall)
+  PatternSettings pattern_settings;
 };
 
 class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
  public:
-  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Mass, Species, NeighborList, Walls, Clock>;
+  using Reads =
+      gf::Reads<Position, Velocity, AngularVelocity, Radius, Mass, Species, NeighborList, Walls, Gravity, Clock>;
   using Writes = gf::Writes<SeriesRow>;
   explicit SeriesOutput(SeriesSettings s);
   std::string_view name() const override { return "series_output"; }
@@ -78,6 +92,40 @@ class FrameOutput : public SystemBase<FrameOutput>, public Checkpointable {
   FrameFields fields_;
   double next_ = 0;
   double last_written_ = -1;
+};
+
+// The PNG files a PictureOutput writes (a tag for the schedule).
+struct DrumPictures {};
+
+struct PictureSettings {
+  std::filesystem::path dir;    // the run's pictures/ folder
+  std::vector<double> angles;   // rad, sorted
+  double interval = 0;          // rad, 0 = none
+  PictureOptions options;
+  std::string legend;           // species colours, for the PNG's Comment entry
+};
+
+// Draws the drum (the first rotating inner cylinder, else the first one) when the rotation angle of
+// the first rotating wall reaches each requested angle: pictures/angle_XX.XX.png, named after the
+// requested angle (the state drawn is the first step at or past it, at most omega dt later).
+class PictureOutput : public SystemBase<PictureOutput>, public Checkpointable {
+ public:
+  using Reads = gf::Reads<Position, Velocity, Radius, Species, Walls, Gravity, Clock>;
+  using Writes = gf::Writes<DrumPictures>;
+  explicit PictureOutput(PictureSettings s);
+  std::string_view name() const override { return "picture_output"; }
+  void run(World& world) override;
+  std::size_t pictures() const { return written_; }
+  void save(CheckpointWriter& out) const override;
+  void restore(const CheckpointReader& in) override;
+
+ private:
+  double next_target() const;
+  PictureSettings s_;
+  std::size_t next_angle_ = 0;
+  std::int64_t next_multiple_ = 0;
+  std::size_t written_ = 0;
+  std::vector<double> speed_;
 };
 
 }  // namespace gf

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -66,7 +67,7 @@ int check_dem_command(const CliOptions& opt) {
   std::printf("grains: %zu in %zu species; walls: %zu; fills: %zu\n", n, s.species.size(), s.walls.size(),
               s.fills.size());
   std::printf("systems per step (with the systems each waits for):\n%s", step.describe().c_str());
-  std::printf("observers: series_output, frame_output\n");
+  std::printf("observers: series_output, frame_output, picture_output\n");
   std::printf("critical step: smallest collision period %.4g s (%s); dt = %.4g s = %.3f of it (limit %.3f)%s\n",
               s.critical.period, s.critical.term.c_str(), s.dt, s.dt / s.critical.period, s.dt_safety,
               s.allow_unstable_dt && s.dt > s.dt_safety * s.critical.period ? " OVERRIDDEN" : "");
@@ -123,12 +124,30 @@ int run_dem_command(const CliOptions& opt) {
   ss.segregation_type = s.segregation_type;
   ss.segregation_cell = s.segregation_cell;
   ss.max_overlap = s.max_overlap;
+  ss.pattern = s.pattern;
+  ss.pattern_settings.large_type = s.segregation_type;
   if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");
   SeriesOutput& series = observe.emplace<SeriesOutput>(ss);
   FrameOutput* frames = nullptr;
   if (s.output.frame_interval > 0) frames = &observe.emplace<FrameOutput>(out, s.output.frame_interval, s.output.fields);
+  PictureOutput* pictures = nullptr;
+  if (!s.output.picture_angles.empty() || s.output.picture_interval > 0) {
+    PictureSettings ps;
+    ps.dir = out / "pictures";
+    ps.angles = s.output.picture_angles;
+    ps.interval = s.output.picture_interval;
+    ps.options = s.output.picture;
+    for (std::size_t k = 0; k < s.species.size(); ++k) {
+      char hex[16];
+      const Rgb& c = ps.options.palette[k];
+      std::snprintf(hex, sizeof hex, "#%02X%02X%02X", c[0], c[1], c[2]);
+      ps.legend += (k ? ", " : "") + s.species[k].name + " " + hex;
+    }
+    pictures = &observe.emplace<PictureOutput>(std::move(ps));
+  }
   std::vector<const Checkpointable*> parts{&series};
   if (frames) parts.push_back(frames);
+  if (pictures) parts.push_back(pictures);
   CheckpointOutput& checkpoints = observe.emplace<CheckpointOutput>(
       CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
       [&s](CheckpointWriter& w, World& wd) { save_dem_state(w, wd, s); }, parts);
@@ -139,6 +158,12 @@ int run_dem_command(const CliOptions& opt) {
       if (!ckpt->has("frame_output.next"))
         ckpt->fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
       frames->restore(*ckpt);
+    }
+    if (pictures) {
+      if (!ckpt->has("picture_output.next_angle"))
+        ckpt->fail("the run that wrote it drew no pictures",
+                   "resume without output.picture_angles and output.picture_interval, as that run had");
+      pictures->restore(*ckpt);
     }
     checkpoints.restore(*ckpt);
   }
@@ -202,6 +227,7 @@ int run_dem_command(const CliOptions& opt) {
   summary["particle_steps_per_second"] = psps;
   summary["neighbor_rebuilds"] = world.resources.get<BroadphaseState>().rebuilds;
   summary["frames"] = frames ? frames->frames() : 0;
+  summary["pictures"] = pictures ? pictures->pictures() : 0;
   summary["final"] = {{"time", row.time},
                       {"angle", row.angle},
                       {"ke_translational", row.ke_translational},
@@ -210,6 +236,15 @@ int run_dem_command(const CliOptions& opt) {
                       {"wall_contacts", row.wall_contacts},
                       {"max_overlap_ratio", row.max_overlap_ratio},
                       {"segregation_index", row.segregation_index}};
+  if (row.has_pattern) {
+    static const char* kinds[] = {"undecided", "moon", "petals"};
+    summary["final"]["pattern"] = kinds[row.pattern + 1];
+    summary["final"]["petals"] = row.petals;
+    summary["final"]["pattern_contrast"] = row.pattern_contrast;
+    // JSON has no NaN: a bed without a surface to fit reports null.
+    summary["final"]["surface_angle"] =
+        std::isfinite(row.surface_angle) ? nlohmann::json(row.surface_angle) : nlohmann::json(nullptr);
+  }
   double step_total = 0;
   for (auto& t : step.timings()) step_total += t.seconds;
   for (auto& t : observe.timings()) step_total += t.seconds;

@@ -1,5 +1,6 @@
 #include "systems/setup/dem_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -202,6 +203,57 @@ void read_fills(DemScene& s, const SceneNode& root) {
   }
 }
 
+void read_pictures(DemScene& s, const SceneNode& out) {
+  OutputSpec& o = s.output;
+  if (out.has("picture_angles")) {
+    o.picture_angles = out.get_doubles("picture_angles");
+    for (double a : o.picture_angles)
+      if (a < 0) out.fail("picture_angles", "angle " + fmt(a) + " rad is negative", "give rotation angles >= 0 (rad)");
+    std::sort(o.picture_angles.begin(), o.picture_angles.end());
+    o.picture_angles.erase(std::unique(o.picture_angles.begin(), o.picture_angles.end()), o.picture_angles.end());
+    for (std::size_t k = 1; k < o.picture_angles.size(); ++k)
+      if (picture_name(o.picture_angles[k - 1]) == picture_name(o.picture_angles[k]))
+        out.fail("picture_angles",
+                 "angles " + fmt(o.picture_angles[k - 1]) + " and " + fmt(o.picture_angles[k]) +
+                     " rad would share the file " + picture_name(o.picture_angles[k]),
+                 "file names carry two decimals: keep requested angles at least 0.01 rad apart");
+  }
+  o.picture_interval = out.get_double("picture_interval", 0.0, Range::non_negative());
+  if (o.picture_interval > 0 && o.picture_interval < 0.01)
+    out.fail("picture_interval", "pictures closer than 0.01 rad would share file names (two decimals)",
+             "use an interval of at least 0.01 rad, or 0 for none");
+  if (o.picture_interval > 0)
+    for (double a : o.picture_angles) {
+      const double k = std::round(a / o.picture_interval), m = k * o.picture_interval;
+      if (picture_name(m) == picture_name(a) && m != a)
+        out.fail("picture_angles",
+                 "angle " + fmt(a) + " rad would share the file " + picture_name(a) + " with the interval's " +
+                     fmt(m) + " rad",
+                 "move the angle onto the interval's grid or at least 0.01 rad away from it");
+    }
+  const std::string colour = out.get_choice("picture_colour", {"species", "speed"}, "species");
+  o.picture.colour = colour == "speed" ? PictureOptions::Colour::Speed : PictureOptions::Colour::Species;
+  o.picture.size = static_cast<int>(out.get_int("picture_size", 800, 16, 8192));
+  o.picture.speed_max = out.get_double("picture_speed_max", 0.5, Range::positive());
+  std::vector<double> diameters;
+  for (const SpeciesSpec& sp : s.species) diameters.push_back(sp.diameter);
+  o.picture.palette = species_palette(diameters);
+  if (o.picture_angles.empty() && o.picture_interval == 0) return;
+  const std::string key = out.has("picture_angles") ? "picture_angles" : "picture_interval";
+  bool drum = false, rotating = false;
+  for (const Wall& w : s.walls) {
+    drum = drum || w.kind == Wall::Kind::CylinderInner;
+    rotating = rotating || w.omega != 0.0;
+  }
+  if (!drum)
+    out.fail(key, "drum pictures need a drum: the scene has no cylinder or drum wall",
+             "add a [[wall]] of type \"drum\" or \"cylinder\", or remove the picture keys");
+  const bool later = o.picture_interval > 0 || (!o.picture_angles.empty() && o.picture_angles.back() > 0);
+  if (!rotating && later)
+    out.fail(key, "no wall rotates, so the rotation angle stays 0 and later pictures would never be drawn",
+             "give a wall an omega, or use picture_angles = [0] for one picture of the start");
+}
+
 }  // namespace
 
 std::int64_t DemScene::main_steps() const { return static_cast<std::int64_t>(std::llround(duration / dt)); }
@@ -312,12 +364,14 @@ DemScene load_dem_scene(const SceneDoc& doc) {
       out->fail("series_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no series");
     if (s.output.frame_interval > 0 && s.output.frame_interval < s.dt)
       out->fail("frame_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no frames");
+    read_pictures(s, *out);
   }
 
   // A binary mixture reports the segregation of its larger species.
   if (s.species.size() == 2) {
     s.segregation_type = s.species[0].diameter >= s.species[1].diameter ? 0 : 1;
     s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
+    for (const Wall& w : s.walls) s.pattern = s.pattern || w.kind == Wall::Kind::CylinderInner;
   }
   doc.check_all_used();
   return s;

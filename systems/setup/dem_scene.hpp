@@ -14,6 +14,7 @@
 #include "systems/contact/contact_params.hpp"
 #include "systems/fill/region.hpp"
 #include "systems/integrate/integrate.hpp"
+#include "systems/output/drum_picture.hpp"
 #include "systems/output/vtk_frames.hpp"
 #include "systems/walls/walls.hpp"
 
@@ -47,6 +48,11 @@ struct OutputSpec {
   double checkpoint_interval = 0;  // s, 0 = none during the run
   bool checkpoint_keep_all = false;
   bool checkpoint_at_end = true;   // also when the run is interrupted
+  // Drum pictures at these rotation angles (rad of the first rotating wall), and every
+  // picture_interval (rad, 0 = none); sorted, without duplicates.
+  std::vector<double> picture_angles;
+  double picture_interval = 0;
+  PictureOptions picture;  // palette filled from the species' diameters
 };
 
 struct DemScene {
@@ -69,6 +75,7 @@ struct DemScene {
   OutputSpec output;
   int segregation_type = -1;  // the larger species of a binary mixture, else -1
   double segregation_cell = 0;  // m
+  bool pattern = false;  // moon/petal classifier and free-surface angle: a drum and two species
 
   std::int64_t main_steps() const;
   std::int64_t settle_steps() const;

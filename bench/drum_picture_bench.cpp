@@ -1,0 +1,62 @@
+// Cost of one drum picture of the standard settled drum (47,108 grains, 800 px): rendering alone,
+// and rendering plus PNG encoding and the atomic write.
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "bench/settled_drum.hpp"
+#include "systems/integrate/integrate.hpp"
+#include "systems/output/drum_picture.hpp"
+
+namespace {
+
+struct Setup {
+  gf::PictureGrains grains;
+  gf::DrumSection section;
+  gf::PictureOptions options;
+};
+
+bool setup(benchmark::State& state, Setup& s) {
+  gf::DemSimulation* sim = gf::bench::settled_drum_or_skip(state);
+  if (!sim) return false;
+  gf::World& w = sim->world();
+  const gf::Grains& g = w.grains;
+  const gf::Walls& walls = w.resources.get<gf::Walls>();
+  const gf::Gravity& gr = w.resources.get<gf::Gravity>();
+  const auto drum = gf::find_drum(walls);
+  if (!drum) {
+    state.SkipWithError("the settled drum scene has no drum wall");
+    return false;
+  }
+  const std::size_t n = g.n_owned;
+  s.grains = {{g.pos.x.data(), n},    {g.pos.y.data(), n},        {g.pos.z.data(), n},
+              {g.radius.r.data(), n}, {g.species.type.data(), n}, {}};
+  s.section = gf::drum_section(walls.list[*drum], {gr.x, gr.y, gr.z});
+  std::vector<double> d;
+  for (const auto& sp : sim->scene().species) d.push_back(sp.diameter);
+  s.options.palette = gf::species_palette(d);
+  s.options.size = static_cast<int>(state.range(0));
+  return true;
+}
+
+void BM_RenderPicture(benchmark::State& state) {
+  Setup s;
+  if (!setup(state, s)) return;
+  for (auto _ : state) benchmark::DoNotOptimize(gf::render_drum_picture(s.grains, s.section, s.options));
+}
+BENCHMARK(BM_RenderPicture)->Arg(800)->Unit(benchmark::kMillisecond);
+
+void BM_RenderAndWritePicture(benchmark::State& state) {
+  Setup s;
+  if (!setup(state, s)) return;
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("grainflow_picture_bench_" + std::to_string(::getpid()) + ".png");
+  for (auto _ : state) gf::write_png(file, gf::render_drum_picture(s.grains, s.section, s.options));
+  std::filesystem::remove(file);
+}
+BENCHMARK(BM_RenderAndWritePicture)->Arg(800)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

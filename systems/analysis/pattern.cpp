@@ -1,0 +1,195 @@
+#include "systems/analysis/pattern.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+namespace gf {
+
+namespace {
+
+constexpr int kRadialBins = 256;
+
+// Least-squares slope of the bed's top against u, as an angle; NaN with fewer than 3 columns.
+double surface_angle(const std::vector<std::array<double, 3>>& tops, const std::vector<int>& counts, double u0,
+                     double width) {
+  int lo = -1, hi = -1;
+  for (int c = 0; c < static_cast<int>(tops.size()); ++c)
+    if (counts[c] >= 3) {
+      if (lo < 0) lo = c;
+      hi = c;
+    }
+  if (lo < 0) return std::numeric_limits<double>::quiet_NaN();
+  const double span = (hi - lo + 1) * width, a = u0 + lo * width + 0.2 * span, b = u0 + (hi + 1) * width - 0.2 * span;
+  double n = 0, su = 0, sv = 0, suu = 0, suv = 0;
+  for (int c = lo; c <= hi; ++c) {
+    const double uc = u0 + (c + 0.5) * width;
+    if (counts[c] < 3 || uc - 0.5 * width < a || uc + 0.5 * width > b) continue;
+    const double v = tops[c][2];
+    n += 1;
+    su += uc;
+    sv += v;
+    suu += uc * uc;
+    suv += uc * v;
+  }
+  const double den = n * suu - su * su;
+  if (n < 3 || !(den > 0)) return std::numeric_limits<double>::quiet_NaN();
+  return std::atan((n * suv - su * sv) / den);
+}
+
+}  // namespace
+
+Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const PatternSettings& s) {
+  const std::size_t n = g.x.size();
+  if (g.y.size() != n || g.z.size() != n || g.r.size() != n || g.type.size() != n)
+    throw std::invalid_argument("pattern: grain columns differ in length");
+  if (!(drum.radius > 0) || s.bins < 16 || !(s.band_share > 0) || !(s.smooth_bins >= 0) || s.trim_bins < 0 ||
+      !(s.hysteresis > 0) || !(s.min_contrast >= 0))
+    throw std::invalid_argument("pattern: settings out of range");
+
+  Pattern out;
+  const double R = drum.radius;
+  // Pass 1: volumes (r^3; the 4/3 pi cancels in every ratio), radial histogram, column tops.
+  double r_max = 0;
+  for (std::size_t i = 0; i < n; ++i) r_max = std::max(r_max, g.r[i]);
+  // Two large diameters, but at least ten columns across a drum that is small for its grains.
+  const double col_w = std::max(std::min(4.0 * r_max, R / 10.0), R / 50.0);
+  const int n_cols = static_cast<int>(std::ceil(2.0 * R / col_w));
+  std::vector<std::array<double, 3>> tops(n_cols, {-INFINITY, -INFINITY, -INFINITY});
+  std::vector<int> col_count(n_cols, 0);
+  std::array<double, kRadialBins> radial{};
+  double v_all = 0, v_large = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = drum.u(g.x[i], g.y[i], g.z[i]), v = drum.v(g.x[i], g.y[i], g.z[i]);
+    const double vol = g.r[i] * g.r[i] * g.r[i];
+    v_all += vol;
+    if (g.type[i] == s.large_type) v_large += vol;
+    const int rb = std::min(kRadialBins - 1, static_cast<int>(std::sqrt(u * u + v * v) / R * kRadialBins));
+    radial[rb] += vol;
+    const int c = static_cast<int>(std::floor((u + R) / col_w));
+    if (c < 0 || c >= n_cols) continue;
+    auto& t = tops[c];
+    const double top = v + g.r[i];
+    ++col_count[c];
+    if (top > t[0])
+      t = {top, t[0], t[1]};
+    else if (top > t[1])
+      t = {t[0], top, t[1]};
+    else if (top > t[2])
+      t[2] = top;
+  }
+  out.surface_angle = surface_angle(tops, col_count, -R, col_w);
+  if (!(v_large > 0) || !(v_large < v_all)) return out;
+  const double p = v_large / v_all;
+  out.large_fraction = p;
+
+  // Band: outermost radial bins holding band_share of the large volume.
+  double acc = 0;
+  int rb_in = kRadialBins;
+  while (rb_in > 0 && acc < s.band_share * v_large) acc += radial[--rb_in];
+  const double r_in = R * rb_in / kRadialBins;
+  out.band_inner = r_in;
+
+  // Pass 2: the band's composition against the angle about the axis.
+  const int nb = s.bins;
+  std::vector<double> large(nb, 0.0), total(nb, 0.0);
+  std::vector<int> large_count(nb, 0);
+  const double r_in2 = r_in * r_in;
+  std::size_t large_in_band = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = drum.u(g.x[i], g.y[i], g.z[i]), v = drum.v(g.x[i], g.y[i], g.z[i]);
+    if (u * u + v * v < r_in2) continue;
+    const double th = std::atan2(v, u) + std::numbers::pi;  // [0, 2 pi]
+    const int b = std::min(nb - 1, static_cast<int>(th / (2 * std::numbers::pi) * nb));
+    const double vol = g.r[i] * g.r[i] * g.r[i];
+    total[b] += vol;
+    if (g.type[i] == s.large_type) large[b] += vol, ++large_count[b], ++large_in_band;
+  }
+
+  if (large_in_band < s.min_large_in_band) return out;
+
+  // The bed's arc: the longest circular run of bins whose 5-bin window holds at least 0.3 of a
+  // typical filled window (single 2-degree bins hold only a few large grains: too noisy alone).
+  std::vector<double> window(nb, 0.0);
+  for (int b = 0; b < nb; ++b)
+    for (int j = -2; j <= 2; ++j) window[b] += total[(b + j + nb) % nb];
+  std::vector<double> filled;
+  for (double t : window)
+    if (t > 0) filled.push_back(t);
+  if (filled.empty()) return out;
+  std::nth_element(filled.begin(), filled.begin() + filled.size() / 2, filled.end());
+  const double cut = 0.3 * filled[filled.size() / 2];
+  int best_start = 0, best_len = 0;
+  for (int start = 0; start < nb; ++start) {
+    if (window[start] < cut || window[(start + nb - 1) % nb] >= cut) continue;  // runs start after an empty bin
+    int len = 0;
+    while (len < nb && window[(start + len) % nb] >= cut) ++len;
+    if (len > best_len) best_len = len, best_start = start;
+  }
+  if (best_len == 0 && window[0] >= cut) best_len = nb;  // the band is filled all round
+  const int trim = static_cast<int>(std::lround(s.trim_bins));
+  const int len = best_len == nb ? nb : best_len - 2 * trim;
+  const int first = best_len == nb ? 0 : best_start + trim;
+  if (len < 8) return out;
+  out.arc = 2 * std::numbers::pi * len / nb;
+
+  // Smoothed, normalised profile along the arc (volumes smoothed, then divided).
+  const double norm = std::sqrt(p * (1 - p));
+  // Noise of s in a random mixture: the large volume in a smoothing window is a count of N large
+  // grains, relative spread 1/sqrt(N) (small grains are many more), so s spreads by
+  // sqrt(p (1 - p) / N). The window holds the large grains of 2 sqrt(pi) sigma bins.
+  double large_in_arc = 0;
+  for (int k = 0; k < len; ++k) large_in_arc += large_count[(first + k) % nb];
+  const double window_bins = std::max(1.0, 2.0 * std::sqrt(std::numbers::pi) * s.smooth_bins);
+  out.noise = std::sqrt(p * (1 - p) / std::max(1.0, large_in_arc * window_bins / len));
+  const int reach = static_cast<int>(std::ceil(3 * s.smooth_bins));
+  std::vector<double> prof(len);
+  double sum_abs = 0, sum = 0;
+  for (int k = 0; k < len; ++k) {
+    double wl = 0, wt = 0;
+    for (int j = std::max(0, k - reach); j <= std::min(len - 1, k + reach); ++j) {
+      const double d = (j - k) / std::max(s.smooth_bins, 1e-9);
+      const double w = s.smooth_bins > 0 ? std::exp(-0.5 * d * d) : (j == k ? 1.0 : 0.0);
+      const int b = (first + j) % nb;
+      wl += w * large[b];
+      wt += w * total[b];
+    }
+    prof[k] = wt > 0 ? (wl / wt - p) / norm : 0.0;
+    sum_abs += std::abs(prof[k]);
+    sum += prof[k];
+  }
+  out.contrast = sum_abs / len;
+  const double mean = sum / len;
+
+  // Lobes about the profile's mean, so unequal lobe and wedge volumes (p away from 1/2) or label
+  // noise (which pulls both levels towards p) do not shift the count; a run needs a swing of at
+  // least 2 h and of 0.4 of the profile's range, so noise within one level does not make one.
+  const auto [lo_it, hi_it] = std::minmax_element(prof.begin(), prof.end());
+  const double mid = mean, half = std::max({s.hysteresis, 0.2 * (*hi_it - *lo_it), 2.5 * out.noise});
+  int lobes = 0, small_bins = 0;
+  bool in_small = false;
+  for (double v : prof) {
+    if (!in_small && v < mid - half)
+      in_small = true, ++lobes;
+    else if (in_small && v > mid + half)
+      in_small = false;
+    small_bins += in_small;
+  }
+
+  // Petals need lobes standing out of the noise; a moon needs a band richer in large grains than
+  // the bed, by more than h and by 3 standard errors of the mean over the arc's independent windows.
+  const double mean_error = out.noise / std::sqrt(std::max(1.0, len / window_bins));
+  if (lobes >= 2 && out.contrast >= std::max(s.min_contrast, 2.0 * out.noise)) {
+    out.kind = PatternKind::Petals;
+    out.petals = lobes;
+  } else if ((lobes == 0 || (lobes == 1 && 3 * small_bins <= len)) && mean > std::max(s.hysteresis, 3.0 * mean_error)) {
+    out.kind = PatternKind::Moon;
+  }
+  return out;
+}
+
+}  // namespace gf
