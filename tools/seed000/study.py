@@ -1,0 +1,198 @@
+#!/usr/bin/python3
+"""Seed 000's six drum cases (Zhao & Cheng 2007, Table 5), run in resumable pieces.
+
+    /usr/bin/python3 tools/seed000/study.py run [--budget-minutes 10] [--threads 1] [--cases half_w0.50 ...]
+    /usr/bin/python3 tools/seed000/study.py report
+
+`run` gives each case (in turn) at most --budget-minutes of wall time, then stops it with SIGINT:
+grainflow finishes the step in flight and writes its checkpoint, so the next `run` continues the
+case where it stopped (bit-identical to an uninterrupted run), until it reaches 30 rad. Every piece
+is logged in <out>/<case>/pieces.jsonl (steps, wall time, particle-steps/s). Cases are the half-fill
+state (scenes/drum_seed000_settled.toml) at 2, 1, 0.5 and 0.25 rad/s and the quarter-fill state
+(scenes/drum_seed000_quarter.toml) at 0.5 and 0.25 rad/s, with pictures every radian and at the
+seed's angles.
+
+`report` writes <out>/table.md (seed outcome, ours at the angle reached, rotation reached, wall
+time, particle-steps/s), <out>/table.json, the figure sheet <out>/sheet.png (every case at the
+angles they reached), the formation sequence <out>/formation.png (0.5 rad/s at 2, 10, 18, 30 rad,
+or as far as it got) and the free-surface angle against rotation <out>/surface_angle.png.
+"""
+import argparse
+import json
+import math
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+REPO = Path(__file__).resolve().parents[2]
+HALF = "scenes/drum_seed000_settled.toml"
+QUARTER = "scenes/drum_seed000_quarter.toml"
+# name, scene, omega (rad/s), the seed's outcome after 30 rad
+CASES = [
+    ("half_w2.00", HALF, 2.00, "moon"),
+    ("half_w1.00", HALF, 1.00, "moon (slightly wavy interface)"),
+    ("half_w0.50", HALF, 0.50, "5 petals"),
+    ("half_w0.25", HALF, 0.25, "7 petals"),
+    ("quarter_w0.50", QUARTER, 0.50, "moon"),
+    ("quarter_w0.25", QUARTER, 0.25, "moon (rough interface)"),
+]
+END_ANGLE = 30.0
+KINDS = {-1: "undecided", 0: "moon", 1: "petals"}
+
+
+def case_overrides(omega):
+    return [
+        f"wall.0.omega={omega}",
+        f"run.end_angle={END_ANGLE}",
+        "output.picture_interval=1.0",
+        "output.frame_interval=0",
+        # A checkpoint every 2.5 % of the case: a crash or kill loses at most that.
+        f"output.checkpoint_interval={0.025 * END_ANGLE / omega}",
+        f"output.series_interval={min(0.01, 0.02 / omega)}",
+    ]
+
+
+def run_case(name, scene, omega, out, binary, threads, budget_s):
+    folder = out / name
+    ckpt = folder / "checkpoints" / "checkpoint.gfc"
+    cmd = [str(binary), "run", str(REPO / scene), "--out", str(folder), "--threads", str(threads), "--quiet"]
+    for o in case_overrides(omega):
+        cmd += ["--set", o]
+    if ckpt.is_file():
+        summary = json.loads((folder / "summary.json").read_text())
+        if summary.get("status") == "completed":
+            print(f"{name}: already at {END_ANGLE} rad", file=sys.stderr)
+            return
+        cmd += ["--resume", str(ckpt)]
+    folder.mkdir(parents=True, exist_ok=True)
+    print(f"{name}: {' '.join(cmd)}", file=sys.stderr)
+    t0 = time.time()
+    with open(folder / "log.txt", "a") as log:
+        p = subprocess.Popen(cmd, stdout=log, stderr=log)
+        try:
+            p.wait(timeout=budget_s)
+        except subprocess.TimeoutExpired:
+            p.send_signal(signal.SIGINT)  # stops after the step in flight, writes the checkpoint
+            p.wait()
+    summary = json.loads((folder / "summary.json").read_text())
+    piece = {
+        "status": summary.get("status"),
+        "rc": p.returncode,
+        "steps_total": summary.get("steps"),
+        "steps": summary.get("steps_this_run"),
+        "wall_seconds": summary.get("wall_seconds"),
+        "total_wall_seconds": time.time() - t0,
+        "particle_steps_per_second": summary.get("particle_steps_per_second"),
+        "threads": threads,
+        "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+    }
+    with open(folder / "pieces.jsonl", "a") as f:
+        f.write(json.dumps(piece) + "\n")
+    print(f"{name}: {piece}", file=sys.stderr)
+
+
+def load_series(folder):
+    path = folder / "series.csv"
+    if not path.is_file():
+        return None
+    data = np.genfromtxt(path, delimiter=",", names=True)
+    return np.atleast_1d(data) if data.size else None
+
+
+def pieces(folder):
+    path = folder / "pieces.jsonl"
+    return [json.loads(line) for line in path.read_text().splitlines() if line.strip()] if path.is_file() else []
+
+
+def report(out):
+    rows = []
+    for name, scene, omega, seed in CASES:
+        folder = out / name
+        s = load_series(folder)
+        ps = pieces(folder)
+        if s is None or not ps:
+            rows.append({"case": name, "seed": seed, "ran": False})
+            continue
+        last = s[-1]
+        wall = sum(p["wall_seconds"] or 0 for p in ps)
+        steps = sum(p["steps"] or 0 for p in ps)
+        grains = json.loads((folder / "summary.json").read_text())["grains"]
+        kind = KINDS.get(int(last["pattern"]), "?")
+        ours = f"{int(last['petals'])} petals" if kind == "petals" else kind
+        rows.append({
+            "case": name, "seed": seed, "ran": True, "fill": "1/2" if scene == HALF else "1/4", "omega": omega,
+            "angle": float(last["angle"]), "ours": ours, "contrast": float(last["pattern_contrast"]),
+            "segregation_index": float(last["segregation_index"]), "surface_angle": float(last["surface_angle"]),
+            "wall_seconds": wall, "steps": steps, "grains": grains,
+            "particle_steps_per_second": steps * grains / wall if wall > 0 else 0.0,
+            "threads": sorted({p["threads"] for p in ps}),
+        })
+    (out / "table.json").write_text(json.dumps(rows, indent=1))
+    lines = ["| fill | ω (rad/s) | seed at 30 rad | ours (classifier) | rotation reached (rad) | segregation index | "
+             "wall time | particle-steps/s (threads) |", "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        if not r["ran"]:
+            lines.append(f"| | | {r['seed']} | not run | 0 | | | |")
+            continue
+        lines.append(f"| {r['fill']} | {r['omega']:.2f} | {r['seed']} | {r['ours']} (contrast {r['contrast']:.2f}) | "
+                     f"{r['angle']:.2f} of {END_ANGLE:.0f} | {r['segregation_index']:.3f} | "
+                     f"{r['wall_seconds'] / 60:.1f} min | {r['particle_steps_per_second']:.3g} "
+                     f"({','.join(map(str, r['threads']))}) |")
+    (out / "table.md").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+    ran = [out / r["case"] for r in rows if r["ran"]]
+    sheet = [str(REPO / "tools/seed000/figure_sheet.py")] + [str(f) for f in ran]
+    reached = min((r["angle"] for r in rows if r["ran"]), default=0.0)
+    angles = [a for a in (1, 2, 5, 10, 18, 30) if a <= reached + 1e-9] or [0]
+    subprocess.run([sys.executable] + sheet + ["--angles"] + [str(a) for a in angles] + ["--out", str(out / "sheet.png")])
+    w050 = out / "half_w0.50"
+    if w050.is_dir():
+        got = [a for a in (2, 10, 18, 30) if (w050 / "pictures" / f"angle_{a:05.2f}.png").is_file()]
+        if got:
+            subprocess.run([sys.executable, str(REPO / "tools/seed000/figure_sheet.py"), str(w050), "--angles"] +
+                           [str(a) for a in got] + ["--out", str(out / "formation.png")])
+    fig, ax = plt.subplots(figsize=(7, 3.5))
+    for f in ran:
+        s = load_series(f)
+        ax.plot(s["angle"], np.degrees(s["surface_angle"]), lw=0.8, label=f.name)
+    ax.set_xlabel("drum rotation (rad)")
+    ax.set_ylabel("free-surface angle (deg)")
+    ax.set_title("Free surface of the bed (series.csv surface_angle)")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out / "surface_angle.png", dpi=120)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("command", choices=["run", "report"])
+    ap.add_argument("--out", type=Path, default=REPO / "runs" / "seed000")
+    ap.add_argument("--binary", type=Path, default=REPO / "build" / "grainflow")
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--budget-minutes", type=float, default=10.0, help="wall time per case in this invocation")
+    ap.add_argument("--cases", nargs="*", default=[c[0] for c in CASES])
+    a = ap.parse_args()
+    unknown = set(a.cases) - {c[0] for c in CASES}
+    if unknown:
+        sys.exit(f"study: unknown case(s) {sorted(unknown)}; cases are {[c[0] for c in CASES]}")
+    a.out.mkdir(parents=True, exist_ok=True)
+    if a.command == "run":
+        if not a.binary.is_file():
+            sys.exit(f"study: {a.binary} not found: build grainflow first (README)")
+        for name, scene, omega, _ in CASES:
+            if name in a.cases:
+                run_case(name, scene, omega, a.out, a.binary, a.threads, 60 * a.budget_minutes)
+    report(a.out)
+
+
+if __name__ == "__main__":
+    main()
