@@ -3,12 +3,21 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 
 #include "engine/schedule.hpp"
 #include "engine/world.hpp"
 
 namespace gf {
+
+// A run that became unphysical (non-finite state, overlaps past the limit, ...), thrown by any
+// system or observer; the message says what broke, when, and what to change. The CLI turns it
+// into exit status 3 with summary.json "failed".
+class StabilityError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 struct StageReport {
   std::int64_t steps = 0;     // steps completed in this stage

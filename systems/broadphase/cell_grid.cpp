@@ -10,6 +10,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "engine/run_loop.hpp"
+
 namespace gf {
 
 namespace {
@@ -50,7 +52,7 @@ void CellGrid::build(std::span<const double> x, std::span<const double> y, std::
         return a;
       });
   if (box.bad >= 0)
-    throw std::runtime_error("particle row " + std::to_string(box.bad) +
+    throw StabilityError("particle row " + std::to_string(box.bad) +
                              " has a non-finite position: the simulation became unstable. Fix: reduce the time "
                              "step or check the contact stiffness and damping");
   if (n == 0) {

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "engine/checkpoint_file.hpp"
+#include "engine/run_loop.hpp"
 #include "engine/system.hpp"
 #include "systems/analysis/metrics.hpp"
 #include "systems/analysis/pattern.hpp"
@@ -22,11 +23,6 @@
 
 namespace gf {
 
-// A run that became unphysical; the message says what broke, when, and what to change.
-class StabilityError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct SeriesRow {
   double time = 0, angle = 0, ke_translational = 0, ke_rotational = 0;

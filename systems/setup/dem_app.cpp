@@ -113,7 +113,17 @@ int run_dem_command(const CliOptions& opt) {
   write_summary_json(out / "summary.json", summary);
 
   // A resumed run continues the main stage; its settling was done by the run that wrote the checkpoint.
-  const StageReport settle = ckpt ? StageReport{} : sim.settle(opt.quiet ? 0.0 : 2.0);
+  StageReport settle;
+  try {
+    if (!ckpt) settle = sim.settle(opt.quiet ? 0.0 : 2.0);
+  } catch (const StabilityError& e) {
+    summary["status"] = "failed";
+    summary["failure"] = std::string("while settling: ") + e.what();
+    summary["steps"] = 0;
+    write_summary_json(out / "summary.json", summary);
+    std::fprintf(stderr, "grainflow: failed while settling\ngrainflow: error: %s\n", e.what());
+    return 3;
+  }
   step.reset_timings();
 
   Schedule observe;
