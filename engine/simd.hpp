@@ -101,4 +101,30 @@ inline BatchD load_rows(const double* base, const RowWindow& w) {
   return gather32(base, w.idx);
 }
 
+// A table of at most kLanes doubles held in a register: each lane looks its entry up by index
+// with one permute (AVX-512) instead of a gather. Indices must be in [0, size).
+class RegisterTable {
+ public:
+  static constexpr std::size_t capacity = kLanes;
+  RegisterTable() = default;
+  RegisterTable(const double* values, std::size_t n) {
+    alignas(64) double v[kLanes] = {};
+    for (std::size_t k = 0; k < n && k < kLanes; ++k) v[k] = values[k];
+    for (std::size_t k = 0; k < kLanes; ++k) v_[k] = v[k];
+    table_ = BatchD::load_aligned(v);
+  }
+  BatchD lookup(const std::int32_t* idx) const {
+#if defined(__AVX512F__) && !defined(GRAINFLOW_SIMD_256)
+    return _mm512_permutexvar_pd(_mm512_cvtepi32_epi64(_mm256_load_si256(reinterpret_cast<const __m256i*>(idx))),
+                                 table_);
+#else
+    return gather32(v_, idx);
+#endif
+  }
+
+ private:
+  BatchD table_ = BatchD(0.0);
+  alignas(64) double v_[kLanes] = {};
+};
+
 }  // namespace gf

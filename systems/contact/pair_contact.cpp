@@ -287,8 +287,20 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   for (int q = 0; q < 8; ++q)
     out.coeff_uniform[q] = std::all_of(out.coeff[q].begin(), out.coeff[q].end(),
                                        [&](double x) { return x == out.coeff[q][0]; });
-  auto coeff = [&](int q, const std::int32_t* idx) {
-    return out.coeff_uniform[q] ? B(out.coeff[q][0]) : gather32(out.coeff[q].data(), idx);
+  // With few species (a binary mixture has four type pairs) each varying constant sits in a
+  // register, indexed by the compact type pair species_i * ntypes + species_j.
+  const bool in_register = ntypes * ntypes <= RegisterTable::capacity;
+  RegisterTable reg[8];
+  if (in_register)
+    for (int q = 0; q < 8; ++q) {
+      double v[RegisterTable::capacity] = {};
+      for (std::size_t a = 0; a < ntypes; ++a)
+        for (std::size_t t = 0; t < ntypes; ++t) v[a * ntypes + t] = out.coeff[q][a * kMaxSpecies + t];
+      reg[q] = RegisterTable(v, ntypes * ntypes);
+    }
+  auto coeff = [&](int q, const std::int32_t* idx, const std::int32_t* compact) {
+    return out.coeff_uniform[q] ? B(out.coeff[q][0])
+                                : (in_register ? reg[q].lookup(compact) : gather32(out.coeff[q].data(), idx));
   };
   const std::size_t full = nc / L;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, full, 64), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -314,8 +326,13 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
                   load_rows(g.vel.y.data(), bi) - gather32(g.vel.y.data(), bj),
                   load_rows(g.vel.z.data(), bi) - gather32(g.vel.z.data(), bj)};
       const V v = vij + cross(li * wi + lj * wj, n);
-      const LsdCoeffs<B> cf{coeff(0, bt_idx), coeff(1, bt_idx), coeff(2, bt_idx), coeff(3, bt_idx),
-                            coeff(4, bt_idx), coeff(5, bt_idx), coeff(6, bt_idx), coeff(7, bt_idx)};
+      alignas(64) std::int32_t compact[L];
+      for (std::size_t l = 0; l < L; ++l)
+        compact[l] = (bt_idx[l] / static_cast<std::int32_t>(kMaxSpecies)) * static_cast<std::int32_t>(ntypes) +
+                     bt_idx[l] % static_cast<std::int32_t>(kMaxSpecies);
+      const LsdCoeffs<B> cf{coeff(0, bt_idx, compact), coeff(1, bt_idx, compact), coeff(2, bt_idx, compact),
+                            coeff(3, bt_idx, compact), coeff(4, bt_idx, compact), coeff(5, bt_idx, compact),
+                            coeff(6, bt_idx, compact), coeff(7, bt_idx, compact)};
       PairHistory& nh = out.next;
       // Springs of the last evaluation: between rebuilds a batch's contacts usually all persist
       // and sit in a run of the old history, read with plain loads; otherwise gathered by slot.
