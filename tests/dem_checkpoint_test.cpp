@@ -31,57 +31,11 @@ using gf::test::TempDir;
 
 namespace {
 
-// A small rotating drum poured while it turns, under strong gravity so that it packs within about
-// 25 ms: grains fall, collide and shear, so the neighbour list is rebuilt and springs are carried
-// over many times on both sides of a checkpoint.
-const std::string kDrum = R"([run]
-dt = 1.0e-5
-duration = 0.02
-skin = 1.5e-4
-gravity = [0.0, -60.0, 0.0]
-max_overlap = 0.3   # hard landings of the pour, not a failure here
-seed = 7
-
-[[species]]
-name = "small"
-diameter = 1.0e-3
-density = 2500.0
-
-[[species]]
-name = "large"
-diameter = 3.0e-3
-density = 2500.0
-
-[contact]
-model = "linear_spring_dashpot"
-kn = 1000.0
-kt = 600.0
-kr = 1.0e-5
-en = 0.3
-et = 0.3
-er = 0.3
-friction = 0.3
-rolling_friction = 5.0e-5
-
-[[wall]]
-type = "drum"
-center = [0.0, 0.0, 0.0]
-axis = [0.0, 0.0, 1.0]
-radius = 0.012
-length = 0.006
-omega = 3.0
-
-[[fill]]
-kind = "random"
-region = { shape = "cylinder", center = [0.0, 0.0, 0.0], axis = [0.0, 0.0, 1.0], radius = 0.012, length = 0.006 }
-count = { small = 400, large = 20 }
-
-[output]
-series_interval = 1.0e-3
-frame_interval = 2.0e-3
-picture_interval = 0.01
-picture_size = 200
-)";
+// The small drum poured while it turns, under strong gravity so that it packs within about 25 ms:
+// grains fall, collide and shear, so the neighbour list is rebuilt and springs are carried over
+// many times on both sides of a checkpoint. Pictures every 0.01 rad check that they resume too.
+const std::string kDrum = gf::test::small_drum_scene(60.0, "max_overlap = 0.3\n") +  // hard landings of the pour
+                          "picture_interval = 0.01\npicture_size = 200\n";
 
 // Every core and attached column, byte for byte.
 bool same_bits(gf::Grains& a, gf::Grains& b) {

@@ -21,54 +21,8 @@ using gf::test::TempDir;
 
 namespace {
 
-const std::string kDrum = R"([run]
-dt = 1.0e-5
-duration = 0.02
-skin = 1.5e-4
-gravity = [0.0, -9.81, 0.0]
-seed = 7
-
-[[species]]
-name = "small"
-diameter = 1.0e-3
-density = 2500.0
-
-[[species]]
-name = "large"
-diameter = 3.0e-3
-density = 2500.0
-
-[contact]
-model = "linear_spring_dashpot"
-kn = 1000.0
-kt = 600.0
-kr = 1.0e-5
-en = 0.3
-et = 0.3
-er = 0.3
-friction = 0.3
-rolling_friction = 5.0e-5
-
-[[wall]]
-type = "drum"
-center = [0.0, 0.0, 0.0]
-axis = [0.0, 0.0, 1.0]
-radius = 0.012
-length = 0.006
-omega = 3.0
-
-[[fill]]
-kind = "random"
-region = { shape = "cylinder", center = [0.0, 0.0, 0.0], axis = [0.0, 0.0, 1.0], radius = 0.012, length = 0.006 }
-count = { small = 400, large = 20 }
-
-[settle]
-time = 0.1
-
-[output]
-series_interval = 1.0e-3
-frame_interval = 2.0e-3
-)";
+// The small drum, settled under gravity first.
+const std::string kDrum = gf::test::small_drum_scene(9.81, "", 0.1);
 
 gf::test::Exit run_at(const TempDir& dir, const std::string& dt, const std::string& name) {
   const fs::path scene = dir.write("drum.toml", kDrum);

@@ -125,6 +125,29 @@ inline std::string binary_box_scene(int small, int large, double gravity = 9.81)
   return s.str();
 }
 
+// A small rotating drum (24 mm across, 6 mm deep, 3 rad/s about z) of 400 grains of 1 mm and 20 of
+// 3 mm with seed 000's contact parameters (Table 4), poured at random: the scene the checkpoint and
+// stability tests run. `extra_run` is appended to [run] (e.g. "max_overlap = 0.3\n"); a positive
+// settle_time adds a [settle] stage.
+inline std::string small_drum_scene(double gravity, const std::string& extra_run = "", double settle_time = 0.0) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "[run]\ndt = 1.0e-5\nduration = 0.02\nskin = 1.5e-4\ngravity = [0.0, " << -gravity << ", 0.0]\nseed = 7\n"
+    << extra_run
+    << "[[species]]\nname = \"small\"\ndiameter = 1.0e-3\ndensity = 2500.0\n"
+    << "[[species]]\nname = \"large\"\ndiameter = 3.0e-3\ndensity = 2500.0\n"
+    << "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nkr = 1.0e-5\n"
+    << "en = 0.3\net = 0.3\ner = 0.3\nfriction = 0.3\nrolling_friction = 5.0e-5\n"
+    << "[[wall]]\ntype = \"drum\"\ncenter = [0.0, 0.0, 0.0]\naxis = [0.0, 0.0, 1.0]\nradius = 0.012\n"
+    << "length = 0.006\nomega = 3.0\n"
+    << "[[fill]]\nkind = \"random\"\n"
+    << "region = { shape = \"cylinder\", center = [0.0, 0.0, 0.0], axis = [0.0, 0.0, 1.0], radius = 0.012, "
+    << "length = 0.006 }\ncount = { small = 400, large = 20 }\n";
+  if (settle_time > 0) s << "[settle]\ntime = " << settle_time << "\n";
+  s << "[output]\nseries_interval = 1.0e-3\nframe_interval = 2.0e-3\n";
+  return s.str();
+}
+
 // The grainflow binary run with `args` (shell words, quoted by the caller), stdout and stderr captured
 // in files of `dir`.
 struct Exit {
