@@ -19,14 +19,16 @@ R& res(World& w) {
 }
 
 struct NeighborSearch : SystemBase<NeighborSearch> {
-  using Reads = gf::Reads<LiquidParams>;
+  using Reads = gf::Reads<LiquidParams, Clock>;
   using Writes = gf::Writes<FluidNodes, NeighborPairs>;
   std::string_view name() const override { return "neighbour_search"; }
   void run(World& w) override {
     auto& f = res<FluidNodes>(w);
     auto& lp = res<LiquidParams>(w);
+    NeighborPairs& nb = res<NeighborPairs>(w);
+    if (!neighbors_stale(f, nb, lp.skin, w.clock.dt)) return;
     wrap_periodic(f, lp.periodic);
-    build_neighbors(f, lp.k.re + lp.skin, lp.periodic, res<NeighborPairs>(w));
+    build_neighbors(f, lp.k.re + lp.skin, lp.periodic, nb);
   }
 };
 

@@ -1,5 +1,5 @@
 // The semi-implicit MPS step as a schedule of systems, in phase order (seed 003 / Koshizuka & Oka):
-//   neighbour_search   wrap periodic positions, rebuild the pair list (radius re + skin)
+//   neighbour_search   when a node moved > skin/2: wrap periodic positions, rebuild the list (radius re + skin)
 //   number_density     kernel weights and n at r^n (weights for the viscous Laplacian)
 //   explicit_step      u* = u + dt (nu lap u + g + f), r* = r + dt u*
 //   predicted_density  weights and n* at r*; density-spike check

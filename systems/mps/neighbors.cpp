@@ -136,8 +136,23 @@ void scan_row(const FluidNodes& f, const Grid& g, double r2max, const Periodicit
 
 }  // namespace
 
+bool neighbors_stale(const FluidNodes& f, const NeighborPairs& nb, double skin, double dt) {
+  if (nb.x0.size() != f.size()) return true;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    if (f.kind[i] != kFluid) continue;
+    const double dx = f.x[i] - nb.x0[i], dy = f.y[i] - nb.y0[i], dz = f.z[i] - nb.z0[i];
+    const double ahead = 2.0 * dt * std::sqrt(f.u[i] * f.u[i] + f.v[i] * f.v[i] + f.w[i] * f.w[i]);
+    if (!(std::sqrt(dx * dx + dy * dy + dz * dz) + ahead <= 0.5 * skin)) return true;
+  }
+  return false;
+}
+
 void build_neighbors(const FluidNodes& f, double radius, const Periodicity& per, NeighborPairs& out) {
   const std::size_t n = f.size();
+  out.x0.assign(f.x.begin(), f.x.end());
+  out.y0.assign(f.y.begin(), f.y.end());
+  out.z0.assign(f.z.begin(), f.z.end());
+  ++out.builds;
   Grid g;
   bin(f, radius, per, g);
   const double r2 = radius * radius;

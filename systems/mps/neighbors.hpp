@@ -4,6 +4,9 @@
 // step (the CFL limit keeps that motion well under the skin). Kernel weights are recomputed from current
 // positions whenever positions change (number_density).
 //
+// The list is rebuilt only when some fluid node may move more than half the skin from where it was at the last
+// build by the end of the coming step (Verlet): between rebuilds no pair can come within r_e unlisted.
+//
 // One axis may be periodic: positions are wrapped into [lo, hi) before the list is built, and each pair keeps the
 // image (-1, 0, +1 periods) through which it was found, so distances stay continuous through the step.
 #pragma once
@@ -28,6 +31,8 @@ struct NeighborPairs {
   std::vector<double> w;             // kernel weight at current positions
   Periodicity periodic;
   double radius = 0;                 // m, search radius the list was built with
+  std::vector<double> x0, y0, z0;    // m, positions at the last build
+  std::int64_t builds = 0;
 
   std::size_t rows() const { return start.empty() ? 0 : start.size() - 1; }
   std::size_t pairs() const { return j.size(); }
@@ -47,6 +52,10 @@ struct NeighborPairs {
 
 // Moves every node back into [lo, hi) along the periodic axis (no-op without one).
 void wrap_periodic(FluidNodes& f, const Periodicity& per);
+
+// True when some fluid node, with the motion of the coming step added (2 dt |u|, room for acceleration),
+// would be farther than skin/2 from where it was at the last build (or there was none).
+bool neighbors_stale(const FluidNodes& f, const NeighborPairs& nb, double skin, double dt);
 
 // Rebuilds the list: pairs (i, j), i != j, closer than `radius`. Dummy rows keep only their wall neighbours, the
 // only ones they read (pressure extrapolation). Deterministic: each row lists its neighbours in cell-scan order.

@@ -138,43 +138,92 @@ PpeResult ppe_solve_matrix_free(const NeighborPairs& nb, const PpeProblem& pb, c
   PpeResult res;
   res.unknowns = pb.unknowns;
   res.closed = pb.closed;
-  static thread_local std::vector<double> sx, sr, sz, sd, sq;
-  std::vector<double>&x = sx, &r = sr, &z = sz, &d = sd, &q = sq;  // see det_sum: the workers must see these
+  static thread_local std::vector<double> sx, sr, sd, sq, sinv, sp1, sp2;
+  std::vector<double>&x = sx, &r = sr, &d = sd, &q = sq, &inv = sinv;  // see det_sum: the workers must see these
   x.assign(n, 0.0);
-  r.resize(n);
-  z.resize(n);
-  d.resize(n);
-  q.resize(n);
-  for (std::size_t i = 0; i < n; ++i) x[i] = pb.active[i] ? p[i] : 0.0;
+  r.assign(n, 0.0);
+  d.assign(n, 0.0);
+  q.assign(n, 0.0);
+  inv.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (pb.active[i]) {
+      x[i] = p[i];
+      inv[i] = 1.0 / pb.diag[i];
+    }
   const double bnorm = std::sqrt(det_sum(n, [&](std::size_t i) { return pb.b[i] * pb.b[i]; }));
   if (pb.unknowns == 0 || bnorm == 0) {
     for (std::size_t i = 0; i < n; ++i) p[i] = 0;
     return res;
   }
-  ppe_apply(nb, pb, x, q);
-  par_rows(n, [&](std::size_t i) {
-    r[i] = pb.active[i] ? pb.b[i] - q[i] : 0.0;
-    z[i] = pb.active[i] ? r[i] / pb.diag[i] : 0.0;
-    d[i] = z[i];
+  // Three fused passes per iteration, each with its reductions done per fixed block (deterministic):
+  //   q = A d and d.q;  x += a d, r -= a q, then r.z and r.r (z = r / diag);  d = z + beta d.
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<double>&part1 = sp1, &part2 = sp2;
+  part1.assign(blocks, 0.0);
+  part2.assign(blocks, 0.0);
+  auto blockwise = [&](auto&& body) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& br) {
+      for (std::size_t b = br.begin(); b < br.end(); ++b) body(b, b * kBlock, std::min(n, (b + 1) * kBlock));
+    });
+  };
+  auto total = [&](const std::vector<double>& part) {
+    double t = 0;
+    for (double v : part) t += v;
+    return t;
+  };
+  auto apply_row = [&](std::size_t i, const std::vector<double>& v) {
+    double acc = 0;
+    for (std::uint32_t k = nb.start[i]; k < nb.start[i + 1]; ++k) acc += nb.w[k] * v[nb.j[k]];
+    return pb.diag[i] * v[i] - pb.c * acc;
+  };
+  // r = b - A x, d = z = r / diag.
+  blockwise([&](std::size_t b, std::size_t i0, std::size_t i1) {
+    double rz = 0, rr = 0;
+    for (std::size_t i = i0; i < i1; ++i) {
+      if (!pb.active[i]) continue;
+      r[i] = pb.b[i] - apply_row(i, x);
+      d[i] = r[i] * inv[i];
+      rz += r[i] * d[i];
+      rr += r[i] * r[i];
+    }
+    part1[b] = rz;
+    part2[b] = rr;
   });
-  double rz = det_sum(n, [&](std::size_t i) { return r[i] * z[i]; });
-  double rnorm = std::sqrt(det_sum(n, [&](std::size_t i) { return r[i] * r[i]; }));
+  double rz = total(part1);
+  double rnorm = std::sqrt(total(part2));
   int it = 0;
   while (rnorm > s.tolerance * bnorm && it < s.max_iterations) {
-    ppe_apply(nb, pb, d, q);
-    const double dq = det_sum(n, [&](std::size_t i) { return d[i] * q[i]; });
+    blockwise([&](std::size_t b, std::size_t i0, std::size_t i1) {
+      double dq = 0;
+      for (std::size_t i = i0; i < i1; ++i) {
+        if (!pb.active[i]) continue;
+        q[i] = apply_row(i, d);
+        dq += d[i] * q[i];
+      }
+      part1[b] = dq;
+    });
+    const double dq = total(part1);
     if (!(dq > 0)) break;  // loss of positive definiteness: reported as non-convergence below
     const double alpha = rz / dq;
-    par_rows(n, [&](std::size_t i) {
-      x[i] += alpha * d[i];
-      r[i] -= alpha * q[i];
-      z[i] = pb.active[i] ? r[i] / pb.diag[i] : 0.0;
+    blockwise([&](std::size_t b, std::size_t i0, std::size_t i1) {
+      double rz_b = 0, rr_b = 0;
+      for (std::size_t i = i0; i < i1; ++i) {
+        if (!pb.active[i]) continue;
+        x[i] += alpha * d[i];
+        r[i] -= alpha * q[i];
+        rz_b += r[i] * r[i] * inv[i];
+        rr_b += r[i] * r[i];
+      }
+      part1[b] = rz_b;
+      part2[b] = rr_b;
     });
-    const double rz_new = det_sum(n, [&](std::size_t i) { return r[i] * z[i]; });
-    rnorm = std::sqrt(det_sum(n, [&](std::size_t i) { return r[i] * r[i]; }));
+    const double rz_new = total(part1);
+    rnorm = std::sqrt(total(part2));
     const double beta = rz_new / rz;
     rz = rz_new;
-    par_rows(n, [&](std::size_t i) { d[i] = z[i] + beta * d[i]; });
+    par_rows(n, [&](std::size_t i) {
+      if (pb.active[i]) d[i] = r[i] * inv[i] + beta * d[i];
+    });
     ++it;
   }
   res.iterations = it;
