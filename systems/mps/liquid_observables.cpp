@@ -58,7 +58,7 @@ std::vector<double> sample_liquid(World& w, const LiquidScene& s) {
           static_cast<double>(d.surface_nodes),
           static_cast<double>(d.ppe.iterations),
           d.ppe.residual,
-          front,
+          front + 0.5 * l0,
           nb > 0 ? pb / nb : nan,
           nc > 0 ? uc / nc : nan};
 }
