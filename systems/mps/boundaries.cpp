@@ -56,7 +56,9 @@ int layer_of(const LiquidGeometry& g, double l0, const double p[3]) {
   double d = 0;
   if (g.kind == LiquidGeometry::Kind::Pipe) {
     const double dy = p[1] - g.center[1], dz = p[2] - g.center[2];
-    d = std::max(0.0, std::sqrt(dy * dy + dz * dz) - g.radius);
+    const double r = std::sqrt(dy * dy + dz * dz);
+    if (r < g.radius - 1e-9 * l0) return 0;  // nodes on the radius (to round-off) are wall nodes
+    return std::max(1, static_cast<int>(std::ceil((r - g.radius) / l0 - 1e-9)));
   } else {
     for (int a = 0; a < g.dim; ++a) {
       if (a == 0 && g.kind == LiquidGeometry::Kind::Channel) continue;
@@ -75,7 +77,8 @@ void generate_nodes(const LiquidGeometry& g, const std::vector<FluidBlock>& bloc
   f.dim = g.dim;
   std::array<double, 3> blo, bhi;
   g.bounds(l0, blo, bhi);
-  // Lattice origin: the inner faces (box) or the axis (pipe), so nodes sit half a spacing from each face.
+  // Lattice origin: the inner faces (box: nodes sit half a spacing from each face) or, for the pipe, a node on
+  // the axis.
   std::array<double, 3> origin = g.lo;
   if (g.kind == LiquidGeometry::Kind::Pipe) origin = {g.lo[0], g.center[1] - 0.5 * l0, g.center[2] - 0.5 * l0};
   std::array<long, 3> i0{0, 0, 0}, i1{0, 0, 0};
