@@ -41,7 +41,8 @@ std::vector<double> sample_liquid(World& w, const LiquidScene& s) {
       nb += 1;
     }
     if (f.kind[i] != kFluid) continue;
-    front = std::max(front, f.x[i]);
+    // Isolated droplets are not the front (n is zero before the first step: no filter then).
+    if (w.clock.step == 0 || f.n[i] >= 0.5 * lp.k.n0) front = std::max(front, f.x[i]);
     vmax2 = std::max(vmax2, f.u[i] * f.u[i] + f.v[i] * f.v[i] + f.w[i] * f.w[i]);
     if (std::abs(f.y[i] - yc) < l0 && (!three || std::abs(f.z[i] - zc) < l0)) {
       uc += f.u[i];
