@@ -38,7 +38,8 @@ TEST_CASE("2D dam break, l0 = a/20: surge front within 20 % of the Koshizuka-Oka
   }
   REQUIRE(n >= 6);
   std::printf("dam break 2D short: mean front error vs Koshizuka-Oka %+.1f %% over %d points\n", 100 * sum / n, n);
-  // The front accelerates away from the column: strictly advancing after T = 0.5.
+  // The front advances: it never falls back by more than one spacing (l0/a = 0.05), which is what a tip node
+  // detaching from the liquid (and so no longer counted as the front) can take away.
   for (std::size_t i = 1; i < T.size(); ++i)
-    if (T[i] > 0.5) CHECK(Z[i] >= Z[i - 1]);
+    if (T[i] > 0.5) CHECK(Z[i] >= Z[i - 1] - 0.05);
 }

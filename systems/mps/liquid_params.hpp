@@ -14,7 +14,8 @@ enum class PpeSolverKind { MatrixFree, EigenCg };
 enum class Preconditioner { Jacobi, IncompleteCholesky };
 
 struct PpeSettings {
-  PpeSolverKind kind = PpeSolverKind::MatrixFree;
+  // Eigen CG with Jacobi is the default: faster end to end in every benchmarked tank (bench/mps_step_bench).
+  PpeSolverKind kind = PpeSolverKind::EigenCg;
   Preconditioner preconditioner = Preconditioner::Jacobi;  // Eigen CG only; the matrix-free CG is Jacobi
   double tolerance = 1e-8;  // relative residual |b - A p| / |b|
   int max_iterations = 2000;

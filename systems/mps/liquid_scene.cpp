@@ -123,7 +123,7 @@ LiquidScene load_liquid_scene(const SceneDoc& doc) {
   p.collision.restitution = liq.get_double("collision_restitution", 0.2, Range::closed(0.0, 1.0));
   p.skin = liq.get_double("skin", 0.5, Range::closed(0.0, 2.0)) * l0;
   if (auto sv = liq.maybe_table("solver")) {
-    p.solver.kind = sv->get_choice("kind", {"matrix_free", "eigen_cg"}, "matrix_free") == "eigen_cg"
+    p.solver.kind = sv->get_choice("kind", {"matrix_free", "eigen_cg"}, "eigen_cg") == "eigen_cg"
                         ? PpeSolverKind::EigenCg
                         : PpeSolverKind::MatrixFree;
     const std::string pc = sv->get_choice("preconditioner", {"jacobi", "incomplete_cholesky"}, "jacobi");
