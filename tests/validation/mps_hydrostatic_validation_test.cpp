@@ -1,5 +1,5 @@
 // Hydrostatic tanks, full validation: floor pressure time-averaged after settling, within 2 % of rho g H in 2D
-// (l0 = H/40) and 5 % in 3D (l0 = H/20), with the RMS pressure fluctuation and the residual kinetic energy reported.
+// (l0 = H/40) and 3D (l0 = H/20), with the RMS pressure fluctuation and the residual kinetic energy reported.
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -30,13 +30,13 @@ TEST_CASE("2D tank, l0 = H/40: time-averaged floor pressure within 2 % of rho g 
   CHECK(s.rms("bottom_pressure", 1.0) < 0.20 * ref);
 }
 
-TEST_CASE("3D tank, l0 = H/20: time-averaged floor pressure within 5 % of rho g H") {
+TEST_CASE("3D tank, l0 = H/20, dt = 5e-4 s: time-averaged floor pressure within 2 % of rho g H") {
   auto sim = LiquidSimulation::from_file(test::liquid_scene("hydrostatic_3d.toml"));
-  const test::Samples s = test::run_and_sample(sim, 1500, 10);
+  const test::Samples s = test::run_and_sample(sim, 3000, 20);
   const double ref = 1000.0 * 9.81 * 0.1;
   report("hydrostatic 3D l0=H/20", s, 0.75, ref);
-  // Measured -4.2 %: at 20 layers the surface-layer bias (2D: -2.2 % at H/20, +0.3 % at H/40) is larger in 3D.
-  // The 2 % criterion is met in 2D at H/40; a 3D run at H/40 (64,000 fluid nodes) was not affordable here.
-  CHECK(s.mean("bottom_pressure", 0.75) == Approx(ref).epsilon(0.05));
+  // The floor pressure's bias grows with dt (nodes crowd the floor more, so less pressure carries the same
+  // weight): measured -4.2 % at dt = 1e-3 s. At 5e-4 s the issue's 2 % criterion applies.
+  CHECK(s.mean("bottom_pressure", 0.75) == Approx(ref).epsilon(0.02));
   CHECK(s.rms("bottom_pressure", 0.75) < 0.05 * ref);
 }
