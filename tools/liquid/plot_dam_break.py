@@ -26,7 +26,7 @@ def main():
     out = sys.argv[1]
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for spec in sys.argv[2:]:
-        label, path = spec.split("=", 1)
+        label, path = spec.rsplit("=", 1)
         with open(path) as f:
             rows = list(csv.DictReader(f))
         T = [float(r["time"]) * math.sqrt(2 * G / A) for r in rows]
@@ -45,7 +45,7 @@ def main():
     ax.set_xlim(0, 3.6)
     ax.set_ylim(0.9, 4.3)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="lower right")
     ax.set_title("2D/3D dam break (a = 0.146 m, column 2a high) against experiments", fontsize=9)
     fig.tight_layout()
     fig.savefig(out, dpi=130)
