@@ -24,8 +24,9 @@ void check_ppe(const PpeResult& r, const PpeSettings& s, double t) {
                       " after " + std::to_string(r.iterations) + " iterations (" + std::to_string(r.unknowns) +
                       " unknowns), limit liquid.solver.tolerance = " + num(s.tolerance) + " within max_iterations = " +
                       std::to_string(s.max_iterations) +
-                      ". Fix: reduce run.dt, or raise liquid.solver.max_iterations, or try "
-                      "liquid.solver.kind = \"eigen_cg\" with preconditioner = \"incomplete_cholesky\"");
+                      ". Fix: reduce run.dt, or raise liquid.solver.max_iterations (a solve from rest needs about "
+                      "as many iterations as there are nodes across the domain, several times more), or try "
+                      "liquid.solver = { kind = \"eigen_cg\", preconditioner = \"incomplete_cholesky\" }");
 }
 
 void check_density(const FluidNodes& f, const LiquidParams& lp, const StabilityLimits& lim, double t,
