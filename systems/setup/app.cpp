@@ -8,7 +8,7 @@ int run_command(const CliOptions& opt) {
   // Parsing twice is cheap next to any run, and keeps each model's loader the only reader of its keys.
   switch (scene_model(SceneDoc::load(opt.scene, opt.overrides))) {
     case SceneModel::Liquid:
-      break;
+      return run_liquid_command(opt);
     case SceneModel::Dem:
       return run_dem_command(opt);
   }
@@ -18,7 +18,7 @@ int run_command(const CliOptions& opt) {
 int check_command(const CliOptions& opt) {
   switch (scene_model(SceneDoc::load(opt.scene, opt.overrides))) {
     case SceneModel::Liquid:
-      break;
+      return check_liquid_command(opt);
     case SceneModel::Dem:
       return check_dem_command(opt);
   }

@@ -12,5 +12,7 @@ SceneModel scene_model(const SceneDoc& doc);
 
 int run_dem_command(const CliOptions& opt);
 int check_dem_command(const CliOptions& opt);
+int run_liquid_command(const CliOptions& opt);    // systems/mps/liquid_app.cpp
+int check_liquid_command(const CliOptions& opt);
 
 }  // namespace gf

@@ -1,0 +1,35 @@
+// End-to-end MPS step throughput on still tanks (bench/mps_tank.hpp): steps/s and fluid particle-steps/s
+// (items_per_second) for 2D and 3D tanks of ~1e4 and ~1e5 fluid nodes, with each PPE solver.
+//   args: dim, side (nodes per edge), solver (0 matrix-free, 1 Eigen CG Jacobi)
+//
+// Run:  ./build/bench/mps_step_bench --benchmark_min_time=2
+#include <benchmark/benchmark.h>
+
+#include "bench/mps_tank.hpp"
+
+namespace {
+
+void BM_MpsStep(benchmark::State& state) {
+  const int dim = static_cast<int>(state.range(0)), side = static_cast<int>(state.range(1));
+  auto sim = gf::bench::liquid_tank(dim, side, state.range(2) ? "eigen_cg" : "matrix_free", 2);
+  for (auto _ : state) sim->step_once();
+  const auto fluid = static_cast<std::int64_t>(sim->nodes().count(gf::kFluid));
+  state.SetItemsProcessed(state.iterations() * fluid);
+  state.counters["fluid"] = static_cast<double>(fluid);
+  state.counters["nodes"] = static_cast<double>(sim->nodes().size());
+  state.counters["steps_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.SetLabel("items=fluid particle-steps");
+}
+
+void sizes(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"dim", "side", "eigen"});
+  for (auto [d, s] : {std::pair{2, 100}, {2, 316}, {3, 22}, {3, 46}})
+    for (int e : {0, 1}) b->Args({d, s, e});
+  b->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+
+BENCHMARK(BM_MpsStep)->Apply(sizes);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,41 @@
+// Physical and numerical parameters of an MPS liquid, shared by every liquid system (a world resource).
+#pragma once
+
+#include <array>
+
+#include "systems/mps/collision.hpp"
+#include "systems/mps/kernel.hpp"
+#include "systems/mps/neighbors.hpp"
+
+namespace gf {
+
+enum class GradientForm { Sum, MinPressure };
+enum class PpeSolverKind { MatrixFree, EigenCg };
+enum class Preconditioner { Jacobi, IncompleteCholesky };
+
+struct PpeSettings {
+  // Eigen CG with Jacobi is the default: faster end to end in every benchmarked tank (bench/mps_step_bench).
+  PpeSolverKind kind = PpeSolverKind::EigenCg;
+  Preconditioner preconditioner = Preconditioner::Jacobi;  // Eigen CG only; the matrix-free CG is Jacobi
+  double tolerance = 1e-8;  // relative residual |b - A p| / |b|
+  int max_iterations = 2000;
+};
+
+struct LiquidParams {
+  MpsConstants k;                         // dim, l0, re, n0, lambda
+  double rho = 1000.0;                    // kg/m^3
+  double nu = 1e-6;                       // m^2/s, kinematic viscosity
+  std::array<double, 3> gravity{};        // m/s^2
+  std::array<double, 3> body_force{};     // m/s^2, extra acceleration (drives periodic flows)
+  double gamma = 0.001;                   // Tanaka's weight of the number-density source term
+  double beta = 0.97;                     // free surface where n* < beta n0
+  GradientForm gradient = GradientForm::Sum;
+  bool clip_negative = true;              // p = max(p, 0) after the solve
+  double compressibility = 0.0;           // 1/Pa, alpha of Ikeda's term: lap p - rho alpha / dt^2 p = source
+  double skin = 0.0;                      // m, search radius = re + skin
+  Periodicity periodic;
+  PpeSettings solver;
+  CollisionSettings collision;
+};
+
+}  // namespace gf

@@ -1,0 +1,196 @@
+#include "systems/mps/liquid_scene.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace gf {
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(4);
+  os << v;
+  return os.str();
+}
+
+bool multiple_of(double length, double l0) {
+  const double k = length / l0;
+  return std::abs(k - std::round(k)) < 1e-6 && std::round(k) >= 1;
+}
+
+void read_geometry(LiquidScene& s, const SceneNode& root) {
+  const SceneNode g = root.table("geometry");
+  LiquidGeometry& geo = s.geometry;
+  geo.dim = s.params.k.dim;
+  const double l0 = s.params.k.l0;
+  const std::string type = g.get_choice("type", {"tank", "box", "channel", "pipe"});
+  geo.kind = type == "tank"      ? LiquidGeometry::Kind::Tank
+             : type == "box"     ? LiquidGeometry::Kind::Box
+             : type == "channel" ? LiquidGeometry::Kind::Channel
+                                 : LiquidGeometry::Kind::Pipe;
+  const int min_layers = static_cast<int>(std::ceil(s.params.k.re / l0 - 1e-9));
+  geo.layers = static_cast<int>(g.get_int("layers", std::max(3, min_layers), 1, 20));
+  if (geo.layers < min_layers)
+    g.fail("layers", std::to_string(geo.layers) + " wall+dummy layers do not cover the kernel radius (" +
+                         fmt(s.params.k.re / l0) + " l0): wall nodes would see a truncated neighbourhood",
+           "set layers >= " + std::to_string(min_layers) + " or remove the key");
+  if (geo.kind == LiquidGeometry::Kind::Pipe) {
+    if (geo.dim != 3) g.fail("type", "a pipe needs liquid.dim = 3", "use type = \"channel\" in 2D");
+    geo.center = g.get_vec3("center");
+    geo.radius = g.get_double("radius", Range::positive());
+    const double len = g.get_double("length", Range::positive());
+    geo.lo = {geo.center[0], 0, 0};
+    geo.hi = {geo.center[0] + len, 0, 0};
+    if (geo.radius < 2 * l0) g.fail("radius", "the pipe is narrower than 4 particle spacings", "reduce liquid.l0");
+  } else {
+    geo.lo = g.get_vec3("lo");
+    geo.hi = g.get_vec3("hi");
+    for (int a = 0; a < geo.dim; ++a)
+      if (!(geo.hi[a] > geo.lo[a])) g.fail("hi", "each component of hi must exceed lo's", "swap or correct lo and hi");
+    if (geo.dim == 2 && (geo.lo[2] != 0 || geo.hi[2] != 0))
+      g.fail("lo", "a 2D scene has no z extent", "set the z components of lo and hi to 0");
+  }
+  if (geo.kind == LiquidGeometry::Kind::Channel || geo.kind == LiquidGeometry::Kind::Pipe) {
+    const double L = geo.hi[0] - geo.lo[0];
+    if (!multiple_of(L, l0))
+      g.fail(geo.kind == LiquidGeometry::Kind::Pipe ? "length" : "hi",
+             "the periodic length along x (" + fmt(L) + " m) is not a whole number of spacings l0 = " + fmt(l0) + " m",
+             "make it a multiple of l0, e.g. " + fmt(std::max(1.0, std::round(L / l0)) * l0) + " m");
+    const double rc = s.params.k.re + s.params.skin;
+    if (L < 3 * rc)
+      g.fail(geo.kind == LiquidGeometry::Kind::Pipe ? "length" : "hi",
+             "the periodic length " + fmt(L) + " m is shorter than 3 search radii (" + fmt(3 * rc) + " m)",
+             "lengthen the periodic axis");
+  }
+  s.params.periodic = geo.periodicity();
+}
+
+void read_fluid(LiquidScene& s, const SceneNode& root) {
+  const auto blocks = root.tables("fluid");
+  if (blocks.empty())
+    root.fail("fluid", "the scene places no liquid", "add a [[fluid]] table with lo and hi (m) of a block to fill");
+  for (const SceneNode& b : blocks) {
+    FluidBlock fb;
+    fb.lo = b.get_vec3("lo");
+    fb.hi = b.get_vec3("hi");
+    for (int a = 0; a < s.params.k.dim; ++a)
+      if (!(fb.hi[a] > fb.lo[a])) b.fail("hi", "each component of hi must exceed lo's", "swap or correct lo and hi");
+    s.blocks.push_back(fb);
+  }
+}
+
+}  // namespace
+
+std::int64_t LiquidScene::steps() const { return static_cast<std::int64_t>(std::llround(duration / dt)); }
+
+StabilityLimits LiquidScene::limits() const {
+  StabilityLimits lim;
+  lim.cfl = cfl_limit;
+  lim.density_ratio = density_limit;
+  geometry.bounds(params.k.l0, lim.lo, lim.hi);
+  for (int a = 0; a < 3; ++a) {
+    lim.lo[a] -= domain_margin;
+    lim.hi[a] += domain_margin;
+  }
+  // Periodic axes wrap: nothing leaves through them.
+  if (params.periodic.axis >= 0) {
+    lim.lo[params.periodic.axis] = -INFINITY;
+    lim.hi[params.periodic.axis] = INFINITY;
+  }
+  return lim;
+}
+
+LiquidScene load_liquid_scene(const SceneDoc& doc) {
+  LiquidScene s;
+  s.file = doc.file();
+  const SceneNode root = doc.root();
+  LiquidParams& p = s.params;
+
+  const SceneNode liq = root.table("liquid");
+  const int dim = static_cast<int>(liq.get_int("dim", 2, 3));
+  const double l0 = liq.get_double("l0", Range::positive());
+  const double re = liq.get_double("re", 2.1, Range::closed(1.5, 5.0));
+  p.k = lattice_constants(dim, l0, re * l0);
+  p.rho = liq.get_double("density", Range::positive());
+  p.nu = liq.get_double("viscosity", Range::non_negative());
+  p.gamma = liq.get_double("gamma", 0.001, Range::closed(0, 1));
+  p.beta = liq.get_double("surface_threshold", 0.97, Range::open_closed(0, 1));
+  p.gradient = liq.get_choice("gradient", {"sum", "min"}, "sum") == "sum" ? GradientForm::Sum : GradientForm::MinPressure;
+  p.clip_negative = liq.get_bool("clip_negative", true);
+  p.compressibility = liq.get_double("compressibility", 0.0, Range::non_negative());
+  p.collision.distance = liq.get_double("collision_distance", 0.8, Range::closed(0.0, 1.0)) * l0;
+  p.collision.restitution = liq.get_double("collision_restitution", 0.2, Range::closed(0.0, 1.0));
+  p.skin = liq.get_double("skin", 0.5, Range::closed(0.0, 2.0)) * l0;
+  if (auto sv = liq.maybe_table("solver")) {
+    p.solver.kind = sv->get_choice("kind", {"matrix_free", "eigen_cg"}, "eigen_cg") == "eigen_cg"
+                        ? PpeSolverKind::EigenCg
+                        : PpeSolverKind::MatrixFree;
+    const std::string pc = sv->get_choice("preconditioner", {"jacobi", "incomplete_cholesky"}, "jacobi");
+    p.solver.preconditioner = pc == "jacobi" ? Preconditioner::Jacobi : Preconditioner::IncompleteCholesky;
+    if (p.solver.kind == PpeSolverKind::MatrixFree && pc != "jacobi")
+      sv->fail("preconditioner", "the matrix-free solver is Jacobi-preconditioned only",
+               "use kind = \"eigen_cg\" for incomplete Cholesky, or remove the key");
+    p.solver.tolerance = sv->get_double("tolerance", 1e-8, Range::open_closed(0, 0.1));
+    p.solver.max_iterations = static_cast<int>(sv->get_int("max_iterations", 2000, 1, 1000000));
+  }
+
+  const SceneNode run = root.table("run");
+  s.dt = run.get_double("dt", Range::positive());
+  s.duration = run.get_double("duration", Range::non_negative());
+  p.gravity = run.get_vec3("gravity", {0, 0, 0});
+  p.body_force = run.get_vec3("body_force", {0, 0, 0});
+  if (dim == 2 && (p.gravity[2] != 0 || p.body_force[2] != 0))
+    run.fail(p.gravity[2] != 0 ? "gravity" : "body_force", "a 2D scene has no z component",
+             "set the third component to 0");
+  s.cfl_limit = run.get_double("cfl_limit", 0.5, Range::open_closed(0, 2));
+  s.diffusion_limit = run.get_double("diffusion_limit", 0.2, Range::open_closed(0, 2));
+  s.density_limit = run.get_double("density_limit", 1.5, Range::open_closed(1, 10));
+  s.allow_unstable_dt = run.get_bool("allow_unstable_dt", false);
+
+  read_geometry(s, root);
+  read_fluid(s, root);
+  s.domain_margin = run.get_double("domain_margin", 10 * l0, Range::non_negative());
+
+  // Velocity scale for the CFL check: free fall over the liquid's height unless the scene states one.
+  double height = 0;
+  for (const FluidBlock& b : s.blocks) height = std::max(height, b.hi[1] - s.geometry.lo[1]);
+  const double g = std::sqrt(p.gravity[0] * p.gravity[0] + p.gravity[1] * p.gravity[1] + p.gravity[2] * p.gravity[2]);
+  if (run.has("velocity_scale")) {
+    s.velocity_scale = run.get_double("velocity_scale", Range::positive());
+  } else {
+    s.velocity_scale = std::sqrt(2.0 * g * std::max(height, 0.0));
+    if (!(s.velocity_scale > 0))
+      run.fail("velocity_scale", "no gravity to estimate the flow speed from",
+               "set velocity_scale (m/s) to the largest speed expected, e.g. the analytic centre velocity");
+  }
+  s.cfl = s.velocity_scale * s.dt / l0;
+  s.diffusion = p.nu * s.dt / (l0 * l0);
+  if (!s.allow_unstable_dt) {
+    if (s.cfl > s.cfl_limit)
+      run.fail("dt",
+               "time step " + fmt(s.dt) + " s gives a CFL number " + fmt(s.cfl) + " (velocity scale " +
+                   fmt(s.velocity_scale) + " m/s, l0 = " + fmt(l0) + " m) above cfl_limit = " + fmt(s.cfl_limit),
+               "set dt <= " + fmt(s.cfl_limit * l0 / s.velocity_scale) +
+                   ", or set allow_unstable_dt = true to run anyway");
+    if (s.diffusion > s.diffusion_limit)
+      run.fail("dt",
+               "time step " + fmt(s.dt) + " s gives a viscous diffusion number nu dt / l0^2 = " + fmt(s.diffusion) +
+                   " above diffusion_limit = " + fmt(s.diffusion_limit),
+               "set dt <= " + fmt(s.diffusion_limit * l0 * l0 / std::max(p.nu, 1e-300)) +
+                   ", or set allow_unstable_dt = true to run anyway");
+  }
+
+  if (auto out = root.maybe_table("output")) {
+    s.output.series_interval = out->get_double("series_interval", 0.0, Range::non_negative());
+    s.output.frame_interval = out->get_double("frame_interval", 0.0, Range::non_negative());
+    if (s.output.series_interval > 0 && s.output.series_interval < s.dt)
+      out->fail("series_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no series");
+    if (s.output.frame_interval > 0 && s.output.frame_interval < s.dt)
+      out->fail("frame_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no frames");
+  }
+  doc.check_all_used();
+  return s;
+}
+
+}  // namespace gf

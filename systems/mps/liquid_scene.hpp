@@ -1,0 +1,42 @@
+// Loads and checks an MPS liquid scene (a scene with a top-level [liquid] table). Every key is read through the
+// checked scene reader; stability limits (CFL with the scene's velocity scale, viscous diffusion number) are
+// checked here, before anything runs, like the DEM side checks its time step.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "engine/scene.hpp"
+#include "systems/mps/boundaries.hpp"
+#include "systems/mps/liquid_params.hpp"
+#include "systems/mps/stability.hpp"
+
+namespace gf {
+
+struct LiquidOutput {
+  double series_interval = 0;  // s, 0: none
+  double frame_interval = 0;   // s, 0: none
+};
+
+struct LiquidScene {
+  std::filesystem::path file;
+  LiquidParams params;
+  LiquidGeometry geometry;
+  std::vector<FluidBlock> blocks;
+  double dt = 0;              // s
+  double duration = 0;        // s
+  double velocity_scale = 0;  // m/s, expected max speed, for the CFL check at load
+  double cfl = 0;             // velocity_scale dt / l0
+  double diffusion = 0;       // nu dt / l0^2
+  double cfl_limit = 0.5, diffusion_limit = 0.2, density_limit = 1.5, domain_margin = 0;
+  bool allow_unstable_dt = false;
+  LiquidOutput output;
+
+  std::int64_t steps() const;
+  StabilityLimits limits() const;
+};
+
+LiquidScene load_liquid_scene(const SceneDoc& doc);
+
+}  // namespace gf

@@ -1,0 +1,47 @@
+#include "systems/mps/liquid_simulation.hpp"
+
+#include "systems/mps/liquid_step.hpp"
+#include "systems/mps/neighbors.hpp"
+#include "systems/mps/ppe.hpp"
+
+namespace gf {
+
+LiquidSimulation::LiquidSimulation(LiquidScene scene)
+    : scene_(std::move(scene)), world_(std::make_unique<World>()), step_(std::make_unique<Schedule>()) {
+  World& w = *world_;
+  w.clock = Clock{0.0, scene_.dt, 0};
+  FluidNodes& f = w.resources.emplace<FluidNodes>();
+  generate_nodes(scene_.geometry, scene_.blocks, scene_.params.k.l0, f);
+  w.resources.emplace<LiquidParams>(scene_.params);
+  w.resources.emplace<NeighborPairs>();
+  w.resources.emplace<PpeWorkspace>();
+  w.resources.emplace<LiquidDiagnostics>();
+  w.resources.emplace<StabilityLimits>(scene_.limits());
+  schedule_liquid_step(*step_);
+  step_->build(w);
+}
+
+LiquidSimulation LiquidSimulation::from_file(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return LiquidSimulation(load_liquid_scene(SceneDoc::load(file, overrides)));
+}
+
+LiquidSimulation LiquidSimulation::from_text(std::string_view toml, const std::vector<std::string>& overrides) {
+  return LiquidSimulation(load_liquid_scene(SceneDoc::parse(toml, "scene.toml", overrides)));
+}
+
+FluidNodes& LiquidSimulation::nodes() { return world_->resources.get<FluidNodes>(); }
+LiquidParams& LiquidSimulation::params() { return world_->resources.get<LiquidParams>(); }
+const LiquidDiagnostics& LiquidSimulation::diagnostics() { return world_->resources.get<LiquidDiagnostics>(); }
+
+void LiquidSimulation::step_once() {
+  step_->run_step();
+  Clock& c = world_->clock;
+  ++c.step;
+  c.t = t0_ + static_cast<double>(c.step) * c.dt;
+}
+
+void LiquidSimulation::advance(std::int64_t n) {
+  for (std::int64_t k = 0; k < n; ++k) step_once();
+}
+
+}  // namespace gf

@@ -1,0 +1,187 @@
+#include "systems/mps/neighbors.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace gf {
+
+void wrap_periodic(FluidNodes& f, const Periodicity& per) {
+  if (per.axis < 0) return;
+  ColumnD& c = per.axis == 0 ? f.x : per.axis == 1 ? f.y : f.z;
+  const double L = per.period();
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    double v = c[i];
+    if (v < per.lo || v >= per.hi) {
+      v -= L * std::floor((v - per.lo) / L);
+      if (v >= per.hi) v = per.lo;  // round-off at the upper edge
+      c[i] = v;
+    }
+  }
+}
+
+namespace {
+
+struct Grid {
+  double origin[3];
+  double cell[3];
+  std::int64_t dims[3];
+  std::vector<std::uint32_t> cell_of, start, order;
+};
+
+void bin(const FluidNodes& f, double radius, const Periodicity& per, Grid& g) {
+  const std::size_t n = f.size();
+  const ColumnD* c[3] = {&f.x, &f.y, &f.z};
+  std::size_t cells = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (a == 2 && f.dim == 2) {
+      g.origin[a] = 0;
+      g.cell[a] = 1;
+      g.dims[a] = 1;
+      continue;
+    }
+    if (a == per.axis) {
+      g.dims[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(per.period() / radius)));
+      g.origin[a] = per.lo;
+      g.cell[a] = per.period() / g.dims[a];
+    } else {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double v = (*c[a])[i];
+        if (!std::isfinite(v))
+          throw std::runtime_error("neighbour search: node " + std::to_string(i) + " has a non-finite position");
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+      g.origin[a] = lo;
+      g.cell[a] = radius;
+      g.dims[a] = static_cast<std::int64_t>(std::floor((hi - lo) / radius)) + 1;
+    }
+    cells *= static_cast<std::size_t>(g.dims[a]);
+  }
+  // A node flung far away would make the grid huge: refuse loudly (the run's domain check catches it first).
+  if (cells > std::max<std::size_t>(std::size_t(1) << 26, 64 * n))
+    throw std::runtime_error("neighbour search: the nodes span " + std::to_string(cells) +
+                             " cells; a particle has left the domain");
+  g.cell_of.resize(n);
+  g.start.assign(cells + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int64_t id[3];
+    for (int a = 0; a < 3; ++a) {
+      id[a] = static_cast<std::int64_t>(std::floor(((*c[a])[i] - g.origin[a]) / g.cell[a]));
+      id[a] = std::clamp<std::int64_t>(id[a], 0, g.dims[a] - 1);
+    }
+    const auto cid = static_cast<std::uint32_t>((id[2] * g.dims[1] + id[1]) * g.dims[0] + id[0]);
+    g.cell_of[i] = cid;
+    ++g.start[cid + 1];
+  }
+  for (std::size_t k = 0; k < cells; ++k) g.start[k + 1] += g.start[k];
+  g.order.resize(n);
+  std::vector<std::uint32_t> fill(g.start.begin(), g.start.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) g.order[fill[g.cell_of[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+// Calls emit(j, image) for every neighbour of row i.
+template <class Emit>
+void scan_row(const FluidNodes& f, const Grid& g, double r2max, const Periodicity& per, std::size_t i, Emit&& emit) {
+  const double p[3] = {f.x[i], f.y[i], f.z[i]};
+  std::int64_t id[3];
+  for (int a = 0; a < 3; ++a) id[a] = (g.cell_of[i] / (a == 0 ? 1 : a == 1 ? g.dims[0] : g.dims[0] * g.dims[1])) % g.dims[a];
+  const bool dummy_row = f.kind[i] == kDummy;
+  const int rz = g.dims[2] > 1 ? 1 : 0;
+  const double L = per.period();
+  for (int oz = -rz; oz <= rz; ++oz)
+    for (int oy = -1; oy <= 1; ++oy)
+      for (int ox = -1; ox <= 1; ++ox) {
+        const int off[3] = {ox, oy, oz};
+        std::int64_t cc[3];
+        int image = 0;
+        bool skip = false;
+        for (int a = 0; a < 3; ++a) {
+          cc[a] = id[a] + off[a];
+          if (a == per.axis) {
+            if (g.dims[a] < 3 && off[a] != 0) {
+              skip = true;  // fewer than 3 cells: the load check forbids it, never double-count
+              break;
+            }
+            if (cc[a] < 0) {
+              cc[a] += g.dims[a];
+              image = -1;
+            } else if (cc[a] >= g.dims[a]) {
+              cc[a] -= g.dims[a];
+              image = 1;
+            }
+          } else if (cc[a] < 0 || cc[a] >= g.dims[a]) {
+            skip = true;
+            break;
+          }
+        }
+        if (skip) continue;
+        const std::size_t cid = static_cast<std::size_t>((cc[2] * g.dims[1] + cc[1]) * g.dims[0] + cc[0]);
+        for (std::uint32_t s = g.start[cid]; s < g.start[cid + 1]; ++s) {
+          const std::uint32_t q = g.order[s];
+          if (q == i) continue;
+          if (dummy_row && f.kind[q] != kWall) continue;
+          double d[3] = {f.x[q] - p[0], f.y[q] - p[1], f.z[q] - p[2]};
+          if (image != 0) d[per.axis] += image * L;
+          if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < r2max) emit(q, image);
+        }
+      }
+}
+
+}  // namespace
+
+bool neighbors_stale(const FluidNodes& f, const NeighborPairs& nb, double skin, double dt) {
+  if (nb.x0.size() != f.size() || std::getenv("GF_ALWAYS_REBUILD")) return true;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    if (f.kind[i] != kFluid) continue;
+    const double dx = f.x[i] - nb.x0[i], dy = f.y[i] - nb.y0[i], dz = f.z[i] - nb.z0[i];
+    const double ahead = 2.0 * dt * std::sqrt(f.u[i] * f.u[i] + f.v[i] * f.v[i] + f.w[i] * f.w[i]);
+    if (!(std::sqrt(dx * dx + dy * dy + dz * dz) + ahead <= 0.5 * skin)) return true;
+  }
+  return false;
+}
+
+void build_neighbors(const FluidNodes& f, double radius, const Periodicity& per, NeighborPairs& out) {
+  const std::size_t n = f.size();
+  out.x0.assign(f.x.begin(), f.x.end());
+  out.y0.assign(f.y.begin(), f.y.end());
+  out.z0.assign(f.z.begin(), f.z.end());
+  ++out.builds;
+  Grid g;
+  bin(f, radius, per, g);
+  const double r2 = radius * radius;
+  out.start.assign(n + 1, 0);
+  out.periodic = per;
+  out.radius = radius;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      std::uint32_t c = 0;
+      scan_row(f, g, r2, per, i, [&](std::uint32_t, int) { ++c; });
+      out.start[i + 1] = c;
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i) out.start[i + 1] += out.start[i];
+  const std::size_t m = out.start[n];
+  out.j.resize(m);
+  out.image.resize(m);
+  out.w.assign(m, 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      std::uint32_t k = out.start[i];
+      scan_row(f, g, r2, per, i, [&](std::uint32_t q, int image) {
+        out.j[k] = q;
+        out.image[k] = static_cast<std::int8_t>(image);
+        ++k;
+      });
+    }
+  });
+}
+
+}  // namespace gf

@@ -1,0 +1,327 @@
+#include "systems/mps/ppe.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+namespace gf {
+
+void compute_divergence(FluidNodes& f, const NeighborPairs& nb, const MpsConstants& k) {
+  const double c = k.grad_coef();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      if (f.kind[i] == kDummy) {
+        f.div[i] = 0;
+        continue;
+      }
+      double s = 0;
+      for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q) {
+        double dx, dy, dz;
+        nb.rel(f, i, q, dx, dy, dz);
+        const double r2 = dx * dx + dy * dy + dz * dz;
+        if (r2 <= 0 || nb.w[q] == 0) continue;
+        const std::uint32_t j = nb.j[q];
+        s += (dx * (f.u[j] - f.u[i]) + dy * (f.v[j] - f.v[i]) + dz * (f.w[j] - f.w[i])) / r2 * nb.w[q];
+      }
+      f.div[i] = c * s;
+    }
+  });
+}
+
+void ppe_prepare(const FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeProblem& pb) {
+  const std::size_t n = f.size();
+  pb.active.assign(n, 0);
+  pb.b.assign(n, 0.0);
+  pb.diag.assign(n, 0.0);
+  pb.c = lp.k.lap_coef();
+  const double shift = lp.rho * lp.compressibility / (dt * dt);
+  const double n0 = lp.k.n0;
+  for (std::size_t i = 0; i < n; ++i) pb.active[i] = f.kind[i] != kDummy && !f.surface[i];
+  bool dirichlet = false;
+  for (std::size_t i = 0; i < n; ++i) dirichlet |= f.kind[i] != kDummy && f.surface[i];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      if (!pb.active[i]) continue;
+      double sw = 0;
+      for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q)
+        if (f.kind[nb.j[q]] != kDummy) sw += nb.w[q];
+      pb.diag[i] = pb.c * sw + shift;
+      const double source = (1.0 - lp.gamma) * lp.rho / dt * f.div[i] -
+                            lp.gamma * lp.rho / (dt * dt) * (f.n[i] - n0) / n0;
+      pb.b[i] = -source;
+    }
+  });
+  // A row without any coupling (an isolated node) cannot be solved: treat it as Dirichlet.
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (pb.active[i] && !(pb.diag[i] > 0)) {
+      pb.active[i] = 0;
+      pb.b[i] = 0;
+      dirichlet = true;
+    }
+    m += pb.active[i];
+  }
+  pb.unknowns = m;
+  pb.closed = !dirichlet && !(shift > 0);
+  if (pb.closed && m > 0) {
+    double mean = 0;
+    for (std::size_t i = 0; i < n; ++i) mean += pb.b[i];
+    mean /= static_cast<double>(m);
+    for (std::size_t i = 0; i < n; ++i)
+      if (pb.active[i]) pb.b[i] -= mean;
+  }
+}
+
+namespace {
+
+constexpr std::size_t kBlock = 1024;
+
+// Deterministic parallel sum of f(i) over [0, n): fixed blocks, partial sums added in block order.
+template <class F>
+double det_sum(std::size_t n, F&& f) {
+  const std::size_t nb = (n + kBlock - 1) / kBlock;
+  // Scratch per calling thread, bound to a reference: a thread_local named inside the lambda would be the
+  // worker thread's own (empty) instance.
+  static thread_local std::vector<double> scratch;
+  std::vector<double>& part = scratch;
+  part.assign(nb, 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b < r.end(); ++b) {
+      double s = 0;
+      const std::size_t e = std::min(n, (b + 1) * kBlock);
+      for (std::size_t i = b * kBlock; i < e; ++i) s += f(i);
+      part[b] = s;
+    }
+  });
+  double s = 0;
+  for (double v : part) s += v;
+  return s;
+}
+
+template <class F>
+void par_rows(std::size_t n, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kBlock), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) f(i);
+  });
+}
+
+void remove_mean(const PpeProblem& pb, ColumnD& p) {
+  double mean = 0;
+  for (std::size_t i = 0; i < pb.active.size(); ++i)
+    if (pb.active[i]) mean += p[i];
+  mean /= static_cast<double>(std::max<std::size_t>(1, pb.unknowns));
+  for (std::size_t i = 0; i < pb.active.size(); ++i)
+    if (pb.active[i]) p[i] -= mean;
+}
+
+}  // namespace
+
+void ppe_apply(const NeighborPairs& nb, const PpeProblem& pb, const std::vector<double>& x, std::vector<double>& y) {
+  par_rows(pb.active.size(), [&](std::size_t i) {
+    if (!pb.active[i]) {
+      y[i] = 0;
+      return;
+    }
+    double s = 0;
+    for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q) s += nb.w[q] * x[nb.j[q]];
+    y[i] = pb.diag[i] * x[i] - pb.c * s;
+  });
+}
+
+PpeResult ppe_solve_matrix_free(const NeighborPairs& nb, const PpeProblem& pb, const PpeSettings& s, ColumnD& p) {
+  const std::size_t n = pb.active.size();
+  PpeResult res;
+  res.unknowns = pb.unknowns;
+  res.closed = pb.closed;
+  static thread_local std::vector<double> sx, sr, sd, sq, sinv, sp1, sp2;
+  std::vector<double>&x = sx, &r = sr, &d = sd, &q = sq, &inv = sinv;  // see det_sum: the workers must see these
+  x.assign(n, 0.0);
+  r.assign(n, 0.0);
+  d.assign(n, 0.0);
+  q.assign(n, 0.0);
+  inv.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (pb.active[i]) {
+      x[i] = p[i];
+      inv[i] = 1.0 / pb.diag[i];
+    }
+  const double bnorm = std::sqrt(det_sum(n, [&](std::size_t i) { return pb.b[i] * pb.b[i]; }));
+  if (pb.unknowns == 0 || bnorm == 0) {
+    for (std::size_t i = 0; i < n; ++i) p[i] = 0;
+    return res;
+  }
+  // Three fused passes per iteration, each with its reductions done per fixed block (deterministic):
+  //   q = A d and d.q;  x += a d, r -= a q, then r.z and r.r (z = r / diag);  d = z + beta d.
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<double>&part1 = sp1, &part2 = sp2;
+  part1.assign(blocks, 0.0);
+  part2.assign(blocks, 0.0);
+  auto blockwise = [&](auto&& body) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& br) {
+      for (std::size_t b = br.begin(); b < br.end(); ++b) body(b, b * kBlock, std::min(n, (b + 1) * kBlock));
+    });
+  };
+  auto total = [&](const std::vector<double>& part) {
+    double t = 0;
+    for (double v : part) t += v;
+    return t;
+  };
+  auto apply_row = [&](std::size_t i, const std::vector<double>& v) {
+    double acc = 0;
+    for (std::uint32_t k = nb.start[i]; k < nb.start[i + 1]; ++k) acc += nb.w[k] * v[nb.j[k]];
+    return pb.diag[i] * v[i] - pb.c * acc;
+  };
+  // r = b - A x, d = z = r / diag.
+  blockwise([&](std::size_t b, std::size_t i0, std::size_t i1) {
+    double rz = 0, rr = 0;
+    for (std::size_t i = i0; i < i1; ++i) {
+      if (!pb.active[i]) continue;
+      r[i] = pb.b[i] - apply_row(i, x);
+      d[i] = r[i] * inv[i];
+      rz += r[i] * d[i];
+      rr += r[i] * r[i];
+    }
+    part1[b] = rz;
+    part2[b] = rr;
+  });
+  double rz = total(part1);
+  double rnorm = std::sqrt(total(part2));
+  int it = 0;
+  while (rnorm > s.tolerance * bnorm && it < s.max_iterations) {
+    blockwise([&](std::size_t b, std::size_t i0, std::size_t i1) {
+      double dq = 0;
+      for (std::size_t i = i0; i < i1; ++i) {
+        if (!pb.active[i]) continue;
+        q[i] = apply_row(i, d);
+        dq += d[i] * q[i];
+      }
+      part1[b] = dq;
+    });
+    const double dq = total(part1);
+    if (!(dq > 0)) break;  // loss of positive definiteness: reported as non-convergence below
+    const double alpha = rz / dq;
+    blockwise([&](std::size_t b, std::size_t i0, std::size_t i1) {
+      double rz_b = 0, rr_b = 0;
+      for (std::size_t i = i0; i < i1; ++i) {
+        if (!pb.active[i]) continue;
+        x[i] += alpha * d[i];
+        r[i] -= alpha * q[i];
+        rz_b += r[i] * r[i] * inv[i];
+        rr_b += r[i] * r[i];
+      }
+      part1[b] = rz_b;
+      part2[b] = rr_b;
+    });
+    const double rz_new = total(part1);
+    rnorm = std::sqrt(total(part2));
+    const double beta = rz_new / rz;
+    rz = rz_new;
+    par_rows(n, [&](std::size_t i) {
+      if (pb.active[i]) d[i] = r[i] * inv[i] + beta * d[i];
+    });
+    ++it;
+  }
+  res.iterations = it;
+  res.residual = rnorm / bnorm;
+  res.converged = std::isfinite(rnorm) && rnorm <= s.tolerance * bnorm;
+  for (std::size_t i = 0; i < n; ++i) p[i] = x[i];
+  if (pb.closed) remove_mean(pb, p);
+  return res;
+}
+
+void ppe_assemble_eigen(const NeighborPairs& nb, const PpeProblem& pb, EigenPpe& sys) {
+  const std::size_t n = pb.active.size();
+  sys.row_of.assign(n, -1);
+  sys.node_of.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (pb.active[i]) {
+      sys.row_of[i] = static_cast<std::int32_t>(sys.node_of.size());
+      sys.node_of.push_back(static_cast<std::uint32_t>(i));
+    }
+  const auto m = static_cast<Eigen::Index>(sys.node_of.size());
+  // Rows are filled in order straight into compressed storage: no triplet sort.
+  Eigen::SparseMatrix<double, Eigen::RowMajor>& A = sys.A;
+  A.resize(m, m);
+  std::vector<int> nnz(static_cast<std::size_t>(m));
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const std::uint32_t i = sys.node_of[r];
+    int c = 1;
+    for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q) c += sys.row_of[nb.j[q]] >= 0 && nb.w[q] != 0;
+    nnz[r] = c;
+  }
+  A.reserve(nnz);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const std::uint32_t i = sys.node_of[r];
+    A.insert(r, r) = pb.diag[i];
+    for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q) {
+      const std::int32_t c = sys.row_of[nb.j[q]];
+      if (c >= 0 && nb.w[q] != 0) A.insert(r, c) = -pb.c * nb.w[q];
+    }
+  }
+  A.makeCompressed();
+}
+
+PpeResult ppe_solve_eigen(const EigenPpe& sys, const PpeProblem& pb, const PpeSettings& s, ColumnD& p) {
+  using Mat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  const auto m = static_cast<Eigen::Index>(sys.node_of.size());
+  PpeResult res;
+  res.unknowns = pb.unknowns;
+  res.closed = pb.closed;
+  Eigen::VectorXd b(m), x0(m), x;
+  for (Eigen::Index r = 0; r < m; ++r) {
+    b[r] = pb.b[sys.node_of[r]];
+    x0[r] = p[sys.node_of[r]];
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = 0;
+  if (m == 0 || b.norm() == 0) return res;
+  auto run = [&](auto& cg) {
+    cg.setTolerance(s.tolerance);
+    cg.setMaxIterations(s.max_iterations);
+    cg.compute(sys.A);
+    if (cg.info() != Eigen::Success) {
+      res.converged = false;
+      res.residual = INFINITY;
+      return;
+    }
+    x = cg.solveWithGuess(b, x0);
+    res.iterations = static_cast<int>(cg.iterations());
+    res.residual = cg.error();
+    res.converged = cg.info() == Eigen::Success && std::isfinite(cg.error()) && cg.error() <= s.tolerance;
+  };
+  if (s.preconditioner == Preconditioner::IncompleteCholesky) {
+    Eigen::ConjugateGradient<Mat, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>> cg;
+    run(cg);
+  } else {
+    Eigen::ConjugateGradient<Mat, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
+    run(cg);
+  }
+  if (x.size() == m)
+    for (Eigen::Index r = 0; r < m; ++r) p[sys.node_of[r]] = x[r];
+  if (pb.closed) remove_mean(pb, p);
+  return res;
+}
+
+PpeResult solve_pressure(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeWorkspace& ws) {
+  compute_divergence(f, nb, lp.k);
+  ppe_prepare(f, nb, lp, dt, ws.problem);
+  PpeResult res;
+  if (lp.solver.kind == PpeSolverKind::EigenCg) {
+    ppe_assemble_eigen(nb, ws.problem, ws.eigen);
+    res = ppe_solve_eigen(ws.eigen, ws.problem, lp.solver, f.p);
+  } else {
+    res = ppe_solve_matrix_free(nb, ws.problem, lp.solver, f.p);
+  }
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    if (f.kind[i] == kDummy) continue;
+    if (!ws.problem.active[i]) f.p[i] = 0;
+    else if (lp.clip_negative && f.p[i] < 0) f.p[i] = 0;
+  }
+  return res;
+}
+
+}  // namespace gf
