@@ -1,6 +1,7 @@
 // `grainflow run` and `grainflow check` for MPS liquid scenes, with the DEM side's conventions: series.csv
 // flushed per row, VTK frames with a .pvd index, summary.json rewritten atomically at start and end, exit code 3
 // and status "failed" when a stability detector stops the run.
+#include <stdexcept>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -78,6 +79,9 @@ int check_liquid_command(const CliOptions& opt) {
 }
 
 int run_liquid_command(const CliOptions& opt) {
+  if (opt.resume)
+    throw std::invalid_argument("--resume: liquid scenes have no checkpoints yet (" + opt.scene.string() +
+                                "). Fix: run the liquid scene without --resume");
   const auto wall0 = std::chrono::steady_clock::now();
   const LiquidScene s = load_liquid_scene(SceneDoc::load(opt.scene, opt.overrides));
   const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
