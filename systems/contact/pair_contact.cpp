@@ -14,7 +14,8 @@ namespace {
 // Pairs per prefilter block: a multiple of the batch width, small enough for load balance.
 constexpr std::size_t kBlock = 2048;
 
-// The owner columns hold one extra slot, kept zero, that pairs apart point at (force_of).
+// The record column holds one extra record, kept zero, that pairs apart point at: the per-row sums
+// then add without a branch (half the list pairs are apart, at random, which a branch mispredicts).
 void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
   for (Column<std::int32_t>* c : {&out.pair, &out.ci, &out.cj, &out.ctype, &out.cslot}) c->resize(nc + 1);
   out.rank.resize(np + 1);
@@ -22,12 +23,9 @@ void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
   out.next.resize(nc);
   out.next.slot.resize(np);
   std::fill(out.next.slot.begin() + np, out.next.slot.begin() + out.next.slot.padded(), -1);
-  for (ColumnD* c : {&out.fx, &out.fy, &out.fz, &out.tix, &out.tiy, &out.tiz}) {
-    c->resize(nc + 1);
-    (*c)[nc] = 0.0;
-  }
-  out.partner.resize(nc * PairForces::kRecord);
-  out.cpos.resize(nc);
+  out.record.resize((nc + 1) * PairForces::kRecord);
+  for (ColumnD* c : {&out.tix, &out.tiy, &out.tiz}) c->resize(nc);
+  std::fill(&out.record[nc * PairForces::kRecord], &out.record[(nc + 1) * PairForces::kRecord], 0.0);
 }
 
 // Springs of the last evaluation for contact c (entry `slot` of the old history, -1 for a new
@@ -140,67 +138,44 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
   h.ry[c] = s.roll.y;
   h.rz[c] = s.roll.z;
   const V3<double> nxf = cross(n, res.force_t);
-  out.fx[c] = res.force.x;
-  out.fy[c] = res.force.y;
-  out.fz[c] = res.force.z;
-  out.tix[c] = li * nxf.x + res.rolling_torque.x;
-  out.tiy[c] = li * nxf.y + res.rolling_torque.y;
-  out.tiz[c] = li * nxf.z + res.rolling_torque.z;
-  double* rec = &out.partner[static_cast<std::size_t>(out.cpos[c]) * PairForces::kRecord];
+  double* rec = &out.record[c * PairForces::kRecord];
   rec[PairForces::Fx] = res.force.x;
   rec[PairForces::Fy] = res.force.y;
   rec[PairForces::Fz] = res.force.z;
+  out.tix[c] = li * nxf.x + res.rolling_torque.x;
+  out.tiy[c] = li * nxf.y + res.rolling_torque.y;
+  out.tiz[c] = li * nxf.z + res.rolling_torque.z;
   // On j the force is -F and the lever -L_j n: the tangential torque has the same sign as i's.
   rec[PairForces::Tjx] = lj * nxf.x - res.rolling_torque.x;
   rec[PairForces::Tjy] = lj * nxf.y - res.rolling_torque.y;
   rec[PairForces::Tjz] = lj * nxf.z - res.rolling_torque.z;
 }
 
-// Where each contact's partner record goes: rows in order, each row's incoming contacts in list
-// order (the order of `in_pairs`). Two passes over fixed blocks of rows: count, then place.
-void place_partners(const NeighborList& list, PairForces& out, std::size_t rows) {
-  constexpr std::size_t kRows = 2048;
-  const std::size_t nblocks = (rows + kRows - 1) / kRows;
-  out.in_start.resize(rows + 1);
-  out.block_in.assign(nblocks + 1, 0);
-  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
-    std::uint32_t count = 0;
-    for (std::uint32_t q = list.in_offsets[b * kRows]; q < list.in_offsets[std::min(rows, (b + 1) * kRows)]; ++q)
-      count += out.touching[list.in_pairs[q]];
-    out.block_in[b + 1] = count;
-  });
-  for (std::size_t b = 0; b < nblocks; ++b) out.block_in[b + 1] += out.block_in[b];
-  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
-    std::uint32_t pos = out.block_in[b];
-    for (std::size_t a = b * kRows; a < std::min(rows, (b + 1) * kRows); ++a) {
-      out.in_start[a] = pos;
-      for (std::uint32_t q = list.in_offsets[a]; q < list.in_offsets[a + 1]; ++q) {
-        const std::uint32_t k = list.in_pairs[q];
-        if (out.touching[k]) out.cpos[out.contact_of[k]] = static_cast<std::int32_t>(pos++);
-      }
-    }
-  });
-  out.in_start[rows] = out.block_in[nblocks];
-}
-
-// Per row: own contacts (a contiguous run of the packed list), then incoming ones (a contiguous
-// run of partner records), each in list order.
+// Per row: own contacts (a contiguous run of list pairs), then incoming ones, in list order.
 void reduce_rows(Grains& g, const NeighborList& list, const PairForces& out) {
+  constexpr std::uint32_t kPrefetch = 24;
+  const auto n_in = static_cast<std::uint32_t>(list.in_pairs.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    constexpr std::size_t R = PairForces::kRecord;
     for (std::size_t a = r.begin(); a != r.end(); ++a) {
       double fx = 0, fy = 0, fz = 0, tx = 0, ty = 0, tz = 0;
-      // Contacts keep list order, and rows own runs of the list.
+      // Own contacts are one run of the packed list: contacts keep list order, rows own list runs.
+      const double* rec = out.record.data();
+      constexpr std::size_t R = PairForces::kRecord;
       for (std::size_t c = out.rank[list.offsets[a]]; c < static_cast<std::size_t>(out.rank[list.offsets[a + 1]]); ++c) {
-        fx += out.fx[c];
-        fy += out.fy[c];
-        fz += out.fz[c];
+        const double* q = rec + c * R;
+        fx += q[PairForces::Fx];
+        fy += q[PairForces::Fy];
+        fz += q[PairForces::Fz];
         tx += out.tix[c];
         ty += out.tiy[c];
         tz += out.tiz[c];
       }
-      for (std::uint32_t q = out.in_start[a]; q < out.in_start[a + 1]; ++q) {
-        const double* p = &out.partner[q * R];
+      const std::uint32_t q_end = list.in_offsets[a + 1];
+      for (std::uint32_t q = list.in_offsets[a]; q < q_end; ++q) {
+        // Incoming records are scattered over the whole contact list: ask for the one a few rows
+        // ahead now, so several misses are in flight instead of one at a time.
+        if (q + kPrefetch < n_in) __builtin_prefetch(rec + static_cast<std::size_t>(out.contact_of[list.in_pairs[q + kPrefetch]]) * R);
+        const double* p = rec + static_cast<std::size_t>(out.contact_of[list.in_pairs[q]]) * R;
         fx -= p[PairForces::Fx];
         fy -= p[PairForces::Fy];
         fz -= p[PairForces::Fz];
@@ -235,7 +210,6 @@ void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory
   if (h.slot.size() != np) h.map_slots(np);
   size_outputs(out, np, nc);
   compact_scalar(list, h, out, 0, np, 0, static_cast<std::int32_t>(nc));
-  place_partners(list, out, g.n_owned);
   for (std::size_t c = 0; c < nc; ++c) {
     const auto k = static_cast<std::size_t>(out.pair[c]);
     carry_spring(h, out.cslot[c], out.next, c);
@@ -299,7 +273,6 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
 #endif
   });
   out.rank[np] = static_cast<std::int32_t>(nc);
-  place_partners(list, out, g.n_owned);
 
   // 3. The law over whole batches of contacts; the remainder through the scalar path.
   const PairCoeffs* coeffs = table.pair_data();
@@ -382,13 +355,10 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       s.roll.y.store_aligned(&nh.ry[c0]);
       s.roll.z.store_aligned(&nh.rz[c0]);
       const V nxf = cross(n, res.force_t);
-      res.force.x.store_aligned(&out.fx[c0]);
-      res.force.y.store_aligned(&out.fy[c0]);
-      res.force.z.store_aligned(&out.fz[c0]);
       (li * nxf.x + res.rolling_torque.x).store_aligned(&out.tix[c0]);
       (li * nxf.y + res.rolling_torque.y).store_aligned(&out.tiy[c0]);
       (li * nxf.z + res.rolling_torque.z).store_aligned(&out.tiz[c0]);
-      // Partner records, one cache line each, at their places in partner order.
+      // Lanes to records: store the six batches, then interleave them.
       constexpr std::size_t F = 6;
       alignas(64) double lanes[F][L];
       res.force.x.store_aligned(lanes[PairForces::Fx]);
@@ -397,10 +367,9 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       (lj * nxf.x - res.rolling_torque.x).store_aligned(lanes[PairForces::Tjx]);
       (lj * nxf.y - res.rolling_torque.y).store_aligned(lanes[PairForces::Tjy]);
       (lj * nxf.z - res.rolling_torque.z).store_aligned(lanes[PairForces::Tjz]);
-      for (std::size_t l = 0; l < L; ++l) {
-        double* rec = &out.partner[static_cast<std::size_t>(out.cpos[c0 + l]) * PairForces::kRecord];
-        for (std::size_t f = 0; f < F; ++f) rec[f] = lanes[f][l];
-      }
+      double* rec = &out.record[c0 * PairForces::kRecord];
+      for (std::size_t l = 0; l < L; ++l)
+        for (std::size_t f = 0; f < F; ++f) rec[l * PairForces::kRecord + f] = lanes[f][l];
     }
   });
   for (std::size_t c = full * L; c < nc; ++c) {

@@ -30,18 +30,14 @@ struct PairForces {
   Column<std::int32_t> ci, cj;     // its rows
   Column<std::int32_t> ctype;      // its type-pair index (NeighborList::type_pair)
   Column<std::int32_t> cslot;      // its spring's entry in the history of the last evaluation, or -1
-  // Per contact, for the owner row i's sum (read in contact order): force on i (N) and torque
-  // on i (N m); one slot past the last contact is kept zero, for pairs apart.
-  ColumnD fx, fy, fz, tix, tiy, tiz;
-  // For the partner rows' sums: one 64-byte record per contact {F (force on i; j gets minus it),
-  // torque on j, 2 unused}, stored in partner order (by row j, then list order), so that each
-  // row's incoming contacts are one contiguous run: `in_start[r]` .. `in_start[r + 1]`.
+  // What the partner row j reads: one 64-byte record per contact, plus a last all-zero record
+  // that stands for "apart": force on the owner i (N; j gets minus it) and torque on j (N m).
+  // The per-row sums read incoming contacts at random, so each costs one cache line.
   static constexpr std::size_t kRecord = 8;
   enum Field : std::size_t { Fx, Fy, Fz, Tjx, Tjy, Tjz };
-  ColumnD partner;
-  Column<std::int32_t> cpos;          // per contact, its record's position in partner order
-  std::vector<std::uint32_t> in_start;  // size rows + 1
-  std::vector<std::uint32_t> block_in;  // incoming contacts per block of rows (scratch)
+  ColumnD record;
+  ColumnD tix, tiy, tiz;  // torque on the owner i (N m), read in contact order by i's own sum
+  double at(std::size_t c, Field f) const { return record[c * kRecord + f]; }
   // Per list pair.
   std::vector<std::int32_t> rank;        // contacts before this list pair (size pairs + 1)
   std::vector<std::int32_t> contact_of;  // contact index, or contacts() (a zero row) when apart
@@ -55,7 +51,7 @@ struct PairForces {
   // Force on the owner of list pair k at the last evaluation (zero when apart).
   V3<double> force_of(std::size_t k) const {
     const auto c = static_cast<std::size_t>(contact_of[k]);
-    return {fx[c], fy[c], fz[c]};
+    return {at(c, Fx), at(c, Fy), at(c, Fz)};
   }
 };
 
