@@ -222,10 +222,10 @@ void check_sorted_rows(const Built& b, const Pack& p) {
     REQUIRE(tag.v[r] == 100.0 + k);
     // The cell recorded for the row is the one its position lies in.
     const double q[3] = {g.pos.x[r], g.pos.y[r], g.pos.z[r]};
-    std::array<std::int64_t, 3> c{};
+    std::int64_t c[3];
     for (int d = 0; d < 3; ++d)
       c[d] = std::min(static_cast<std::int64_t>((q[d] - grid.origin[d]) * (1.0 / grid.cell)), grid.dims[d] - 1);
-    REQUIRE(grid.cell_of[r] == static_cast<std::uint32_t>(grid.flat(c)));
+    REQUIRE(grid.cell_of[r] == static_cast<std::uint32_t>((c[2] * grid.dims[1] + c[1]) * grid.dims[0] + c[0]));
     if (r > 0) {
       REQUIRE(grid.cell_of[r - 1] <= grid.cell_of[r]);
       if (grid.cell_of[r - 1] == grid.cell_of[r]) REQUIRE(g.pid.id[r - 1] < g.pid.id[r]);

@@ -137,40 +137,35 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     const double lo = o + static_cast<double>(k) * cell;
     return v < lo ? lo - v : std::max(0.0, v - (lo + cell));
   };
-  // Axes in the grid's index order: f varies fastest, so cells along f are consecutive.
-  const int f = grid.axes[0], m = grid.axes[1], w = grid.axes[2];
-  const double* coord[3] = {g.pos.x.data(), g.pos.y.data(), g.pos.z.data()};
   auto visit = [&](std::size_t i, auto&& emit) {
     const std::uint32_t c = grid.cell_of[i];
-    const std::int64_t cm = (c / dims[f]) % dims[m];
-    const std::int64_t cw = c / (dims[f] * dims[m]);
+    const std::int64_t cy = (c / dims[0]) % dims[1];
+    const std::int64_t cz = c / (dims[0] * dims[1]);
     const double xi = g.pos.x[i], yi = g.pos.y[i], zi = g.pos.z[i], ri = g.radius.r[i];
-    const double pf = coord[f][i], pm = coord[m][i], pw = coord[w][i];
-    // Only cells that a sphere of the row's largest reach can touch: lines of cells along the
-    // fastest axis are culled by their distance along the other two, and each line is cut to the
-    // chord of that sphere.
+    // Only cells that a sphere of the row's largest reach can touch: lines of cells along x are
+    // culled by their distance in y and z, and each line is cut to the chord of that sphere.
     const double reach = ri + rmax + skin;
     const auto ext = static_cast<std::int64_t>(std::ceil(reach * inv_cell));
-    for (std::int64_t dw = -ext; dw <= ext; ++dw) {
-      const std::int64_t kw = cw + dw;
-      if (kw < 0 || kw >= dims[w]) continue;
-      const double gw = gap_to(pw, origin[w], kw);
-      for (std::int64_t dm = -ext; dm <= ext; ++dm) {
-        const std::int64_t km = cm + dm;
-        if (km < 0 || km >= dims[m]) continue;
-        const double gm = gap_to(pm, origin[m], km);
-        const double rest = reach * reach - gm * gm - gw * gw;
+    for (std::int64_t dz = -ext; dz <= ext; ++dz) {
+      const std::int64_t z = cz + dz;
+      if (z < 0 || z >= dims[2]) continue;
+      const double gz = gap_to(zi, origin[2], z);
+      for (std::int64_t dy = -ext; dy <= ext; ++dy) {
+        const std::int64_t y = cy + dy;
+        if (y < 0 || y >= dims[1]) continue;
+        const double gy = gap_to(yi, origin[1], y);
+        const double rest = reach * reach - gy * gy - gz * gz;
         if (rest < 0.0) continue;
         const double half = std::sqrt(rest);
-        const std::int64_t f0 =
-            std::max<std::int64_t>(static_cast<std::int64_t>(std::floor((pf - half - origin[f]) * inv_cell)), 0);
-        const std::int64_t f1 = std::min<std::int64_t>(
-            static_cast<std::int64_t>(std::floor((pf + half - origin[f]) * inv_cell)), dims[f] - 1);
-        if (f1 < f0) continue;
-        // Cells f0..f1 of one line are consecutive, so their rows are one range.
-        const std::size_t base = static_cast<std::size_t>((kw * dims[m] + km) * dims[f]);
-        std::size_t b = grid.start[base + f0];
-        const std::size_t e = grid.start[base + f1 + 1];
+        const std::int64_t x0 =
+            std::max<std::int64_t>(static_cast<std::int64_t>(std::floor((xi - half - origin[0]) * inv_cell)), 0);
+        const std::int64_t x1 = std::min<std::int64_t>(
+            static_cast<std::int64_t>(std::floor((xi + half - origin[0]) * inv_cell)), dims[0] - 1);
+        if (x1 < x0) continue;
+        // Cells x0..x1 of one (y, z) line are consecutive, so their rows are one range.
+        const std::size_t base = static_cast<std::size_t>((z * dims[1] + y) * dims[0]);
+        std::size_t b = grid.start[base + x0];
+        const std::size_t e = grid.start[base + x1 + 1];
         if (b <= i) b = i + 1;
         for (std::size_t j = b; j < e; ++j) {
           const double ddx = g.pos.x[j] - xi, ddy = g.pos.y[j] - yi, ddz = g.pos.z[j] - zi;

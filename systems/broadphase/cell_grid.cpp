@@ -72,8 +72,6 @@ void CellGrid::build(std::span<const double> x, std::span<const double> y, std::
     }
     origin = box.lo;
   }
-  axes = {0, 1, 2};
-  std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return dims[a] < dims[b]; });
   const std::size_t ncell = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
   cell_of.resize(n);
   const double inv = 1.0 / cell;
@@ -82,7 +80,7 @@ void CellGrid::build(std::span<const double> x, std::span<const double> y, std::
       const auto cx = std::min<std::int64_t>(static_cast<std::int64_t>((x[i] - origin[0]) * inv), dims[0] - 1);
       const auto cy = std::min<std::int64_t>(static_cast<std::int64_t>((y[i] - origin[1]) * inv), dims[1] - 1);
       const auto cz = std::min<std::int64_t>(static_cast<std::int64_t>((z[i] - origin[2]) * inv), dims[2] - 1);
-      cell_of[i] = static_cast<std::uint32_t>(flat({cx, cy, cz}));
+      cell_of[i] = static_cast<std::uint32_t>((cz * dims[1] + cy) * dims[0] + cx);
     }
   });
   start.assign(ncell + 1, 0);
