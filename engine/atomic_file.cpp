@@ -65,6 +65,10 @@ int fsync_retry(int fd) {
 }  // namespace
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view bytes) {
+  write_file_atomic(path, std::span<const std::string_view>(&bytes, 1));
+}
+
+void write_file_atomic(const std::filesystem::path& path, std::span<const std::string_view> pieces) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
 
@@ -73,7 +77,8 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view bytes
     Fd fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666));
     if (fd.get() < 0) fail("cannot create temporary file '" + tmp.string() + "'", path, errno);
 
-    int err = write_all(fd.get(), bytes);
+    int err = 0;
+    for (std::size_t k = 0; k < pieces.size() && err == 0; ++k) err = write_all(fd.get(), pieces[k]);
     const char* step = "write to";
     if (err == 0) {
       // Without fsync the rename can reach the disk before the data, and a power cut would

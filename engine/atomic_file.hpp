@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <string_view>
 
 namespace gf {
@@ -12,6 +13,8 @@ namespace gf {
 // Throws std::runtime_error naming the path and the system's reason on any failure; the old
 // `path`, if any, is then left untouched.
 void write_file_atomic(const std::filesystem::path& path, std::string_view bytes);
+// The same for a file made of several pieces written one after the other (no joined copy).
+void write_file_atomic(const std::filesystem::path& path, std::span<const std::string_view> pieces);
 
 // Creates `dir` and its parents if missing. Throws std::runtime_error naming the folder if it
 // cannot be created or exists as something other than a folder.

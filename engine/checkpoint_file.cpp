@@ -11,8 +11,7 @@ namespace {
 
 constexpr std::string_view kMagic = "grainflow-checkpoint 1\n";
 
-std::uint64_t fnv1a(std::string_view bytes) {
-  std::uint64_t h = 1469598103934665603ull;
+std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 1469598103934665603ull) {
   for (const char c : bytes) {
     h ^= static_cast<unsigned char>(c);
     h *= 1099511628211ull;
@@ -28,18 +27,31 @@ void put(std::string& buf, T v) {
 }  // namespace
 
 void CheckpointWriter::raw(const std::string& name, const void* data, std::size_t elem_size, std::size_t count) {
-  if (buf_.empty()) buf_.append(kMagic);
-  put(buf_, static_cast<std::uint32_t>(name.size()));
-  buf_.append(name);
-  put(buf_, static_cast<std::uint64_t>(elem_size));
-  put(buf_, static_cast<std::uint64_t>(count));
-  if (count) buf_.append(static_cast<const char*>(data), elem_size * count);
+  if (pieces_.empty()) pieces_.push_back(kMagic);
+  std::string& head = owned_.emplace_back();
+  put(head, static_cast<std::uint32_t>(name.size()));
+  head.append(name);
+  put(head, static_cast<std::uint64_t>(elem_size));
+  put(head, static_cast<std::uint64_t>(count));
+  pieces_.push_back(head);
+  if (count) pieces_.emplace_back(static_cast<const char*>(data), elem_size * count);
+}
+
+std::size_t CheckpointWriter::bytes() const {
+  std::size_t n = pieces_.empty() ? kMagic.size() : 0;
+  for (std::string_view p : pieces_) n += p.size();
+  return n + 8;
 }
 
 void CheckpointWriter::write(const std::filesystem::path& file) const {
-  std::string out = buf_.empty() ? std::string(kMagic) : buf_;
-  put(out, fnv1a(out));
-  write_file_atomic(file, out);
+  std::vector<std::string_view> all = pieces_;
+  if (all.empty()) all.push_back(kMagic);
+  std::uint64_t h = 1469598103934665603ull;
+  for (std::string_view p : all) h = fnv1a(p, h);
+  std::string tail;
+  put(tail, h);
+  all.push_back(tail);
+  write_file_atomic(file, all);
 }
 
 void CheckpointReader::fail(const std::string& problem, const std::string& fix) const {

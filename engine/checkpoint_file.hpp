@@ -9,6 +9,8 @@
 
 #include <cstdint>
 #include <cstring>
+#include <deque>
+#include <string_view>
 #include <filesystem>
 #include <map>
 #include <span>
@@ -32,7 +34,9 @@ class CheckpointWriter {
   template <class T>
   void value(const std::string& name, const T& v) {
     static_assert(std::is_trivially_copyable_v<T>);
-    raw(name, &v, sizeof(T), 1);
+    // Values are often temporaries: copied.
+    const std::string& copy = owned_.emplace_back(reinterpret_cast<const char*>(&v), sizeof(T));
+    raw(name, copy.data(), sizeof(T), 1);
   }
   template <class T>
   void column(const std::string& name, const Column<T>& c) {
@@ -43,14 +47,23 @@ class CheckpointWriter {
     static_assert(std::is_trivially_copyable_v<T>);
     raw(name, v.data(), sizeof(T), v.size());
   }
+  // A temporary vector is copied.
+  template <class T>
+  void vector(const std::string& name, std::vector<T>&& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const std::string& copy = owned_.emplace_back(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    raw(name, copy.data(), sizeof(T), v.size());
+  }
+  // Columns and vectors are not copied: their storage must stay unchanged until write().
   void raw(const std::string& name, const void* data, std::size_t elem_size, std::size_t count);
 
   // Write, flush and rename over `file` (engine/atomic_file): a crash leaves the old checkpoint.
   void write(const std::filesystem::path& file) const;
-  std::size_t bytes() const { return buf_.size(); }
+  std::size_t bytes() const;
 
  private:
-  std::string buf_;
+  std::deque<std::string> owned_;          // record headers and small values, at stable addresses
+  std::vector<std::string_view> pieces_;  // the file in order, without its checksum
 };
 
 class CheckpointReader {
