@@ -101,6 +101,7 @@ def run_case(name, scene, omega, out, binary, threads, budget_s, size):
         "steps_total": summary.get("steps"),
         "steps": summary.get("steps_this_run"),
         "wall_seconds": summary.get("wall_seconds"),
+        "settle_wall_seconds": summary.get("settle", {}).get("wall_seconds", 0.0),
         "total_wall_seconds": time.time() - t0,
         "particle_steps_per_second": summary.get("particle_steps_per_second"),
         "threads": threads,
@@ -134,7 +135,8 @@ def report(out):
             rows.append({"case": name, "seed": seed, "ran": False})
             continue
         last = s[-1]
-        wall = sum(p["wall_seconds"] or 0 for p in ps)
+        # Main stage plus settling (the quarter fill settles its cut surface first).
+        wall = sum((p["wall_seconds"] or 0) + p.get("settle_wall_seconds", 0.0) for p in ps)
         steps = sum(p["steps"] or 0 for p in ps)
         grains = json.loads((folder / "summary.json").read_text())["grains"]
         kind = KINDS.get(int(last["pattern"]), "?")
@@ -144,7 +146,7 @@ def report(out):
             "angle": float(last["angle"]), "ours": ours, "contrast": float(last["pattern_contrast"]),
             "segregation_index": float(last["segregation_index"]), "surface_angle": float(last["surface_angle"]),
             "wall_seconds": wall, "steps": steps, "grains": grains,
-            "particle_steps_per_second": steps * grains / wall if wall > 0 else 0.0,
+            "particle_steps_per_second": steps * grains / sum(p["wall_seconds"] or 0 for p in ps),
             "threads": sorted({p["threads"] for p in ps}),
         })
     (out / "table.json").write_text(json.dumps(rows, indent=1))
