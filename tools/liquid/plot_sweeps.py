@@ -22,6 +22,8 @@ ERROR_LABEL = {
     "hydrostatic_2d": "floor pressure error vs rho g H",
     "dam_break_2d": "mean |front error| vs Koshizuka-Oka",
     "poiseuille_2d": "worst centre-velocity error vs series (width L)",
+    "hydrostatic_3d": "floor pressure error vs rho g H",
+    "dam_break_3d": "mean |front error| vs Koshizuka-Oka",
 }
 
 

@@ -8,7 +8,8 @@ For each case (hydrostatic_2d, dam_break_2d, poiseuille_2d) runs the grainflow C
 Writes docs/liquid/sweep.csv (case, knob, l0, dt, cfl, diffusion, status, wall_seconds, particle_steps_per_s,
 error, failure) for tools/liquid/plot_sweeps.py. Runs are sequential (the machine is shared).
 
-usage: sweep.py [--binary build-liquid/grainflow] [--cases hydrostatic_2d,dam_break_2d,poiseuille_2d]
+usage: sweep.py [--binary build/grainflow] [--cases hydrostatic_2d,dam_break_2d,poiseuille_2d] [--out CSV]
+(3D cases: --cases hydrostatic_3d,dam_break_3d --out docs/liquid/sweep_3d.csv; the 3D resolutions are coarser)
 """
 import argparse
 import csv
@@ -69,6 +70,12 @@ CASES = {
     "dam_break_2d": ("dam_break_2d.toml", 0.25, dam_break_error,
                      [(0.0146, 1e-3), (0.0073, 5e-4), (0.00365, 2.5e-4)],
                      [2.5e-4, 5e-4, 1e-3, 1.5e-3, 2e-3, 3e-3]),
+    "hydrostatic_3d": ("hydrostatic_3d.toml", 1.0, hydrostatic_error,
+                       [(0.0125, 5e-4), (0.01, 5e-4), (0.1 / 14, 2.5e-4)],
+                       [2.5e-4, 5e-4, 1e-3, 2e-3, 3e-3]),
+    "dam_break_3d": ("dam_break_3d.toml", 0.25, dam_break_error,
+                     [(0.0292, 2e-3), (0.0146, 1e-3), (0.146 / 15, 6.5e-4)],
+                     [5e-4, 1e-3, 1.5e-3, 2e-3, 3e-3]),
     "poiseuille_2d": ("poiseuille_2d.toml", 0.5, poiseuille_error,
                       [(1e-3, 1e-3), (5e-4, 2.5e-4), (3.3333333333333335e-4, 1.1111111111111112e-4)],
                       [2.5e-4, 5e-4, 1e-3, 1.5e-3, 2e-3]),
@@ -88,8 +95,8 @@ def run_one(binary, scene, duration, l0, dt, out):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--binary", default=os.path.join(ROOT, "build-liquid", "grainflow"))
-    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--binary", default=os.path.join(ROOT, "build", "grainflow"))
+    ap.add_argument("--cases", default="hydrostatic_2d,dam_break_2d,poiseuille_2d")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "liquid", "sweep.csv"))
     args = ap.parse_args()
     rows = []
