@@ -131,22 +131,12 @@ TEST_CASE("checkpoint: a run killed mid-way keeps its rows and resumes from its 
   const fs::path scene = dir.write("drum.toml", kDrum);
   const fs::path out = dir.path / "killed";
   const fs::path series = out / "series.csv", ckpt = out / "checkpoints" / "checkpoint.gfc";
-  const std::string bin = GRAINFLOW_BINARY, scene_s = scene.string(), out_s = out.string();
   const std::string log = (dir.path / "killed.txt").string();
-  std::vector<const char*> argv = {bin.c_str(), "run", scene_s.c_str(), "--out", out_s.c_str(), "--steps",
-                                   "100000000", "--threads", "2", "--quiet", "--set",
-                                   "output.checkpoint_interval=5e-3", "--set", "output.series_interval=1e-4", nullptr};
-  const pid_t pid = ::fork();
+  const pid_t pid = gf::test::spawn_cli({"run", scene.string(), "--out", out.string(), "--steps", "100000000",
+                                         "--threads", "2", "--quiet", "--set", "output.checkpoint_interval=5e-3",
+                                         "--set", "output.series_interval=1e-4"},
+                                        log);
   REQUIRE(pid >= 0);
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-    }
-    ::execv(bin.c_str(), const_cast<char* const*>(argv.data()));
-    ::_exit(127);
-  }
   // Kill (no chance to clean up) once two checkpoints after t = 0 exist: 160 rows of 1e-4 s.
   const auto t0 = std::chrono::steady_clock::now();
   for (;;) {

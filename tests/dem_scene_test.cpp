@@ -472,24 +472,12 @@ TEST_CASE("cli: SIGTERM stops a run after the step in flight and keeps its resul
   const fs::path series = out / "series.csv";
   const std::int64_t requested = 1'000'000'000;  // far more than runs before the signal
 
-  // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
-  const std::string bin = GRAINFLOW_BINARY, scene_s = scene.string(), out_s = out.string();
-  const std::string steps = std::to_string(requested);
   const std::string log = (dir.path / "stderr.txt").string();
-  std::vector<const char*> argv = {bin.c_str(), "run",      scene_s.c_str(), "--out", out_s.c_str(),
-                                   "--steps",   steps.c_str(), "--threads", "1",   "--quiet",
-                                   "--set",     "output.frame_interval=0.01", nullptr};
-  const pid_t pid = ::fork();
+  const pid_t pid = gf::test::spawn_cli({"run", scene.string(), "--out", out.string(), "--steps",
+                                         std::to_string(requested), "--threads", "1", "--quiet", "--set",
+                                         "output.frame_interval=0.01"},
+                                        log);
   REQUIRE(pid >= 0);
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-    }
-    ::execv(bin.c_str(), const_cast<char* const*>(argv.data()));
-    ::_exit(127);
-  }
 
   // Wait (at most 60 s) until the run has written 30 rows, then stop it.
   const auto t0 = std::chrono::steady_clock::now();

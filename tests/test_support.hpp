@@ -16,6 +16,7 @@
 #include <system_error>
 #include <vector>
 
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -146,6 +147,27 @@ inline std::string small_drum_scene(double gravity, const std::string& extra_run
   if (settle_time > 0) s << "[settle]\ntime = " << settle_time << "\n";
   s << "[output]\nseries_interval = 1.0e-3\nframe_interval = 2.0e-3\n";
   return s.str();
+}
+
+// Starts the grainflow binary with `args` (argv[1] on) in the background, stdout and stderr to the
+// file `log`, and returns its pid (-1 if fork failed). Everything the child needs is prepared
+// before fork; after it, only async-signal-safe calls.
+inline pid_t spawn_cli(const std::vector<std::string>& args, const std::string& log) {
+  const std::string bin = GRAINFLOW_BINARY;
+  std::vector<const char*> argv{bin.c_str()};
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      ::dup2(fd, 1);
+      ::dup2(fd, 2);
+    }
+    ::execv(bin.c_str(), const_cast<char* const*>(argv.data()));
+    ::_exit(127);
+  }
+  return pid;
 }
 
 // The grainflow binary run with `args` (shell words, quoted by the caller), stdout and stderr captured
