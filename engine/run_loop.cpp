@@ -34,7 +34,10 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
   StageReport rep;
   const auto t0 = clock::now();
   auto last_print = t0;
-  const double t_start = world.clock.t;
+  // t = t0 + step dt from the stage's start, so that a stage run in pieces (resumed from a
+  // checkpoint, or advanced in several calls) sees bit-for-bit the same times as one run.
+  if (world.clock.step == 0) world.clock.t0 = world.clock.t;
+  const double stage_t0 = world.clock.t0;
   const std::int64_t step_start = world.clock.step;
   if (opt.observe) opt.observe->run_step();
   for (std::int64_t k = 0; k < opt.steps; ++k) {
@@ -44,7 +47,7 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
     }
     step.run_step();
     world.clock.step = step_start + k + 1;
-    world.clock.t = t_start + static_cast<double>(k + 1) * world.clock.dt;
+    world.clock.t = stage_t0 + static_cast<double>(step_start + k + 1) * world.clock.dt;
     if (opt.observe) opt.observe->run_step();
     ++rep.steps;
     if (opt.progress_seconds > 0) {

@@ -13,6 +13,7 @@ struct Clock {
   double t = 0.0;   // s
   double dt = 0.0;  // s
   std::int64_t step = 0;
+  double t0 = 0.0;  // s, time at step 0 of the stage: t = t0 + step dt, however the stage is split
 };
 
 struct World {

@@ -54,6 +54,7 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) 
   out.value("clock.t", world.clock.t);
   out.value("clock.dt", world.clock.dt);
   out.value("clock.step", world.clock.step);
+  out.value("clock.t0", world.clock.t0);
   out.value("scene.species", static_cast<std::uint64_t>(scene.species.size()));
   out.value("scene.walls", static_cast<std::uint64_t>(scene.walls.size()));
   out.value("grains.n_owned", static_cast<std::uint64_t>(gr.n_owned));
@@ -90,6 +91,7 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
   world.clock.t = in.value<double>("clock.t");
   world.clock.dt = in.value<double>("clock.dt");
   world.clock.step = in.value<std::int64_t>("clock.step");
+  world.clock.t0 = in.value<double>("clock.t0");
   gr.resize(in.value<std::uint64_t>("grains.n"));
   gr.n_owned = n_owned;
   std::size_t k = 0;
