@@ -104,7 +104,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     rmax = std::max(rmax, g.radius.r[i]);
     rmin = std::min(rmin, g.radius.r[i]);
   }
-  s.grid.build(g.pos.x.span(), g.pos.y.span(), g.pos.z.span(), 2.0 * rmin + s.skin);
+  s.grid.build(g.pos.x.span(), g.pos.y.span(), g.pos.z.span(), 2.0 * rmin + s.skin, std::size_t(1) << 24, true);
   CellGrid& grid = s.grid;
 
   // Cell order, ties by id: the row order becomes a function of positions alone.
@@ -137,11 +137,16 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     const double lo = o + static_cast<double>(k) * cell;
     return v < lo ? lo - v : std::max(0.0, v - (lo + cell));
   };
+  const double* const pc[3] = {g.pos.x.data(), g.pos.y.data(), g.pos.z.data()};
   auto visit = [&](std::size_t i, auto&& emit) {
     const std::uint32_t c = grid.cell_of[i];
     const std::int64_t cy = (c / dims[0]) % dims[1];
     const std::int64_t cz = c / (dims[0] * dims[1]);
-    const double xi = g.pos.x[i], yi = g.pos.y[i], zi = g.pos.z[i], ri = g.radius.r[i];
+    // x, y, z here are the grid's axes, which may be any order of the coordinate axes.
+    const double* px = pc[grid.axis[0]];
+    const double* py = pc[grid.axis[1]];
+    const double* pz = pc[grid.axis[2]];
+    const double xi = px[i], yi = py[i], zi = pz[i], ri = g.radius.r[i];
     // Only cells that a sphere of the row's largest reach can touch: lines of cells along x are
     // culled by their distance in y and z, and each line is cut to the chord of that sphere.
     const double reach = ri + rmax + skin;
@@ -168,7 +173,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
         const std::size_t e = grid.start[base + x1 + 1];
         if (b <= i) b = i + 1;
         for (std::size_t j = b; j < e; ++j) {
-          const double ddx = g.pos.x[j] - xi, ddy = g.pos.y[j] - yi, ddz = g.pos.z[j] - zi;
+          const double ddx = px[j] - xi, ddy = py[j] - yi, ddz = pz[j] - zi;
           const double cut = ri + g.radius.r[j] + skin;
           if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) emit(j);
         }

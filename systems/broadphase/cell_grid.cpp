@@ -25,8 +25,9 @@ struct Box {
 }  // namespace
 
 void CellGrid::build(std::span<const double> x, std::span<const double> y, std::span<const double> z,
-                     double min_cell, std::size_t max_cells) {
+                     double min_cell, std::size_t max_cells, bool shortest_fastest) {
   const std::size_t n = x.size();
+  const std::span<const double> coord[3] = {x, y, z};
   const Box box = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, n, 4096), Box{},
       [&](const tbb::blocked_range<std::size_t>& r, Box b) {
@@ -55,6 +56,10 @@ void CellGrid::build(std::span<const double> x, std::span<const double> y, std::
     throw StabilityError("particle row " + std::to_string(box.bad) +
                              " has a non-finite position: the simulation became unstable. Fix: reduce the time "
                              "step or check the contact stiffness and damping");
+  axis = {0, 1, 2};
+  if (shortest_fastest && n > 0)
+    std::stable_sort(axis.begin(), axis.end(),
+                     [&](int a, int b) { return box.hi[a] - box.lo[a] < box.hi[b] - box.lo[b]; });
   if (n == 0) {
     origin = {0, 0, 0};
     cell = min_cell;
@@ -64,22 +69,23 @@ void CellGrid::build(std::span<const double> x, std::span<const double> y, std::
     for (;;) {
       std::size_t total = 1;
       for (int d = 0; d < 3; ++d) {
-        dims[d] = static_cast<std::int64_t>(std::floor((box.hi[d] - box.lo[d]) / cell)) + 1;
+        dims[d] = static_cast<std::int64_t>(std::floor((box.hi[axis[d]] - box.lo[axis[d]]) / cell)) + 1;
         total *= static_cast<std::size_t>(dims[d]);
       }
       if (total <= max_cells) break;
       cell *= 1.26;  // doubles the cell volume every three growths
     }
-    origin = box.lo;
+    for (int d = 0; d < 3; ++d) origin[d] = box.lo[axis[d]];
   }
   const std::size_t ncell = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
   cell_of.resize(n);
   const double inv = 1.0 / cell;
+  const std::span<const double> c0 = coord[axis[0]], c1 = coord[axis[1]], c2 = coord[axis[2]];
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const auto cx = std::min<std::int64_t>(static_cast<std::int64_t>((x[i] - origin[0]) * inv), dims[0] - 1);
-      const auto cy = std::min<std::int64_t>(static_cast<std::int64_t>((y[i] - origin[1]) * inv), dims[1] - 1);
-      const auto cz = std::min<std::int64_t>(static_cast<std::int64_t>((z[i] - origin[2]) * inv), dims[2] - 1);
+      const auto cx = std::min<std::int64_t>(static_cast<std::int64_t>((c0[i] - origin[0]) * inv), dims[0] - 1);
+      const auto cy = std::min<std::int64_t>(static_cast<std::int64_t>((c1[i] - origin[1]) * inv), dims[1] - 1);
+      const auto cz = std::min<std::int64_t>(static_cast<std::int64_t>((c2[i] - origin[2]) * inv), dims[2] - 1);
       cell_of[i] = static_cast<std::uint32_t>((cz * dims[1] + cy) * dims[0] + cx);
     }
   });

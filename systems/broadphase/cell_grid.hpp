@@ -9,6 +9,8 @@
 namespace gf {
 
 struct CellGrid {
+  // Grid axis a runs along coordinate axis[a] of the points; axis 0 varies fastest in cell order.
+  std::array<int, 3> axis{0, 1, 2};
   std::array<double, 3> origin{};
   double cell = 0.0;                  // m, edge of a cubic cell
   std::array<std::int64_t, 3> dims{};  // cells per axis
@@ -20,9 +22,11 @@ struct CellGrid {
 
   // Bins n points with cell edge at least `min_cell`. The grid spans the points' bounding box; if
   // that would take more than `max_cells` cells the edge grows (slower, never wrong). Throws on a
-  // non-finite coordinate, naming the row.
+  // non-finite coordinate, naming the row. With `shortest_fastest`, the grid axes are the coordinate
+  // axes ordered by the points' extent, shortest first: cells that touch are then closest in cell
+  // order (in a thin drum, neighbours across the thin axis are a few cells apart, not a layer).
   void build(std::span<const double> x, std::span<const double> y, std::span<const double> z, double min_cell,
-             std::size_t max_cells = std::size_t(1) << 24);
+             std::size_t max_cells = std::size_t(1) << 24, bool shortest_fastest = false);
 };
 
 }  // namespace gf

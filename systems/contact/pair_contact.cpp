@@ -14,8 +14,7 @@ namespace {
 // Pairs per prefilter block: a multiple of the batch width, small enough for load balance.
 constexpr std::size_t kBlock = 2048;
 
-// The record column holds one extra record, kept zero, that pairs apart point at: the per-row sums
-// then add without a branch (half the list pairs are apart, at random, which a branch mispredicts).
+// The per-contact columns hold one extra row, kept zero, that pairs apart point at (force_of).
 void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
   for (Column<std::int32_t>* c : {&out.pair, &out.ci, &out.cj, &out.ctype, &out.cslot}) c->resize(nc + 1);
   out.rank.resize(np + 1);
@@ -23,9 +22,10 @@ void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
   out.next.resize(nc);
   out.next.slot.resize(np);
   std::fill(out.next.slot.begin() + np, out.next.slot.begin() + out.next.slot.padded(), -1);
-  out.record.resize((nc + 1) * PairForces::kRecord);
-  for (ColumnD* c : {&out.tix, &out.tiy, &out.tiz}) c->resize(nc);
-  std::fill(&out.record[nc * PairForces::kRecord], &out.record[(nc + 1) * PairForces::kRecord], 0.0);
+  for (ColumnD* c : {&out.fx, &out.fy, &out.fz, &out.tix, &out.tiy, &out.tiz, &out.tjx, &out.tjy, &out.tjz}) {
+    c->resize(nc + 1);
+    (*c)[nc] = 0.0;
+  }
 }
 
 // Springs of the last evaluation for contact c (entry `slot` of the old history, -1 for a new
@@ -138,58 +138,110 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
   h.ry[c] = s.roll.y;
   h.rz[c] = s.roll.z;
   const V3<double> nxf = cross(n, res.force_t);
-  double* rec = &out.record[c * PairForces::kRecord];
-  rec[PairForces::Fx] = res.force.x;
-  rec[PairForces::Fy] = res.force.y;
-  rec[PairForces::Fz] = res.force.z;
+  out.fx[c] = res.force.x;
+  out.fy[c] = res.force.y;
+  out.fz[c] = res.force.z;
   out.tix[c] = li * nxf.x + res.rolling_torque.x;
   out.tiy[c] = li * nxf.y + res.rolling_torque.y;
   out.tiz[c] = li * nxf.z + res.rolling_torque.z;
   // On j the force is -F and the lever -L_j n: the tangential torque has the same sign as i's.
-  rec[PairForces::Tjx] = lj * nxf.x - res.rolling_torque.x;
-  rec[PairForces::Tjy] = lj * nxf.y - res.rolling_torque.y;
-  rec[PairForces::Tjz] = lj * nxf.z - res.rolling_torque.z;
+  out.tjx[c] = lj * nxf.x - res.rolling_torque.x;
+  out.tjy[c] = lj * nxf.y - res.rolling_torque.y;
+  out.tjz[c] = lj * nxf.z - res.rolling_torque.z;
 }
 
-// Per row: own contacts (a contiguous run of list pairs), then incoming ones, in list order.
-void reduce_rows(Grains& g, const NeighborList& list, const PairForces& out) {
-  constexpr std::uint32_t kPrefetch = 24;
-  const auto n_in = static_cast<std::uint32_t>(list.in_pairs.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t a = r.begin(); a != r.end(); ++a) {
-      double fx = 0, fy = 0, fz = 0, tx = 0, ty = 0, tz = 0;
-      // Own contacts are one run of the packed list: contacts keep list order, rows own list runs.
-      const double* rec = out.record.data();
-      constexpr std::size_t R = PairForces::kRecord;
-      for (std::size_t c = out.rank[list.offsets[a]]; c < static_cast<std::size_t>(out.rank[list.offsets[a + 1]]); ++c) {
-        const double* q = rec + c * R;
-        fx += q[PairForces::Fx];
-        fy += q[PairForces::Fy];
-        fz += q[PairForces::Fz];
-        tx += out.tix[c];
-        ty += out.tiy[c];
-        tz += out.tiz[c];
+// Sums into Force and Torque by slabs of owner rows. A slab's contacts are one run of the packed
+// list (contacts keep list order, rows own list runs); each adds to its owner and, when the partner
+// is in the same slab (partners are later rows), to the partner too, in contact order. A partner in
+// a later slab gets its share through the list of that (slab, target) pair, added after every slab
+// is done, in slab order. The columns read stream in order; the rows written stay in cache.
+// The sums of slab s (owner rows [a, b), contacts [c0, c1)). Plain restrict pointers held in
+// locals, so that the stores into the rows are not taken to change the columns read.
+struct SlabSums {
+  double* __restrict F[3];
+  double* __restrict T[3];
+  const std::int32_t* __restrict ci;
+  const std::int32_t* __restrict cj;
+  const double* __restrict f[3];
+  const double* __restrict ti[3];
+  const double* __restrict tj[3];
+
+  void run(std::size_t a, std::size_t b, std::size_t n, std::size_t c0, std::size_t c1,
+           std::vector<PairForces::Spill>* spill) const {
+    double* __restrict Fx = F[0];
+    double* __restrict Fy = F[1];
+    double* __restrict Fz = F[2];
+    double* __restrict Tx = T[0];
+    double* __restrict Ty = T[1];
+    double* __restrict Tz = T[2];
+    const std::int32_t* __restrict ri = ci;
+    const std::int32_t* __restrict rj = cj;
+    const double* __restrict fx = f[0];
+    const double* __restrict fy = f[1];
+    const double* __restrict fz = f[2];
+    const double* __restrict tix = ti[0];
+    const double* __restrict tiy = ti[1];
+    const double* __restrict tiz = ti[2];
+    const double* __restrict tjx = tj[0];
+    const double* __restrict tjy = tj[1];
+    const double* __restrict tjz = tj[2];
+    for (double* col : {Fx, Fy, Fz, Tx, Ty, Tz}) std::fill(col + a, col + b, 0.0);
+    for (std::size_t c = c0; c < c1; ++c) {
+      const auto i = static_cast<std::size_t>(ri[c]), j = static_cast<std::size_t>(rj[c]);
+      Fx[i] += fx[c];
+      Fy[i] += fy[c];
+      Fz[i] += fz[c];
+      Tx[i] += tix[c];
+      Ty[i] += tiy[c];
+      Tz[i] += tiz[c];
+      if (j < b) {
+        Fx[j] -= fx[c];
+        Fy[j] -= fy[c];
+        Fz[j] -= fz[c];
+        Tx[j] += tjx[c];
+        Ty[j] += tjy[c];
+        Tz[j] += tjz[c];
+      } else if (j < n) {  // rows past n_owned are ghosts: their forces are another rank's
+        spill[j / kSlabRows].push_back({static_cast<std::uint32_t>(j), fx[c], fy[c], fz[c], tjx[c], tjy[c], tjz[c]});
       }
-      const std::uint32_t q_end = list.in_offsets[a + 1];
-      for (std::uint32_t q = list.in_offsets[a]; q < q_end; ++q) {
-        // Incoming records are scattered over the whole contact list: ask for the one a few rows
-        // ahead now, so several misses are in flight instead of one at a time.
-        if (q + kPrefetch < n_in) __builtin_prefetch(rec + static_cast<std::size_t>(out.contact_of[list.in_pairs[q + kPrefetch]]) * R);
-        const double* p = rec + static_cast<std::size_t>(out.contact_of[list.in_pairs[q]]) * R;
-        fx -= p[PairForces::Fx];
-        fy -= p[PairForces::Fy];
-        fz -= p[PairForces::Fz];
-        tx += p[PairForces::Tjx];
-        ty += p[PairForces::Tjy];
-        tz += p[PairForces::Tjz];
-      }
-      g.force.x[a] = fx;
-      g.force.y[a] = fy;
-      g.force.z[a] = fz;
-      g.torque.x[a] = tx;
-      g.torque.y[a] = ty;
-      g.torque.z[a] = tz;
     }
+  }
+};
+
+void accumulate_rows(Grains& g, const NeighborList& list, PairForces& out) {
+  const std::size_t n = g.n_owned;
+  const std::size_t ns = (n + kSlabRows - 1) / kSlabRows;
+  if (out.spill.size() < ns * ns) out.spill.resize(ns * ns);
+  const SlabSums sums{{g.force.x.data(), g.force.y.data(), g.force.z.data()},
+                      {g.torque.x.data(), g.torque.y.data(), g.torque.z.data()},
+                      out.ci.data(),
+                      out.cj.data(),
+                      {out.fx.data(), out.fy.data(), out.fz.data()},
+                      {out.tix.data(), out.tiy.data(), out.tiz.data()},
+                      {out.tjx.data(), out.tjy.data(), out.tjz.data()}};
+  tbb::parallel_for(std::size_t(0), ns, [&](std::size_t s) {
+    const std::size_t a = s * kSlabRows, b = std::min(n, a + kSlabRows);
+    std::vector<PairForces::Spill>* spill = &out.spill[s * ns];
+    for (std::size_t t = s + 1; t < ns; ++t) spill[t].clear();
+    sums.run(a, b, n, static_cast<std::size_t>(out.rank[list.offsets[a]]),
+             static_cast<std::size_t>(out.rank[list.offsets[b]]), spill);
+  });
+  tbb::parallel_for(std::size_t(1), ns, [&](std::size_t t) {
+    double* __restrict Fx = sums.F[0];
+    double* __restrict Fy = sums.F[1];
+    double* __restrict Fz = sums.F[2];
+    double* __restrict Tx = sums.T[0];
+    double* __restrict Ty = sums.T[1];
+    double* __restrict Tz = sums.T[2];
+    for (std::size_t s = 0; s < t; ++s)
+      for (const PairForces::Spill& e : out.spill[s * ns + t]) {
+        Fx[e.j] -= e.fx;
+        Fy[e.j] -= e.fy;
+        Fz[e.j] -= e.fz;
+        Tx[e.j] += e.tx;
+        Ty[e.j] += e.ty;
+        Tz[e.j] += e.tz;
+      }
   });
 }
 
@@ -217,7 +269,7 @@ void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory
   }
   out.rank[np] = static_cast<std::int32_t>(nc);
   std::swap(h, out.next);
-  reduce_rows(g, list, out);
+  accumulate_rows(g, list, out);
 }
 
 void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table, double dt,
@@ -358,18 +410,12 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       (li * nxf.x + res.rolling_torque.x).store_aligned(&out.tix[c0]);
       (li * nxf.y + res.rolling_torque.y).store_aligned(&out.tiy[c0]);
       (li * nxf.z + res.rolling_torque.z).store_aligned(&out.tiz[c0]);
-      // Lanes to records: store the six batches, then interleave them.
-      constexpr std::size_t F = 6;
-      alignas(64) double lanes[F][L];
-      res.force.x.store_aligned(lanes[PairForces::Fx]);
-      res.force.y.store_aligned(lanes[PairForces::Fy]);
-      res.force.z.store_aligned(lanes[PairForces::Fz]);
-      (lj * nxf.x - res.rolling_torque.x).store_aligned(lanes[PairForces::Tjx]);
-      (lj * nxf.y - res.rolling_torque.y).store_aligned(lanes[PairForces::Tjy]);
-      (lj * nxf.z - res.rolling_torque.z).store_aligned(lanes[PairForces::Tjz]);
-      double* rec = &out.record[c0 * PairForces::kRecord];
-      for (std::size_t l = 0; l < L; ++l)
-        for (std::size_t f = 0; f < F; ++f) rec[l * PairForces::kRecord + f] = lanes[f][l];
+      res.force.x.store_aligned(&out.fx[c0]);
+      res.force.y.store_aligned(&out.fy[c0]);
+      res.force.z.store_aligned(&out.fz[c0]);
+      (lj * nxf.x - res.rolling_torque.x).store_aligned(&out.tjx[c0]);
+      (lj * nxf.y - res.rolling_torque.y).store_aligned(&out.tjy[c0]);
+      (lj * nxf.z - res.rolling_torque.z).store_aligned(&out.tjz[c0]);
     }
   });
   for (std::size_t c = full * L; c < nc; ++c) {
@@ -380,7 +426,7 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   std::swap(h, out.next);
 
   // 4. Per-row sums.
-  reduce_rows(g, list, out);
+  accumulate_rows(g, list, out);
 }
 
 void PairContact::run(World& world) {

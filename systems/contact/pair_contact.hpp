@@ -5,7 +5,9 @@
 //      packed springs of the last evaluation (pairs that separated drop theirs);
 //   3. the law over the packed contacts in xsimd batches (a scalar tail), springs read and written
 //      with vector loads and stores, per-contact force and the torques on both sides;
-//   4. per row, a fixed-order sum over its own contacts, then its incoming ones (no atomics).
+//   4. the sums into Force and Torque, by fixed slabs of kSlabRows owner rows: a slab's contacts
+//      add into its own rows in contact order (owner and partner side), and the partner sides that
+//      fall in a later slab are set aside per target slab, then added there, slab by slab (no atomics).
 // Every step is independent of the thread count, so runs are bit-for-bit repeatable.
 // Lever arms are L = r - delta/2 on each side (centre to contact point).
 // compute_pair_forces_scalar is the plain reference the tests and benchmarks compare with.
@@ -30,30 +32,35 @@ struct PairForces {
   Column<std::int32_t> ci, cj;     // its rows
   Column<std::int32_t> ctype;      // its type-pair index (NeighborList::type_pair)
   Column<std::int32_t> cslot;      // its spring's entry in the history of the last evaluation, or -1
-  // What the partner row j reads: one 64-byte record per contact, plus a last all-zero record
-  // that stands for "apart": force on the owner i (N; j gets minus it) and torque on j (N m).
-  // The per-row sums read incoming contacts at random, so each costs one cache line.
-  static constexpr std::size_t kRecord = 8;
-  enum Field : std::size_t { Fx, Fy, Fz, Tjx, Tjy, Tjz };
-  ColumnD record;
-  ColumnD tix, tiy, tiz;  // torque on the owner i (N m), read in contact order by i's own sum
-  double at(std::size_t c, Field f) const { return record[c * kRecord + f]; }
+  // Per contact, plus a last all-zero row that stands for "apart": force on the owner i (N; j gets
+  // minus it), torque on i and torque on j (N m).
+  ColumnD fx, fy, fz, tix, tiy, tiz, tjx, tjy, tjz;
   // Per list pair.
   std::vector<std::int32_t> rank;        // contacts before this list pair (size pairs + 1)
-  std::vector<std::int32_t> contact_of;  // contact index, or contacts() (a zero row) when apart
+  std::vector<std::int32_t> contact_of;  // contact index, or contacts() (the zero row) when apart
   Column<std::uint8_t> touching;       // overlap flag per list pair
   PairHistory next;                    // springs being written, swapped with the live ones
   std::vector<std::uint32_t> block_start;
   std::vector<double> coeff[8];  // law constants per type pair: kn kt kr eta_n eta_t eta_r fs fr
   bool coeff_uniform[8] = {};
+  // Partner sides that land past their owner's slab: one list per (owner slab, target slab).
+  struct Spill {
+    std::uint32_t j;
+    double fx, fy, fz, tx, ty, tz;
+  };
+  std::vector<std::vector<Spill>> spill;
 
   std::size_t contacts() const { return pair.size() - 1; }
   // Force on the owner of list pair k at the last evaluation (zero when apart).
   V3<double> force_of(std::size_t k) const {
     const auto c = static_cast<std::size_t>(contact_of[k]);
-    return {at(c, Fx), at(c, Fy), at(c, Fz)};
+    return {fx[c], fy[c], fz[c]};
   }
 };
+
+// Owner rows per slab of the force sums. A constant, not a function of the thread count, so the
+// order of every addition, and the result, is the same with any number of threads.
+inline constexpr std::size_t kSlabRows = 2048;
 
 // Evaluates every pair of `list` and sums per row into Force and Torque.
 void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
