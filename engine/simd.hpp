@@ -45,6 +45,21 @@ inline BatchD gather32(const double* base, const std::int32_t* idx) {
 #endif
 }
 
+// Bit l set when lane l of `b` is true.
+inline std::uint32_t lane_bits(const xsimd::batch_bool<double, SimdArch>& b) {
+#if defined(__AVX512F__) && !defined(GRAINFLOW_SIMD_256)
+  return static_cast<std::uint32_t>(static_cast<__mmask8>(b));
+#elif defined(__AVX2__)
+  return static_cast<std::uint32_t>(_mm256_movemask_pd(static_cast<__m256d>(b)));
+#else
+  alignas(64) bool lanes[kLanes];
+  b.store_aligned(lanes);
+  std::uint32_t bits = 0;
+  for (std::size_t l = 0; l < kLanes; ++l) bits |= static_cast<std::uint32_t>(lanes[l]) << l;
+  return bits;
+#endif
+}
+
 // The same, where a negative index gives 0.0 (a missing entry) and reads nothing.
 inline BatchD gather32_or_zero(const double* base, const std::int32_t* idx) {
 #if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(GRAINFLOW_SIMD_256)

@@ -32,7 +32,7 @@ void DemSimulation::prime() {
   // The law advanced every spring by v_t dt while evaluating; no time has passed, and the springs
   // of a new state start from zero, so that increment is undone.
   world_->resources.get<PairHistory>().clear();
-  for_each_column(world_->grains.extras.get<WallHistory>(), [](ColumnD& c) { std::fill(c.begin(), c.end(), 0.0); });
+  for_each_column(world_->grains.extras.get<WallHistory>(), [](auto& c) { std::fill(c.begin(), c.end(), 0); });
 }
 
 StageReport DemSimulation::settle(double progress_seconds) {

@@ -55,10 +55,10 @@ void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
         const double gap = wall_gap(wall, p, n);
         if (gap >= ri) {
           for (int c = 0; c < 6; ++c) hc[c][i] = 0.0;
-          h.active[w][i] = 0.0;
+          h.active[w][i] = 0;
           continue;
         }
-        h.active[w][i] = 1.0;
+        h.active[w][i] = 1;
         const double delta = ri - gap;
         const double li = ri - 0.5 * delta;
         const Vec3d wi{g.omega.x[i], g.omega.y[i], g.omega.z[i]};
@@ -90,90 +90,175 @@ void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
   });
 }
 
-// The same arithmetic over batches of rows: each wall's gap is computed for every lane, and the law
-// runs only for batches with a lane touching that wall now or at the last evaluation (whose springs
-// must be reset); elsewhere the springs are already zero and nothing is read or written.
+// The same arithmetic, wall by wall over fixed blocks of rows: a first pass computes the gap of
+// every row in batches and packs the rows touching the wall now or at the last evaluation (whose
+// springs must be reset); the law then runs over the packed rows only, a whole batch at a time
+// (in a thin drum about one row in five touches an end wall, and which rows do depends on the
+// row order; packed, the cost follows the contacts and not the order). Per row the walls add in
+// wall order, as in the scalar twin.
+namespace {
+
+constexpr std::size_t kWallBlock = 2048;  // rows per task, a multiple of the batch width
+constexpr std::size_t kAhead = 16;        // rows between a prefetch and its use
+
+// Gap to `wall` and the unit normal from the centre towards it, for a batch of positions.
+template <class V, class B>
+[[gnu::always_inline]] inline B wall_gap_batch(const Wall& wall, const V& p, V& n) {
+  if (wall.kind == Wall::Kind::Plane) {
+    const V pn{B(wall.cur_normal.x), B(wall.cur_normal.y), B(wall.cur_normal.z)};
+    const V pp{B(wall.cur_point.x), B(wall.cur_point.y), B(wall.cur_point.z)};
+    n = -pn;
+    return dot(p - pp, pn);
+  }
+  const V ax{B(wall.cur_axis.x), B(wall.cur_axis.y), B(wall.cur_axis.z)};
+  const V q = p - V{B(wall.cur_center.x), B(wall.cur_center.y), B(wall.cur_center.z)};
+  const V radial = q - dot(q, ax) * ax;
+  const B rho = xsimd::sqrt(dot(radial, radial));
+  // A lane on the axis is far from the surface (gap = R > r for any grain that fits).
+  const B inv = B(1.0) / xsimd::select(rho > B(0.0), rho, B(1.0));
+  n = inv * radial;
+  return B(wall.radius) - rho;
+}
+
+// Lanes of the batch of rows at i within reach of `wall` (gap < r), without the square root and
+// division of the normal: for the cylinder, gap < r is rho^2 > (R - r)^2 where R > r.
+[[gnu::always_inline]] inline std::uint32_t reach_bits(const Wall& wall, const Grains& g, std::size_t i) {
+  using B = BatchD;
+  const B px = B::load_aligned(&g.pos.x[i]), py = B::load_aligned(&g.pos.y[i]), pz = B::load_aligned(&g.pos.z[i]);
+  const B r = B::load_aligned(&g.radius.r[i]);
+  if (wall.kind == Wall::Kind::Plane) {
+    const B gap = (px - B(wall.cur_point.x)) * B(wall.cur_normal.x) + (py - B(wall.cur_point.y)) * B(wall.cur_normal.y) +
+                  (pz - B(wall.cur_point.z)) * B(wall.cur_normal.z);
+    return lane_bits(gap < r);
+  }
+  const B qx = px - B(wall.cur_center.x), qy = py - B(wall.cur_center.y), qz = pz - B(wall.cur_center.z);
+  const B along = qx * B(wall.cur_axis.x) + qy * B(wall.cur_axis.y) + qz * B(wall.cur_axis.z);
+  const B rx = qx - along * B(wall.cur_axis.x), ry = qy - along * B(wall.cur_axis.y),
+          rz = qz - along * B(wall.cur_axis.z);
+  const B inner = B(wall.radius) - r;
+  return lane_bits(rx * rx + ry * ry + rz * rz > inner * inner || inner <= B(0.0));
+}
+
+// Bit l set where flag l of the batch is non-zero.
+[[gnu::always_inline]] inline std::uint32_t nonzero_bits(const std::uint8_t* flags) {
+#if defined(__AVX512BW__) && defined(__AVX512VL__) && !defined(GRAINFLOW_SIMD_256)
+  static_assert(kLanes == 8);
+  const __m128i v = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(flags));
+  return static_cast<std::uint32_t>(_mm_test_epi8_mask(v, v)) & 0xffu;
+#else
+  std::uint32_t bits = 0;
+  for (std::size_t l = 0; l < kLanes; ++l) bits |= static_cast<std::uint32_t>(flags[l] != 0) << l;
+  return bits;
+#endif
+}
+
+// Appends the rows i + l of the set bits to rows[m...] (writing a whole batch), returns the new m.
+[[gnu::always_inline]] inline std::size_t append_rows(std::int32_t* rows, std::size_t m, std::size_t i,
+                                                      std::uint32_t bits) {
+#if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(GRAINFLOW_SIMD_256)
+  static_assert(kLanes == 8);
+  const __m256i lanes = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(i)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(rows + m),
+                      _mm256_maskz_compress_epi32(static_cast<__mmask8>(bits), lanes));
+  return m + static_cast<std::size_t>(__builtin_popcount(bits));
+#else
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    rows[m] = static_cast<std::int32_t>(i + l);
+    m += (bits >> l) & 1u;
+  }
+  return m;
+#endif
+}
+
+}  // namespace
+
 void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
                          double t_contact) {
   prepare(g, walls, h, t_contact);
   using B = BatchD;
   using V = V3<B>;
   constexpr std::size_t L = kLanes;
+  static_assert(kWallBlock % L == 0);
   const std::size_t nw = walls.list.size();
   const CoeffColumns cc(table);
   const std::size_t nown = g.n_owned;
-  const std::size_t nbatch = (nown + L - 1) / L;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nbatch, 128), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t b = r.begin(); b != r.end(); ++b) {
-      const std::size_t i = b * L;
-      // Padding lanes past the last owned row take no part.
-      alignas(64) double lane_ok[L];
-      for (std::size_t l = 0; l < L; ++l) lane_ok[l] = i + l < nown ? 1.0 : 0.0;
-      const auto valid = B::load_aligned(lane_ok) != B(0.0);
-      const V p{B::load_aligned(&g.pos.x[i]), B::load_aligned(&g.pos.y[i]), B::load_aligned(&g.pos.z[i])};
-      const B ri = B::load_aligned(&g.radius.r[i]);
-      V f{B(0.0), B(0.0), B(0.0)}, t{B(0.0), B(0.0), B(0.0)};
-      bool types_loaded = false;
-      LsdCoeffs<B> c{};
-      for (std::size_t w = 0; w < nw; ++w) {
-        const Wall& wall = walls.list[w];
+  const std::size_t nblocks = (nown + kWallBlock - 1) / kWallBlock;
+  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
+    const std::size_t r0 = blk * kWallBlock, r1 = std::min(nown, r0 + kWallBlock);
+    for (ColumnD* c : {&g.wall_force.x, &g.wall_force.y, &g.wall_force.z, &g.wall_torque.x, &g.wall_torque.y,
+                       &g.wall_torque.z})
+      std::fill(c->begin() + r0, c->begin() + r1, 0.0);
+    // Packed rows of one wall, padded to a whole batch with the last one.
+    alignas(64) std::int32_t rows[kWallBlock + kAhead + L];
+    for (std::size_t w = 0; w < nw; ++w) {
+      const Wall& wall = walls.list[w];
+      Column<std::uint8_t>& act = h.active[w];
+      std::size_t m = 0;
+      for (std::size_t i = r0; i < r1; i += L) {
+        const std::uint32_t take = reach_bits(wall, g, i) | nonzero_bits(&act[i]);
+        m = append_rows(rows, m, i, take & ((1u << std::min(L, r1 - i)) - 1u));
+      }
+      if (m == 0) continue;
+      for (std::size_t l = m; l < m + kAhead + L; ++l) rows[l] = rows[m - 1];
+      ColumnD* hc = &h.cols[6 * w];
+      const double om = walls.rotation_enabled ? wall.omega : 0.0;
+      const V wall_w{B(om * wall.rot_axis.x), B(om * wall.rot_axis.y), B(om * wall.rot_axis.z)};
+      const V wall_o{B(wall.rot_point.x), B(wall.rot_point.y), B(wall.rot_point.z)};
+      for (std::size_t q = 0; q < m; q += L) {
+        const std::int32_t* idx = &rows[q];
+        // The springs and velocities of the packed rows are read nowhere else this step, so they
+        // come from far in the cache hierarchy: ask for those of a later batch now.
+        for (std::size_t l = 0; l < L; ++l) {
+          const auto a = static_cast<std::size_t>(rows[q + kAhead + l]);
+          for (std::size_t k = 0; k < 6; ++k) __builtin_prefetch(&hc[k][a]);
+          __builtin_prefetch(&g.vel.x[a]);
+          __builtin_prefetch(&g.vel.y[a]);
+          __builtin_prefetch(&g.vel.z[a]);
+          __builtin_prefetch(&g.omega.x[a]);
+          __builtin_prefetch(&g.omega.y[a]);
+          __builtin_prefetch(&g.omega.z[a]);
+        }
+        const V p{gather32(g.pos.x.data(), idx), gather32(g.pos.y.data(), idx), gather32(g.pos.z.data(), idx)};
+        const B ri = gather32(g.radius.r.data(), idx);
         V n;
-        B gap;
-        if (wall.kind == Wall::Kind::Plane) {
-          const V pn{B(wall.cur_normal.x), B(wall.cur_normal.y), B(wall.cur_normal.z)};
-          const V pp{B(wall.cur_point.x), B(wall.cur_point.y), B(wall.cur_point.z)};
-          gap = dot(p - pp, pn);
-          n = -pn;
-        } else {
-          const V ax{B(wall.cur_axis.x), B(wall.cur_axis.y), B(wall.cur_axis.z)};
-          const V q = p - V{B(wall.cur_center.x), B(wall.cur_center.y), B(wall.cur_center.z)};
-          const V radial = q - dot(q, ax) * ax;
-          const B rho = xsimd::sqrt(dot(radial, radial));
-          // A lane on the axis is far from the surface (gap = R > r for any grain that fits).
-          const B inv = B(1.0) / xsimd::select(rho > B(0.0), rho, B(1.0));
-          n = inv * radial;
-          gap = B(wall.radius) - rho;
-        }
-        const auto touching = (gap < ri) && valid;
-        ColumnD& act = h.active[w];
-        const B was = B::load_aligned(&act[i]);
-        if (!xsimd::any(touching) && !xsimd::any(was != B(0.0))) continue;
-        if (!types_loaded) {
-          // Padding lanes read the type column's padding (zero), a valid species.
-          const std::int32_t* ti = &g.species.type[i];
-          c = {gather32(cc.kn, ti),    gather32(cc.kt, ti),    gather32(cc.kr, ti), gather32(cc.eta_n, ti),
-               gather32(cc.eta_t, ti), gather32(cc.eta_r, ti), gather32(cc.fs, ti), gather32(cc.fr, ti)};
-          types_loaded = true;
-        }
+        const B gap = wall_gap_batch<V, B>(wall, p, n);
+        const auto touching = gap < ri;
+        alignas(64) std::int32_t ty[L];
+        for (std::size_t l = 0; l < L; ++l) ty[l] = g.species.type[static_cast<std::size_t>(idx[l])];
+        const LsdCoeffs<B> c{gather32(cc.kn, ty),    gather32(cc.kt, ty),    gather32(cc.kr, ty),
+                             gather32(cc.eta_n, ty), gather32(cc.eta_t, ty), gather32(cc.eta_r, ty),
+                             gather32(cc.fs, ty),    gather32(cc.fr, ty)};
         const B delta = ri - gap;
         const B li = ri - B(0.5) * delta;
-        const V wi{B::load_aligned(&g.omega.x[i]), B::load_aligned(&g.omega.y[i]), B::load_aligned(&g.omega.z[i])};
-        const V vi{B::load_aligned(&g.vel.x[i]), B::load_aligned(&g.vel.y[i]), B::load_aligned(&g.vel.z[i])};
+        const V wi{gather32(g.omega.x.data(), idx), gather32(g.omega.y.data(), idx), gather32(g.omega.z.data(), idx)};
+        const V vi{gather32(g.vel.x.data(), idx), gather32(g.vel.y.data(), idx), gather32(g.vel.z.data(), idx)};
         const V contact = p + li * n;
-        const double om = walls.rotation_enabled ? wall.omega : 0.0;
-        const V wall_w{B(om * wall.rot_axis.x), B(om * wall.rot_axis.y), B(om * wall.rot_axis.z)};
-        const V wall_v = cross(wall_w, contact - V{B(wall.rot_point.x), B(wall.rot_point.y), B(wall.rot_point.z)});
+        const V wall_v = cross(wall_w, contact - wall_o);
         const V v = vi + cross(li * wi, n) - wall_v;
-        ColumnD* hc = &h.cols[6 * w];
-        LsdState<B> s{{B::load_aligned(&hc[0][i]), B::load_aligned(&hc[1][i]), B::load_aligned(&hc[2][i])},
-                      {B::load_aligned(&hc[3][i]), B::load_aligned(&hc[4][i]), B::load_aligned(&hc[5][i])}};
+        LsdState<B> s{{gather32(hc[0].data(), idx), gather32(hc[1].data(), idx), gather32(hc[2].data(), idx)},
+                      {gather32(hc[3].data(), idx), gather32(hc[4].data(), idx), gather32(hc[5].data(), idx)}};
         const LsdResult<B> res = LinearSpringDashpot::evaluate(touching, n, delta, v, wi - wall_w, c, B(dt), s);
-        s.shear.x.store_aligned(&hc[0][i]);
-        s.shear.y.store_aligned(&hc[1][i]);
-        s.shear.z.store_aligned(&hc[2][i]);
-        s.roll.x.store_aligned(&hc[3][i]);
-        s.roll.y.store_aligned(&hc[4][i]);
-        s.roll.z.store_aligned(&hc[5][i]);
-        xsimd::select(touching, B(1.0), B(0.0)).store_aligned(&act[i]);
-        f = f + res.force;
-        t = t + li * cross(n, res.force_t) + res.rolling_torque;
+        const V t = li * cross(n, res.force_t) + res.rolling_torque;
+        // Lanes back to their rows (rows are distinct within one wall's list).
+        constexpr std::size_t F = 12;
+        alignas(64) double out[F][L];
+        const B vals[F] = {s.shear.x, s.shear.y, s.shear.z, s.roll.x, s.roll.y, s.roll.z,
+                           res.force.x, res.force.y, res.force.z, t.x, t.y, t.z};
+        const std::uint32_t now = lane_bits(touching);
+        for (std::size_t f = 0; f < F; ++f) vals[f].store_aligned(out[f]);
+        const std::size_t valid = std::min(L, m - q);
+        for (std::size_t l = 0; l < valid; ++l) {
+          const auto i = static_cast<std::size_t>(idx[l]);
+          for (std::size_t k = 0; k < 6; ++k) hc[k][i] = out[k][l];
+          g.wall_force.x[i] += out[6][l];
+          g.wall_force.y[i] += out[7][l];
+          g.wall_force.z[i] += out[8][l];
+          g.wall_torque.x[i] += out[9][l];
+          g.wall_torque.y[i] += out[10][l];
+          g.wall_torque.z[i] += out[11][l];
+          act[i] = static_cast<std::uint8_t>((now >> l) & 1u);
+        }
       }
-      f.x.store_aligned(&g.wall_force.x[i]);
-      f.y.store_aligned(&g.wall_force.y[i]);
-      f.z.store_aligned(&g.wall_force.z[i]);
-      t.x.store_aligned(&g.wall_torque.x[i]);
-      t.y.store_aligned(&g.wall_torque.y[i]);
-      t.z.store_aligned(&g.wall_torque.z[i]);
     }
   });
 }

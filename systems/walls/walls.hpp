@@ -49,7 +49,7 @@ Vec3d rotate_about(const Vec3d& v, const Vec3d& axis, double angle);
 // kernels skip rows far from a wall without reading their springs.
 struct WallHistory {
   std::vector<ColumnD> cols;    // 6 per wall: sx, sy, sz, rx, ry, rz
-  std::vector<ColumnD> active;  // 1 per wall
+  std::vector<Column<std::uint8_t>> active;  // 1 per wall: touching at the last evaluation
   void shape(std::size_t walls, std::size_t rows) {
     cols.resize(6 * walls);
     active.resize(walls);
