@@ -357,7 +357,7 @@ TEST_CASE("pair contact: the xsimd driver equals the scalar driver on a stirred 
 }
 
 TEST_CASE("pair contact: the slab sums equal a plain per-contact sum, partners several slabs away", "[contact]") {
-  // Forces are summed per slab of gf::kSlabRows owner rows, and a partner in a later slab gets its
+  // Forces are summed per slab of gf::slab_rows(n) owner rows, and a partner in a later slab gets its
   // share through a set-aside list. Against the plainest sum (every contact in order, both sides),
   // each grain's total is the same set of terms added in another order: |dF| <= (terms) eps sum|f|
   // < 1e-14 sum|f| for the <= ~20 contacts of a grain. A share lost, doubled or given the wrong
@@ -373,7 +373,8 @@ TEST_CASE("pair contact: the slab sums equal a plain per-contact sum, partners s
   gf::compute_pair_forces(g, list, w.resources.get<gf::PairHistory>(), w.resources.get<gf::ContactTable>(),
                           w.clock.dt, pf);
   const std::size_t n = g.n_owned, nc = pf.contacts();
-  REQUIRE(n > 2 * gf::kSlabRows);  // three slabs
+  const std::size_t rows = gf::slab_rows(n);
+  REQUIRE(n > 2 * rows);  // three slabs at least
   std::vector<V> f(n, V{0, 0, 0}), t(n, V{0, 0, 0});
   std::vector<double> scale_f(n, 0.0), scale_t(n, 0.0);
   std::size_t across = 0;
@@ -391,7 +392,7 @@ TEST_CASE("pair contact: the slab sums equal a plain per-contact sum, partners s
     scale_f[j] += mf;
     scale_t[i] += mti;
     scale_t[j] += mtj;
-    across += i / gf::kSlabRows != j / gf::kSlabRows;
+    across += i / rows != j / rows;
   }
   INFO("contacts " << nc << ", across slabs " << across);
   REQUIRE(nc > n);         // a packed bed: most grains touch

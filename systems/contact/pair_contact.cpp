@@ -166,7 +166,7 @@ struct SlabSums {
   const double* __restrict ti[3];
   const double* __restrict tj[3];
 
-  void run(std::size_t a, std::size_t b, std::size_t n, std::size_t c0, std::size_t c1,
+  void run(std::size_t a, std::size_t b, std::size_t n, std::size_t rows, std::size_t c0, std::size_t c1,
            std::vector<PairForces::Spill>* spill) const {
     double* __restrict Fx = F[0];
     double* __restrict Fy = F[1];
@@ -202,15 +202,19 @@ struct SlabSums {
         Ty[j] += tjy[c];
         Tz[j] += tjz[c];
       } else if (j < n) {  // rows past n_owned are ghosts: their forces are another rank's
-        spill[j / kSlabRows].push_back({static_cast<std::uint32_t>(j), fx[c], fy[c], fz[c], tjx[c], tjy[c], tjz[c]});
+        spill[j / rows].push_back({static_cast<std::uint32_t>(j), fx[c], fy[c], fz[c], tjx[c], tjy[c], tjz[c]});
       }
     }
   }
 };
 
-void accumulate_rows(Grains& g, const NeighborList& list, PairForces& out) {
+// Runs law(c0, c1) over each slab's contacts, then that slab's sums, one task per slab; then the
+// shares set aside for later slabs.
+template <class Law>
+void evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&& law) {
   const std::size_t n = g.n_owned;
-  const std::size_t ns = (n + kSlabRows - 1) / kSlabRows;
+  const std::size_t rows = slab_rows(n);
+  const std::size_t ns = (n + rows - 1) / rows;
   if (out.spill.size() < ns * ns) out.spill.resize(ns * ns);
   const SlabSums sums{{g.force.x.data(), g.force.y.data(), g.force.z.data()},
                       {g.torque.x.data(), g.torque.y.data(), g.torque.z.data()},
@@ -220,11 +224,13 @@ void accumulate_rows(Grains& g, const NeighborList& list, PairForces& out) {
                       {out.tix.data(), out.tiy.data(), out.tiz.data()},
                       {out.tjx.data(), out.tjy.data(), out.tjz.data()}};
   tbb::parallel_for(std::size_t(0), ns, [&](std::size_t s) {
-    const std::size_t a = s * kSlabRows, b = std::min(n, a + kSlabRows);
+    const std::size_t a = s * rows, b = std::min(n, a + rows);
+    const auto c0 = static_cast<std::size_t>(out.rank[list.offsets[a]]);
+    const auto c1 = static_cast<std::size_t>(out.rank[list.offsets[b]]);
+    law(c0, c1);
     std::vector<PairForces::Spill>* spill = &out.spill[s * ns];
     for (std::size_t t = s + 1; t < ns; ++t) spill[t].clear();
-    sums.run(a, b, n, static_cast<std::size_t>(out.rank[list.offsets[a]]),
-             static_cast<std::size_t>(out.rank[list.offsets[b]]), spill);
+    sums.run(a, b, n, rows, c0, c1, spill);
   });
   tbb::parallel_for(std::size_t(1), ns, [&](std::size_t t) {
     double* __restrict Fx = sums.F[0];
@@ -262,14 +268,15 @@ void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory
   if (h.slot.size() != np) h.map_slots(np);
   size_outputs(out, np, nc);
   compact_scalar(list, h, out, 0, np, 0, static_cast<std::int32_t>(nc));
-  for (std::size_t c = 0; c < nc; ++c) {
-    const auto k = static_cast<std::size_t>(out.pair[c]);
-    carry_spring(h, out.cslot[c], out.next, c);
-    evaluate_one(g, list.i[k], list.j[k], out.next, table.pair_data(), table.types(), dt, out, c);
-  }
   out.rank[np] = static_cast<std::int32_t>(nc);
+  evaluate_and_sum(g, list, out, [&](std::size_t c0, std::size_t c1) {
+    for (std::size_t c = c0; c < c1; ++c) {
+      const auto k = static_cast<std::size_t>(out.pair[c]);
+      carry_spring(h, out.cslot[c], out.next, c);
+      evaluate_one(g, list.i[k], list.j[k], out.next, table.pair_data(), table.types(), dt, out, c);
+    }
+  });
   std::swap(h, out.next);
-  accumulate_rows(g, list, out);
 }
 
 void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table, double dt,
@@ -354,10 +361,10 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
     return out.coeff_uniform[q] ? B(out.coeff[q][0])
                                 : (in_register ? reg[q].lookup(compact) : gather32(out.coeff[q].data(), idx));
   };
-  const std::size_t full = nc / L;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, full, 64), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t bt = r.begin(); bt != r.end(); ++bt) {
-      const std::size_t c0 = bt * L;
+  // Whole batches of a slab's contacts from its first; the remainder through the scalar path.
+  auto law = [&](std::size_t cbeg, std::size_t cend) {
+    std::size_t c0 = cbeg;
+    for (; c0 + L <= cend; c0 += L) {
       // Contacts are in owner order: the owners of a batch are a few adjacent rows, loaded whole
       // and permuted into lanes; partners are scattered and gathered.
       const RowWindow bi = row_window(&out.ci[c0], rows);
@@ -400,33 +407,32 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       }
       const auto all = B(0.0) == B(0.0);
       const LsdResult<B> res = LinearSpringDashpot::evaluate(all, n, delta, v, wi - wj, cf, B(dt), s);
-      s.shear.x.store_aligned(&nh.sx[c0]);
-      s.shear.y.store_aligned(&nh.sy[c0]);
-      s.shear.z.store_aligned(&nh.sz[c0]);
-      s.roll.x.store_aligned(&nh.rx[c0]);
-      s.roll.y.store_aligned(&nh.ry[c0]);
-      s.roll.z.store_aligned(&nh.rz[c0]);
+      s.shear.x.store_unaligned(&nh.sx[c0]);
+      s.shear.y.store_unaligned(&nh.sy[c0]);
+      s.shear.z.store_unaligned(&nh.sz[c0]);
+      s.roll.x.store_unaligned(&nh.rx[c0]);
+      s.roll.y.store_unaligned(&nh.ry[c0]);
+      s.roll.z.store_unaligned(&nh.rz[c0]);
       const V nxf = cross(n, res.force_t);
-      (li * nxf.x + res.rolling_torque.x).store_aligned(&out.tix[c0]);
-      (li * nxf.y + res.rolling_torque.y).store_aligned(&out.tiy[c0]);
-      (li * nxf.z + res.rolling_torque.z).store_aligned(&out.tiz[c0]);
-      res.force.x.store_aligned(&out.fx[c0]);
-      res.force.y.store_aligned(&out.fy[c0]);
-      res.force.z.store_aligned(&out.fz[c0]);
-      (lj * nxf.x - res.rolling_torque.x).store_aligned(&out.tjx[c0]);
-      (lj * nxf.y - res.rolling_torque.y).store_aligned(&out.tjy[c0]);
-      (lj * nxf.z - res.rolling_torque.z).store_aligned(&out.tjz[c0]);
+      (li * nxf.x + res.rolling_torque.x).store_unaligned(&out.tix[c0]);
+      (li * nxf.y + res.rolling_torque.y).store_unaligned(&out.tiy[c0]);
+      (li * nxf.z + res.rolling_torque.z).store_unaligned(&out.tiz[c0]);
+      res.force.x.store_unaligned(&out.fx[c0]);
+      res.force.y.store_unaligned(&out.fy[c0]);
+      res.force.z.store_unaligned(&out.fz[c0]);
+      (lj * nxf.x - res.rolling_torque.x).store_unaligned(&out.tjx[c0]);
+      (lj * nxf.y - res.rolling_torque.y).store_unaligned(&out.tjy[c0]);
+      (lj * nxf.z - res.rolling_torque.z).store_unaligned(&out.tjz[c0]);
     }
-  });
-  for (std::size_t c = full * L; c < nc; ++c) {
-    const std::size_t k = static_cast<std::size_t>(out.pair[c]);
-    carry_spring(h, out.cslot[c], out.next, c);
-    evaluate_one(g, list.i[k], list.j[k], out.next, coeffs, ntypes, dt, out, c);
-  }
+    for (std::size_t c = c0; c < cend; ++c) {
+      const std::size_t k = static_cast<std::size_t>(out.pair[c]);
+      carry_spring(h, out.cslot[c], out.next, c);
+      evaluate_one(g, list.i[k], list.j[k], out.next, coeffs, ntypes, dt, out, c);
+    }
+  };
+  // 4. The law and the sums, slab by slab.
+  evaluate_and_sum(g, list, out, law);
   std::swap(h, out.next);
-
-  // 4. Per-row sums.
-  accumulate_rows(g, list, out);
 }
 
 void PairContact::run(World& world) {

@@ -5,9 +5,11 @@
 //      packed springs of the last evaluation (pairs that separated drop theirs);
 //   3. the law over the packed contacts in xsimd batches (a scalar tail), springs read and written
 //      with vector loads and stores, per-contact force and the torques on both sides;
-//   4. the sums into Force and Torque, by fixed slabs of kSlabRows owner rows: a slab's contacts
-//      add into its own rows in contact order (owner and partner side), and the partner sides that
-//      fall in a later slab are set aside per target slab, then added there, slab by slab (no atomics).
+//   4. the sums into Force and Torque, by fixed slabs of slab_rows(n) owner rows, right after the
+//      law has run over the slab's contacts (steps 3 and 4 are one task per slab, so the law's
+//      outputs are summed while in cache): a slab's contacts add into its own rows in contact order
+//      (owner and partner side), and the partner sides that fall in a later slab are set aside per
+//      target slab, then added there, slab by slab (no atomics).
 // Every step is independent of the thread count, so runs are bit-for-bit repeatable.
 // Lever arms are L = r - delta/2 on each side (centre to contact point).
 // compute_pair_forces_scalar is the plain reference the tests and benchmarks compare with.
@@ -58,9 +60,14 @@ struct PairForces {
   }
 };
 
-// Owner rows per slab of the force sums. A constant, not a function of the thread count, so the
-// order of every addition, and the result, is the same with any number of threads.
-inline constexpr std::size_t kSlabRows = 2048;
+// Owner rows per slab of the force sums, for n owned rows: about n / 16 (work for several threads),
+// 256 to 2,048 (a slab's rows and contacts stay in cache), a multiple of 64. A function of n alone,
+// not of the thread count, so the order of every addition, and the result, is the same with any
+// number of threads.
+inline std::size_t slab_rows(std::size_t n) {
+  const std::size_t s = (n / 16 + 63) / 64 * 64;
+  return s < 256 ? 256 : (s > 2048 ? 2048 : s);
+}
 
 // Evaluates every pair of `list` and sums per row into Force and Torque.
 void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
