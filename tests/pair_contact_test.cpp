@@ -370,6 +370,7 @@ TEST_CASE("pair contact: the slab sums equal a plain per-contact sum, partners s
   Grains& g = w.grains;
   const auto& list = w.resources.get<gf::NeighborList>();
   auto& pf = w.resources.get<gf::PairForces>();
+  pf.record_torques = true;
   gf::compute_pair_forces(g, list, w.resources.get<gf::PairHistory>(), w.resources.get<gf::ContactTable>(),
                           w.clock.dt, pf);
   const std::size_t n = g.n_owned, nc = pf.contacts();

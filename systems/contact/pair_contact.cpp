@@ -22,10 +22,11 @@ void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
   out.next.resize(nc);
   out.next.slot.resize(np);
   std::fill(out.next.slot.begin() + np, out.next.slot.begin() + out.next.slot.padded(), -1);
-  for (ColumnD* c : {&out.fx, &out.fy, &out.fz, &out.tix, &out.tiy, &out.tiz, &out.tjx, &out.tjy, &out.tjz}) {
+  for (ColumnD* c : {&out.fx, &out.fy, &out.fz}) {
     c->resize(nc + 1);
     (*c)[nc] = 0.0;
   }
+  for (ColumnD* c : {&out.tix, &out.tiy, &out.tiz, &out.tjx, &out.tjy, &out.tjz}) c->resize(out.record_torques ? nc : 0);
 }
 
 // Springs of the last evaluation for contact c (entry `slot` of the old history, -1 for a new
@@ -112,9 +113,16 @@ inline bool is_run(const std::int32_t* sl) {
   return true;
 }
 
+// Torques on i (0-2) and on j (3-5) of a slab's contacts [c0, c1), indexed c - c0: a per-task
+// buffer, read by the slab's sums right after the law writes it.
+struct SlabTorques {
+  std::size_t c0 = 0;
+  double* t[6] = {};
+};
+
 // Law, lever arms and torques for one contact; shared by the scalar tail and the scalar driver.
 void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h, const PairCoeffs* coeffs,
-                  std::size_t ntypes, double dt, PairForces& out, std::size_t c) {
+                  std::size_t ntypes, double dt, PairForces& out, std::size_t c, const SlabTorques& st) {
   const V3<double> d{g.pos.x[j] - g.pos.x[i], g.pos.y[j] - g.pos.y[i], g.pos.z[j] - g.pos.z[i]};
   const double ri = g.radius.r[i], rj = g.radius.r[j];
   const double dist = std::sqrt(dot(d, d));
@@ -141,13 +149,13 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
   out.fx[c] = res.force.x;
   out.fy[c] = res.force.y;
   out.fz[c] = res.force.z;
-  out.tix[c] = li * nxf.x + res.rolling_torque.x;
-  out.tiy[c] = li * nxf.y + res.rolling_torque.y;
-  out.tiz[c] = li * nxf.z + res.rolling_torque.z;
+  st.t[0][c - st.c0] = li * nxf.x + res.rolling_torque.x;
+  st.t[1][c - st.c0] = li * nxf.y + res.rolling_torque.y;
+  st.t[2][c - st.c0] = li * nxf.z + res.rolling_torque.z;
   // On j the force is -F and the lever -L_j n: the tangential torque has the same sign as i's.
-  out.tjx[c] = lj * nxf.x - res.rolling_torque.x;
-  out.tjy[c] = lj * nxf.y - res.rolling_torque.y;
-  out.tjz[c] = lj * nxf.z - res.rolling_torque.z;
+  st.t[3][c - st.c0] = lj * nxf.x - res.rolling_torque.x;
+  st.t[4][c - st.c0] = lj * nxf.y - res.rolling_torque.y;
+  st.t[5][c - st.c0] = lj * nxf.z - res.rolling_torque.z;
 }
 
 // Sums into Force and Torque by slabs of owner rows. A slab's contacts are one run of the packed
@@ -163,11 +171,9 @@ struct SlabSums {
   const std::int32_t* __restrict ci;
   const std::int32_t* __restrict cj;
   const double* __restrict f[3];
-  const double* __restrict ti[3];
-  const double* __restrict tj[3];
 
   void run(std::size_t a, std::size_t b, std::size_t n, std::size_t rows, std::size_t c0, std::size_t c1,
-           std::vector<PairForces::Spill>* spill) const {
+           const SlabTorques& st, std::vector<PairForces::Spill>* spill) const {
     double* __restrict Fx = F[0];
     double* __restrict Fy = F[1];
     double* __restrict Fz = F[2];
@@ -179,30 +185,32 @@ struct SlabSums {
     const double* __restrict fx = f[0];
     const double* __restrict fy = f[1];
     const double* __restrict fz = f[2];
-    const double* __restrict tix = ti[0];
-    const double* __restrict tiy = ti[1];
-    const double* __restrict tiz = ti[2];
-    const double* __restrict tjx = tj[0];
-    const double* __restrict tjy = tj[1];
-    const double* __restrict tjz = tj[2];
+    // The slab's torques, indexed c - c0.
+    const double* __restrict tix = st.t[0];
+    const double* __restrict tiy = st.t[1];
+    const double* __restrict tiz = st.t[2];
+    const double* __restrict tjx = st.t[3];
+    const double* __restrict tjy = st.t[4];
+    const double* __restrict tjz = st.t[5];
     for (double* col : {Fx, Fy, Fz, Tx, Ty, Tz}) std::fill(col + a, col + b, 0.0);
     for (std::size_t c = c0; c < c1; ++c) {
+      const std::size_t q = c - c0;
       const auto i = static_cast<std::size_t>(ri[c]), j = static_cast<std::size_t>(rj[c]);
       Fx[i] += fx[c];
       Fy[i] += fy[c];
       Fz[i] += fz[c];
-      Tx[i] += tix[c];
-      Ty[i] += tiy[c];
-      Tz[i] += tiz[c];
+      Tx[i] += tix[q];
+      Ty[i] += tiy[q];
+      Tz[i] += tiz[q];
       if (j < b) {
         Fx[j] -= fx[c];
         Fy[j] -= fy[c];
         Fz[j] -= fz[c];
-        Tx[j] += tjx[c];
-        Ty[j] += tjy[c];
-        Tz[j] += tjz[c];
+        Tx[j] += tjx[q];
+        Ty[j] += tjy[q];
+        Tz[j] += tjz[q];
       } else if (j < n) {  // rows past n_owned are ghosts: their forces are another rank's
-        spill[j / rows].push_back({static_cast<std::uint32_t>(j), fx[c], fy[c], fz[c], tjx[c], tjy[c], tjz[c]});
+        spill[j / rows].push_back({static_cast<std::uint32_t>(j), fx[c], fy[c], fz[c], tjx[q], tjy[q], tjz[q]});
       }
     }
   }
@@ -220,17 +228,25 @@ void evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&
                       {g.torque.x.data(), g.torque.y.data(), g.torque.z.data()},
                       out.ci.data(),
                       out.cj.data(),
-                      {out.fx.data(), out.fy.data(), out.fz.data()},
-                      {out.tix.data(), out.tiy.data(), out.tiz.data()},
-                      {out.tjx.data(), out.tjy.data(), out.tjz.data()}};
+                      {out.fx.data(), out.fy.data(), out.fz.data()}};
   tbb::parallel_for(std::size_t(0), ns, [&](std::size_t s) {
     const std::size_t a = s * rows, b = std::min(n, a + rows);
     const auto c0 = static_cast<std::size_t>(out.rank[list.offsets[a]]);
     const auto c1 = static_cast<std::size_t>(out.rank[list.offsets[b]]);
-    law(c0, c1);
+    // This thread's torque buffer, kept from call to call (no allocation once it has grown).
+    thread_local std::vector<double> scratch;
+    const std::size_t stride = (c1 - c0 + 2 * kLanes - 1) / kLanes * kLanes;
+    if (scratch.size() < 6 * stride) scratch.resize(6 * stride);
+    SlabTorques st{c0, {}};
+    for (std::size_t k = 0; k < 6; ++k) st.t[k] = scratch.data() + k * stride;
+    law(c0, c1, st);
+    if (out.record_torques) {
+      ColumnD* cols[6] = {&out.tix, &out.tiy, &out.tiz, &out.tjx, &out.tjy, &out.tjz};
+      for (std::size_t k = 0; k < 6; ++k) std::copy(st.t[k], st.t[k] + (c1 - c0), cols[k]->begin() + c0);
+    }
     std::vector<PairForces::Spill>* spill = &out.spill[s * ns];
     for (std::size_t t = s + 1; t < ns; ++t) spill[t].clear();
-    sums.run(a, b, n, rows, c0, c1, spill);
+    sums.run(a, b, n, rows, c0, c1, st, spill);
   });
   tbb::parallel_for(std::size_t(1), ns, [&](std::size_t t) {
     double* __restrict Fx = sums.F[0];
@@ -269,11 +285,11 @@ void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory
   size_outputs(out, np, nc);
   compact_scalar(list, h, out, 0, np, 0, static_cast<std::int32_t>(nc));
   out.rank[np] = static_cast<std::int32_t>(nc);
-  evaluate_and_sum(g, list, out, [&](std::size_t c0, std::size_t c1) {
+  evaluate_and_sum(g, list, out, [&](std::size_t c0, std::size_t c1, const SlabTorques& st) {
     for (std::size_t c = c0; c < c1; ++c) {
       const auto k = static_cast<std::size_t>(out.pair[c]);
       carry_spring(h, out.cslot[c], out.next, c);
-      evaluate_one(g, list.i[k], list.j[k], out.next, table.pair_data(), table.types(), dt, out, c);
+      evaluate_one(g, list.i[k], list.j[k], out.next, table.pair_data(), table.types(), dt, out, c, st);
     }
   });
   std::swap(h, out.next);
@@ -362,7 +378,7 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
                                 : (in_register ? reg[q].lookup(compact) : gather32(out.coeff[q].data(), idx));
   };
   // Whole batches of a slab's contacts from its first; the remainder through the scalar path.
-  auto law = [&](std::size_t cbeg, std::size_t cend) {
+  auto law = [&](std::size_t cbeg, std::size_t cend, const SlabTorques& st) {
     std::size_t c0 = cbeg;
     for (; c0 + L <= cend; c0 += L) {
       // Contacts are in owner order: the owners of a batch are a few adjacent rows, loaded whole
@@ -414,20 +430,20 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       s.roll.y.store_unaligned(&nh.ry[c0]);
       s.roll.z.store_unaligned(&nh.rz[c0]);
       const V nxf = cross(n, res.force_t);
-      (li * nxf.x + res.rolling_torque.x).store_unaligned(&out.tix[c0]);
-      (li * nxf.y + res.rolling_torque.y).store_unaligned(&out.tiy[c0]);
-      (li * nxf.z + res.rolling_torque.z).store_unaligned(&out.tiz[c0]);
+      (li * nxf.x + res.rolling_torque.x).store_unaligned(&st.t[0][c0 - st.c0]);
+      (li * nxf.y + res.rolling_torque.y).store_unaligned(&st.t[1][c0 - st.c0]);
+      (li * nxf.z + res.rolling_torque.z).store_unaligned(&st.t[2][c0 - st.c0]);
       res.force.x.store_unaligned(&out.fx[c0]);
       res.force.y.store_unaligned(&out.fy[c0]);
       res.force.z.store_unaligned(&out.fz[c0]);
-      (lj * nxf.x - res.rolling_torque.x).store_unaligned(&out.tjx[c0]);
-      (lj * nxf.y - res.rolling_torque.y).store_unaligned(&out.tjy[c0]);
-      (lj * nxf.z - res.rolling_torque.z).store_unaligned(&out.tjz[c0]);
+      (lj * nxf.x - res.rolling_torque.x).store_unaligned(&st.t[3][c0 - st.c0]);
+      (lj * nxf.y - res.rolling_torque.y).store_unaligned(&st.t[4][c0 - st.c0]);
+      (lj * nxf.z - res.rolling_torque.z).store_unaligned(&st.t[5][c0 - st.c0]);
     }
     for (std::size_t c = c0; c < cend; ++c) {
       const std::size_t k = static_cast<std::size_t>(out.pair[c]);
       carry_spring(h, out.cslot[c], out.next, c);
-      evaluate_one(g, list.i[k], list.j[k], out.next, coeffs, ntypes, dt, out, c);
+      evaluate_one(g, list.i[k], list.j[k], out.next, coeffs, ntypes, dt, out, c, st);
     }
   };
   // 4. The law and the sums, slab by slab.

@@ -35,8 +35,12 @@ struct PairForces {
   Column<std::int32_t> ctype;      // its type-pair index (NeighborList::type_pair)
   Column<std::int32_t> cslot;      // its spring's entry in the history of the last evaluation, or -1
   // Per contact, plus a last all-zero row that stands for "apart": force on the owner i (N; j gets
-  // minus it), torque on i and torque on j (N m).
-  ColumnD fx, fy, fz, tix, tiy, tiz, tjx, tjy, tjz;
+  // minus it).
+  ColumnD fx, fy, fz;
+  // Torques on i and on j (N m) live in a per-task buffer while their slab is summed (they are
+  // read once, right away); with record_torques set they are also kept here per contact.
+  bool record_torques = false;
+  ColumnD tix, tiy, tiz, tjx, tjy, tjz;
   // Per list pair.
   std::vector<std::int32_t> rank;        // contacts before this list pair (size pairs + 1)
   std::vector<std::int32_t> contact_of;  // contact index, or contacts() (the zero row) when apart
