@@ -755,6 +755,7 @@ TEST_CASE("broadphase: rebuilding a stirred pile every step keeps every pair's h
       for (int c = 0; c < 6; ++c) {
         const double d = std::abs(va[c] - it->second[c]);
         worst_spring = std::max(worst_spring, d / largest);
+        INFO("d / largest " << d / largest << ", d / own " << d / std::max(std::abs(va[c]), 1e-300));
         REQUIRE(d <= (step == 0 ? 1e-15 : 1e-12) * largest);
       }
     }

@@ -53,7 +53,8 @@ struct LinearSpringDashpot {
     const T old_len2 = dot(s.shear, s.shear);
     V3<T> d = s.shear - dot(s.shear, n) * n;
     const T new_len2 = dot(d, d);
-    const T keep = choose(new_len2 > tiny, sqrt_of(old_len2 / choose(new_len2 > tiny, new_len2, T(1.0))), T(1.0));
+    const auto turned = new_len2 > tiny;
+    const T keep = choose(turned, sqrt_of(old_len2) * rsqrt_of(choose(turned, new_len2, T(1.0))), T(1.0));
     d = keep * d;
     d = d + dt * vt;
     V3<T> ft = (-c.kt) * d - c.eta_t * vt;
@@ -78,15 +79,16 @@ struct LinearSpringDashpot {
   // The slider of a spring-dashpot pair: where |f| exceeds the cap, f points along -spring with
   // the cap's magnitude (along f itself when the spring has no direction), and the spring is
   // shortened to cap / k so that a reversal starts from the cap.
+  // (A spring counts as having a direction when |spring|^2 > 1e-300, i.e. longer than 1e-150 m.)
   template <class T>
   static void slide(V3<T>& f, V3<T>& spring, const T& cap, const T& k) {
     const T f2 = dot(f, f);
-    const T len = sqrt_of(dot(spring, spring));
+    const T len2 = dot(spring, spring);
     const auto over = f2 > cap * cap;
-    const auto has_dir = len > T(1e-300);
-    const T inv = T(1.0) / choose(has_dir, len, T(1.0));
-    const T f_len = sqrt_of(choose(f2 > T(1e-300), f2, T(1.0)));
-    const V3<T> f_capped = choose(has_dir, (-cap * inv) * spring, (cap / f_len) * f);
+    const auto has_dir = len2 > T(1e-300);
+    const T inv = rsqrt_of(choose(has_dir, len2, T(1.0)));
+    const T inv_f = rsqrt_of(choose(f2 > T(1e-300), f2, T(1.0)));
+    const V3<T> f_capped = choose(has_dir, (-cap * inv) * spring, (cap * inv_f) * f);
     const T k_safe = choose(k > T(0.0), k, T(1.0));
     const V3<T> spring_capped = choose(has_dir, (cap / k_safe * inv) * spring, spring);
     f = choose(over, f_capped, f);

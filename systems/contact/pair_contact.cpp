@@ -390,8 +390,11 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
                 gather32(g.pos.y.data(), bj) - load_rows(g.pos.y.data(), bi),
                 gather32(g.pos.z.data(), bj) - load_rows(g.pos.z.data(), bi)};
       const B ri = load_rows(g.radius.r.data(), bi), rj = gather32(g.radius.r.data(), bj);
-      const B dist = xsimd::sqrt(dot(d, d));
-      const B inv = B(1.0) / dist;
+      // The distance correctly rounded (the overlap is its small difference from r_i + r_j), the
+      // reciprocal from the estimate (touching pairs are apart by more than 0).
+      const B d2 = dot(d, d);
+      const B dist = xsimd::sqrt(d2);
+      const B inv = rsqrt_of(d2);
       const V n = inv * d;
       const B delta = ri + rj - dist;
       const B li = ri - B(0.5) * delta, lj = rj - B(0.5) * delta;
