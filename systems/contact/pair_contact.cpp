@@ -13,6 +13,8 @@ namespace {
 
 // Pairs per prefilter block: a multiple of the batch width, small enough for load balance.
 constexpr std::size_t kBlock = 2048;
+// Contacts between a spring prefetch and its use in the law.
+constexpr std::size_t kAheadSprings = 64;
 
 // The per-contact columns hold one extra row, kept zero, that pairs apart point at (force_of).
 void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
@@ -415,6 +417,16 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       // Springs of the last evaluation: between rebuilds a batch's contacts usually all persist
       // and sit in a run of the old history, read with plain loads; otherwise gathered by slot.
       const std::int32_t* sl = &out.cslot[c0];
+      // The old springs are one stream among many and are read once: ask for those of a batch
+      // kAheadSprings contacts on (the slot there, when it has one, is a few entries from sl[0] +
+      // kAheadSprings).
+      if (c0 + kAheadSprings < cend) {
+        const std::int32_t ahead = out.cslot[c0 + kAheadSprings];
+        if (ahead >= 0) {
+          const auto e = static_cast<std::size_t>(ahead);
+          for (const ColumnD* col : {&h.sx, &h.sy, &h.sz, &h.rx, &h.ry, &h.rz}) __builtin_prefetch(col->data() + e);
+        }
+      }
       LsdState<B> s;
       if (sl[0] >= 0 && sl[L - 1] - sl[0] == static_cast<std::int32_t>(L - 1) && is_run(sl)) {
         const auto e = static_cast<std::size_t>(sl[0]);
