@@ -138,6 +138,9 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     return v < lo ? lo - v : std::max(0.0, v - (lo + cell));
   };
   const double* const pc[3] = {g.pos.x.data(), g.pos.y.data(), g.pos.z.data()};
+  const double* const rad = g.radius.r.data();
+  using B = BatchD;
+  constexpr std::size_t L = kLanes;
   auto visit = [&](std::size_t i, auto&& emit) {
     const std::uint32_t c = grid.cell_of[i];
     const std::int64_t cy = (c / dims[0]) % dims[1];
@@ -172,10 +175,20 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
         std::size_t b = grid.start[base + x0];
         const std::size_t e = grid.start[base + x1 + 1];
         if (b <= i) b = i + 1;
-        for (std::size_t j = b; j < e; ++j) {
-          const double ddx = px[j] - xi, ddy = py[j] - yi, ddz = pz[j] - zi;
-          const double cut = ri + g.radius.r[j] + skin;
-          if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) emit(j);
+        // The rows of the line in whole aligned batches (columns are padded to whole batches),
+        // lanes outside [b, e) masked off; hits are rare (a few in a hundred), so they are
+        // emitted bit by bit.
+        for (std::size_t j0 = b / L * L; j0 < e; j0 += L) {
+          const B ddx = B::load_aligned(px + j0) - B(xi), ddy = B::load_aligned(py + j0) - B(yi),
+                  ddz = B::load_aligned(pz + j0) - B(zi);
+          const B cut = (B(ri) + B::load_aligned(rad + j0)) + B(skin);
+          const std::size_t lo = b > j0 ? b - j0 : 0, hi = std::min(L, e - j0);
+          std::uint32_t bits = lane_bits(ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) &
+                               ((1u << hi) - 1u) & ~((1u << lo) - 1u);
+          while (bits != 0) {
+            emit(j0 + static_cast<std::size_t>(__builtin_ctz(bits)));
+            bits &= bits - 1u;
+          }
         }
       }
     }
