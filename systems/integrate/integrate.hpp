@@ -21,7 +21,8 @@ struct StepMode {
 };
 
 void kick(Grains& g, const Gravity& grav, double half_dt);
-void drift(Grains& g, double dt);
+// The kick, then x += dt v with the kicked velocity, in one pass (integrate_positions' work).
+void kick_drift(Grains& g, const Gravity& grav, double half_dt, double dt);
 
 class IntegratePositions : public SystemBase<IntegratePositions> {
  public:
