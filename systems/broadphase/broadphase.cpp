@@ -36,8 +36,12 @@ namespace {
 // (one probe or two per new pair, where a sorted index took ~17 random ones).
 struct OldHistory {
   static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);  // no pair has this key (lo < hi)
-  std::vector<std::uint64_t> keys;
-  std::vector<std::uint32_t> slots;
+  // Key and slot side by side: a probe reads one cache line.
+  struct Entry {
+    std::uint64_t key;
+    std::uint64_t slot;
+  };
+  std::vector<Entry> table;
   std::uint64_t mask = 0;
   int shift = 64;
   std::array<std::vector<double>, 6> values;
@@ -51,22 +55,22 @@ struct OldHistory {
       --shift;
     }
     mask = cap - 1;
-    keys.assign(cap, kEmpty);
-    slots.assign(cap, 0);
+    table.assign(cap, Entry{kEmpty, 0});
     for (std::size_t s = 0; s < active_keys.size(); ++s) {
       std::size_t h = home(active_keys[s]);
-      while (keys[h] != kEmpty) h = (h + 1) & mask;
-      keys[h] = active_keys[s];
-      slots[h] = static_cast<std::uint32_t>(s);
+      while (table[h].key != kEmpty) h = (h + 1) & mask;
+      table[h] = {active_keys[s], s};
     }
   }
   // Slot of the key's springs, or -1.
   std::int64_t find(std::uint64_t key) const {
     for (std::size_t h = home(key);; h = (h + 1) & mask) {
-      if (keys[h] == key) return slots[h];
-      if (keys[h] == kEmpty) return -1;
+      if (table[h].key == key) return static_cast<std::int64_t>(table[h].slot);
+      if (table[h].key == kEmpty) return -1;
     }
   }
+  // Asks for the line a find(key) will read first.
+  void prefetch(std::uint64_t key) const { __builtin_prefetch(&table[home(key)]); }
 };
 
 // The pair law keeps the springs as seen from the owner row i (they change sign with i and j), and
@@ -229,10 +233,16 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
         list.i_lane[k] = static_cast<std::int32_t>(i);
         list.j_lane[k] = static_cast<std::int32_t>(j);
         list.type_pair[k] = static_cast<std::int32_t>(g.species.type[i] * kMaxSpecies + g.species.type[j]);
-        const std::uint64_t key = pair_key(idi, g.pid.id[j]);
-        list.key[k] = key;
-        s.carried[k] = old.find(key);
+        list.key[k] = pair_key(idi, g.pid.id[j]);
       }
+    }
+    // Old springs by key: the table is read at random, so the probe a few pairs ahead is asked
+    // for before this one waits.
+    constexpr std::size_t kAhead = 16;
+    const std::size_t k0 = list.offsets[r0], k1 = list.offsets[r1];
+    for (std::size_t k = k0; k < k1; ++k) {
+      if (k + kAhead < k1) old.prefetch(list.key[k + kAhead]);
+      s.carried[k] = old.find(list.key[k]);
     }
   });
 
@@ -254,16 +264,6 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     ++e;
   }
   history.map_slots(np);
-
-  // Transposed incidence in pair order: deterministic per-row force sums.
-  list.in_offsets.assign(n + 1, 0);
-  for (std::size_t k = 0; k < np; ++k) ++list.in_offsets[list.j[k] + 1];
-  for (std::size_t r = 0; r < n; ++r) list.in_offsets[r + 1] += list.in_offsets[r];
-  list.in_pairs.resize(np);
-  {
-    std::vector<std::uint32_t> fill(list.in_offsets.begin(), list.in_offsets.end() - 1);
-    for (std::size_t k = 0; k < np; ++k) list.in_pairs[fill[list.j[k]]++] = static_cast<std::uint32_t>(k);
-  }
 
   s.ref_x.resize(n);
   s.ref_y.resize(n);

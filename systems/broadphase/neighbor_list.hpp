@@ -1,8 +1,5 @@
 // Verlet neighbour list of particle pairs and the contact history aligned with it.
 // Half list: each pair appears once, owned by its lower row i (j > i), stored row by row (CSR).
-// `incoming` is the transposed incidence (for row r, the pairs where r is the j side, in pair
-// order), so forces are summed per particle in a fixed order without atomics: results do not
-// depend on thread scheduling.
 #pragma once
 
 #include <algorithm>
@@ -24,8 +21,6 @@ struct NeighborList {
   Column<std::int32_t> i_lane, j_lane;  // the same as SIMD gather indices, padded with row 0
   Column<std::int32_t> type_pair;       // species[i] * kMaxSpecies + species[j], to index pair tables
   std::vector<std::uint64_t> key;       // (min id << 32 | max id): identifies a pair across rebuilds
-  std::vector<std::uint32_t> in_offsets;  // size n + 1
-  std::vector<std::uint32_t> in_pairs;    // pair indices whose j is the row
   std::size_t pairs() const { return j.size(); }
 };
 

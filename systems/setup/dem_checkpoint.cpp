@@ -24,8 +24,6 @@ void list_sections(Io& io, List& list, History& h, State& bp) {
   io.column("neighbors.j_lane", list.j_lane);
   io.column("neighbors.type_pair", list.type_pair);
   io.vector("neighbors.key", list.key);
-  io.vector("neighbors.in_offsets", list.in_offsets);
-  io.vector("neighbors.in_pairs", list.in_pairs);
   io.column("springs.pair", h.pair);
   io.column("springs.sx", h.sx);
   io.column("springs.sy", h.sy);
