@@ -746,7 +746,7 @@ TEST_CASE("broadphase: rebuilding a stirred pile every step keeps every pair's h
       const gf::PairForces& pfa = a.world().resources.get<gf::PairForces>();
       std::vector<double> scale(ga.n, 0.0);
       for (std::size_t k = 0; k < la.pairs(); ++k) {
-        const gf::V3<double> f = pfa.force_of(k);  // zero when apart
+        const gf::V3<double> f = pfa.force_of(a.world().resources.get<PairHistory>(), k);  // zero when apart
         const double m = std::abs(f.x) + std::abs(f.y) + std::abs(f.z);
         scale[la.i[k]] += m;
         scale[la.j[k]] += m;

@@ -16,11 +16,9 @@ constexpr std::size_t kBlock = 2048;
 // Contacts between a spring prefetch and its use in the law.
 constexpr std::size_t kAheadSprings = 64;
 
-// The per-contact columns hold one extra row, kept zero, that pairs apart point at (force_of).
+// The per-contact columns hold one extra row, kept zero.
 void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
   for (Column<std::int32_t>* c : {&out.pair, &out.ci, &out.cj, &out.ctype, &out.cslot}) c->resize(nc + 1);
-  out.rank.resize(np + 1);
-  out.contact_of.resize(np);
   out.next.resize(nc);
   out.next.slot.resize(np);
   std::fill(out.next.slot.begin() + np, out.next.slot.begin() + out.next.slot.padded(), -1);
@@ -44,14 +42,12 @@ void carry_spring(const PairHistory& old, std::int32_t slot, PairHistory& next, 
   next.rz[c] = found ? old.rz[e] : 0.0;
 }
 
-// Compaction of list pairs [k0, k1) into contacts from index c: the contact's indices, the map
-// from list pair to contact (rank, contact_of, the new history's slot). One pair at a time.
+// Compaction of list pairs [k0, k1) into contacts from index c: the contact's indices and the map
+// from list pair to contact (the new history's slot). One pair at a time.
 std::int32_t compact_scalar(const NeighborList& list, const PairHistory& h, PairForces& out, std::size_t k0,
-                            std::size_t k1, std::int32_t c, std::int32_t none) {
+                            std::size_t k1, std::int32_t c) {
   for (std::size_t k = k0; k < k1; ++k) {
     const std::int32_t t = out.touching[k];
-    out.rank[k] = c;
-    out.contact_of[k] = t ? c : none;
     out.next.slot[k] = t ? c : -1;
     // Only touching pairs write their slot: a block's slot past its last contact is the next
     // block's first, written concurrently by another thread.
@@ -75,19 +71,17 @@ std::int32_t compact_scalar(const NeighborList& list, const PairHistory& h, Pair
 // within sixteen of `c_end`, the block's last contact, past which the next block writes: there
 // under a mask. Each pair's rank is the group's base plus the count of touching lanes below it.
 std::int32_t compact_avx512(const NeighborList& list, const PairHistory& h, PairForces& out, std::size_t k0,
-                            std::size_t k1, std::int32_t c, std::int32_t c_end, std::int32_t none) {
+                            std::size_t k1, std::int32_t c, std::int32_t c_end) {
   const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   const __m512i below = _mm512_setr_epi32(0x0, 0x1, 0x3, 0x7, 0xf, 0x1f, 0x3f, 0x7f, 0xff, 0x1ff, 0x3ff, 0x7ff,
                                           0xfff, 0x1fff, 0x3fff, 0x7fff);
-  const __m512i vnone = _mm512_set1_epi32(none), vminus = _mm512_set1_epi32(-1);
+  const __m512i vminus = _mm512_set1_epi32(-1);
   std::size_t k = k0;
   for (; k + 16 <= k1; k += 16) {
     const __m128i tb = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&out.touching[k]));
     const __mmask16 m = _mm_test_epi8_mask(tb, tb);
     const __m512i rank = _mm512_add_epi32(
         _mm512_set1_epi32(c), _mm512_popcnt_epi32(_mm512_and_si512(_mm512_set1_epi32(m), below)));
-    _mm512_storeu_si512(&out.rank[k], rank);
-    _mm512_storeu_si512(&out.contact_of[k], _mm512_mask_blend_epi32(m, vnone, rank));
     _mm512_storeu_si512(&out.next.slot[k], _mm512_mask_blend_epi32(m, vminus, rank));
     const int cnt = __builtin_popcount(m);
     if (cnt == 0) continue;
@@ -104,7 +98,7 @@ std::int32_t compact_avx512(const NeighborList& list, const PairHistory& h, Pair
     pack(&out.cslot[c], h.slot.data());
     c += cnt;
   }
-  return compact_scalar(list, h, out, k, k1, c, none);
+  return compact_scalar(list, h, out, k, k1, c);
 }
 #endif
 
@@ -222,6 +216,27 @@ struct SlabSums {
   }
 };
 
+// Contacts before list pair k (contacts keep list order): the count up to k's block, then the
+// block's touching pairs before k.
+std::size_t contacts_before(const PairForces& out, std::size_t k) {
+  const std::size_t b = k / kBlock;
+  std::size_t c = out.block_start[b];
+  for (std::size_t q = b * kBlock; q < k; ++q) c += out.touching[q];
+  return c;
+}
+
+// Counts of touching pairs per block of kBlock list pairs, summed: block_start[b] contacts come
+// before block b.
+void count_blocks(PairForces& out, std::size_t np) {
+  const std::size_t nblocks = (np + kBlock - 1) / kBlock;
+  out.block_start.assign(nblocks + 1, 0);
+  for (std::size_t b = 0; b < nblocks; ++b) {
+    std::uint32_t n = 0;
+    for (std::size_t k = b * kBlock; k < std::min(np, (b + 1) * kBlock); ++k) n += out.touching[k];
+    out.block_start[b + 1] = out.block_start[b] + n;
+  }
+}
+
 // Runs law(c0, c1) over each slab's contacts, then that slab's sums, one task per slab; then the
 // shares set aside for later slabs.
 template <class Law>
@@ -237,8 +252,7 @@ void evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&
                       {out.fx.data(), out.fy.data(), out.fz.data()}};
   tbb::parallel_for(std::size_t(0), ns, [&](std::size_t s) {
     const std::size_t a = s * rows, b = std::min(n, a + rows);
-    const auto c0 = static_cast<std::size_t>(out.rank[list.offsets[a]]);
-    const auto c1 = static_cast<std::size_t>(out.rank[list.offsets[b]]);
+    const std::size_t c0 = contacts_before(out, list.offsets[a]), c1 = contacts_before(out, list.offsets[b]);
     // This thread's torque buffer, kept from call to call (no allocation once it has grown).
     thread_local std::vector<double> scratch;
     const std::size_t stride = (c1 - c0 + 2 * kLanes - 1) / kLanes * kLanes;
@@ -281,18 +295,17 @@ void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory
                                 double dt, PairForces& out) {
   const std::size_t np = list.pairs();
   out.touching.resize(padded_size(np));
-  std::size_t nc = 0;
   for (std::size_t k = 0; k < np; ++k) {
     const std::size_t i = list.i[k], j = list.j[k];
     const double dx = g.pos.x[j] - g.pos.x[i], dy = g.pos.y[j] - g.pos.y[i], dz = g.pos.z[j] - g.pos.z[i];
     const double rs = g.radius.r[i] + g.radius.r[j];
     out.touching[k] = dx * dx + dy * dy + dz * dz < rs * rs;
-    nc += out.touching[k];
   }
+  count_blocks(out, np);
+  const std::size_t nc = out.block_start.back();
   if (h.slot.size() != np) h.map_slots(np);
   size_outputs(out, np, nc);
-  compact_scalar(list, h, out, 0, np, 0, static_cast<std::int32_t>(nc));
-  out.rank[np] = static_cast<std::int32_t>(nc);
+  compact_scalar(list, h, out, 0, np, 0);
   evaluate_and_sum(g, list, out, [&](std::size_t c0, std::size_t c1, const SlabTorques& st) {
     for (std::size_t c = c0; c < c1; ++c) {
       const auto k = static_cast<std::size_t>(out.pair[c]);
@@ -348,14 +361,12 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
     const std::size_t k0 = b * kBlock, k1 = std::min(np, k0 + kBlock);
     const auto c = static_cast<std::int32_t>(out.block_start[b]);
-    const auto none = static_cast<std::int32_t>(nc);
 #ifdef GF_COMPACT_AVX512
-    compact_avx512(list, h, out, k0, k1, c, static_cast<std::int32_t>(out.block_start[b + 1]), none);
+    compact_avx512(list, h, out, k0, k1, c, static_cast<std::int32_t>(out.block_start[b + 1]));
 #else
-    compact_scalar(list, h, out, k0, k1, c, none);
+    compact_scalar(list, h, out, k0, k1, c);
 #endif
   });
-  out.rank[np] = static_cast<std::int32_t>(nc);
 
   // 3. The law over whole batches of contacts; the remainder through the scalar path.
   const PairCoeffs* coeffs = table.pair_data();

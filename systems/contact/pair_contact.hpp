@@ -34,19 +34,16 @@ struct PairForces {
   Column<std::int32_t> ci, cj;     // its rows
   Column<std::int32_t> ctype;      // its type-pair index (NeighborList::type_pair)
   Column<std::int32_t> cslot;      // its spring's entry in the history of the last evaluation, or -1
-  // Per contact, plus a last all-zero row that stands for "apart": force on the owner i (N; j gets
-  // minus it).
+  // Per contact (one slack row past the end): force on the owner i (N; j gets minus it).
   ColumnD fx, fy, fz;
   // Torques on i and on j (N m) live in a per-task buffer while their slab is summed (they are
   // read once, right away); with record_torques set they are also kept here per contact.
   bool record_torques = false;
   ColumnD tix, tiy, tiz, tjx, tjy, tjz;
   // Per list pair.
-  std::vector<std::int32_t> rank;        // contacts before this list pair (size pairs + 1)
-  std::vector<std::int32_t> contact_of;  // contact index, or contacts() (the zero row) when apart
   Column<std::uint8_t> touching;       // overlap flag per list pair
   PairHistory next;                    // springs being written, swapped with the live ones
-  std::vector<std::uint32_t> block_start;
+  std::vector<std::uint32_t> block_start;  // contacts before each block of list pairs
   std::vector<double> coeff[8];  // law constants per type pair: kn kt kr eta_n eta_t eta_r fs fr
   bool coeff_uniform[8] = {};
   // Partner sides that land past their owner's slab: one list per (owner slab, target slab).
@@ -57,10 +54,12 @@ struct PairForces {
   std::vector<std::vector<Spill>> spill;
 
   std::size_t contacts() const { return pair.size() - 1; }
-  // Force on the owner of list pair k at the last evaluation (zero when apart).
-  V3<double> force_of(std::size_t k) const {
-    const auto c = static_cast<std::size_t>(contact_of[k]);
-    return {fx[c], fy[c], fz[c]};
+  // Force on the owner of list pair k at the last evaluation (zero when apart), given the springs
+  // that evaluation left (their slot map names each pair's contact).
+  V3<double> force_of(const PairHistory& live, std::size_t k) const {
+    const std::int32_t c = live.slot[k];
+    if (c < 0) return {0.0, 0.0, 0.0};
+    return {fx[static_cast<std::size_t>(c)], fy[static_cast<std::size_t>(c)], fz[static_cast<std::size_t>(c)]};
   }
 };
 
