@@ -181,6 +181,13 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
   static_assert(kWallBlock % L == 0);
   const std::size_t nw = walls.list.size();
   const CoeffColumns cc(table);
+  // With few species each constant sits in a register, looked up by type with a permute.
+  const bool in_register = table.types() <= RegisterTable::capacity;
+  RegisterTable reg[8];
+  if (in_register) {
+    const double* cols[8] = {cc.kn, cc.kt, cc.kr, cc.eta_n, cc.eta_t, cc.eta_r, cc.fs, cc.fr};
+    for (int q = 0; q < 8; ++q) reg[q] = RegisterTable(cols[q], table.types());
+  }
   const std::size_t nown = g.n_owned;
   const std::size_t nblocks = (nown + kWallBlock - 1) / kWallBlock;
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
@@ -225,9 +232,12 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         const auto touching = gap < ri;
         alignas(64) std::int32_t ty[L];
         for (std::size_t l = 0; l < L; ++l) ty[l] = g.species.type[static_cast<std::size_t>(idx[l])];
-        const LsdCoeffs<B> c{gather32(cc.kn, ty),    gather32(cc.kt, ty),    gather32(cc.kr, ty),
-                             gather32(cc.eta_n, ty), gather32(cc.eta_t, ty), gather32(cc.eta_r, ty),
-                             gather32(cc.fs, ty),    gather32(cc.fr, ty)};
+        auto coeff = [&](const double* col, const RegisterTable& reg) {
+          return in_register ? reg.lookup(ty) : gather32(col, ty);
+        };
+        const LsdCoeffs<B> c{coeff(cc.kn, reg[0]),    coeff(cc.kt, reg[1]),    coeff(cc.kr, reg[2]),
+                             coeff(cc.eta_n, reg[3]), coeff(cc.eta_t, reg[4]), coeff(cc.eta_r, reg[5]),
+                             coeff(cc.fs, reg[6]),    coeff(cc.fr, reg[7])};
         const B delta = ri - gap;
         const B li = ri - B(0.5) * delta;
         const V wi{gather32(g.omega.x.data(), idx), gather32(g.omega.y.data(), idx), gather32(g.omega.z.data(), idx)};
