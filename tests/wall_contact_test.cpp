@@ -422,15 +422,17 @@ TEST_CASE("wall contact: the xsimd driver equals the scalar driver on a stirred 
       tmax = std::max(tmax, std::abs(g.wall_torque.z[i]));
       touching += g.wall_force.y[i] != 0.0;
     }
-    for (const auto& c : live.cols)
-      for (std::size_t i = 0; i < g.n_owned; ++i) smax = std::max(smax, std::abs(c[i]));
+    for (const auto& c : live.springs)
+      for (std::size_t i = 0; i < g.n_owned; ++i)
+        for (int k = 0; k < 6; ++k) smax = std::max(smax, std::abs(c[i].s[k]));
     REQUIRE(touching > 50);
     for (std::size_t i = 0; i < g.n_owned; ++i) {
       REQUIRE(std::abs(fy[i] - g.wall_force.y[i]) <= 1e-12 * fmax);
       REQUIRE(std::abs(tz[i] - g.wall_torque.z[i]) <= 1e-12 * tmax);
     }
-    for (std::size_t q = 0; q < live.cols.size(); ++q)
-      for (std::size_t i = 0; i < g.n_owned; ++i) REQUIRE(std::abs(h_simd.cols[q][i] - live.cols[q][i]) <= 1e-12 * smax);
+    for (std::size_t q = 0; q < live.springs.size(); ++q)
+      for (std::size_t i = 0; i < g.n_owned; ++i)
+        for (int k = 0; k < 6; ++k) REQUIRE(std::abs(h_simd.springs[q][i].s[k] - live.springs[q][i].s[k]) <= 1e-12 * smax);
     for (std::size_t q = 0; q < live.active.size(); ++q)
       for (std::size_t i = 0; i < g.n_owned; ++i) REQUIRE(h_simd.active[q][i] == live.active[q][i]);
     // Leave the world as the system would have: the live springs are the scalar driver's, which

@@ -1,6 +1,7 @@
 #include "systems/setup/dem_simulation.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
@@ -32,7 +33,9 @@ void DemSimulation::prime() {
   // The law advanced every spring by v_t dt while evaluating; no time has passed, and the springs
   // of a new state start from zero, so that increment is undone.
   world_->resources.get<PairHistory>().clear();
-  for_each_column(world_->grains.extras.get<WallHistory>(), [](auto& c) { std::fill(c.begin(), c.end(), 0); });
+  for_each_column(world_->grains.extras.get<WallHistory>(), [](auto& c) {
+    std::fill(c.begin(), c.end(), typename std::decay_t<decltype(c)>::value_type{});
+  });
 }
 
 StageReport DemSimulation::settle(double progress_seconds) {

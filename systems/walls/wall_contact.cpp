@@ -12,7 +12,7 @@ namespace {
 
 void prepare(Grains& g, Walls& walls, WallHistory& h, double t_contact) {
   walls.place(t_contact);
-  if (h.cols.size() != 6 * walls.list.size() || h.active.size() != walls.list.size())
+  if (h.springs.size() != walls.list.size() || h.active.size() != walls.list.size())
     h.shape(walls.list.size(), g.n);
 }
 
@@ -50,11 +50,11 @@ void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
       Vec3d f{0, 0, 0}, t{0, 0, 0};
       for (std::size_t w = 0; w < nw; ++w) {
         const Wall& wall = walls.list[w];
-        ColumnD* hc = &h.cols[6 * w];
+        double* hs = h.springs[w][i].s;
         Vec3d n;
         const double gap = wall_gap(wall, p, n);
         if (gap >= ri) {
-          for (int c = 0; c < 6; ++c) hc[c][i] = 0.0;
+          for (int c = 0; c < 6; ++c) hs[c] = 0.0;
           h.active[w][i] = 0;
           continue;
         }
@@ -69,14 +69,14 @@ void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
         const Vec3d v = Vec3d{g.vel.x[i], g.vel.y[i], g.vel.z[i]} + cross(li * wi, n) - wall_v;
         const PairCoeffs& pc = coeffs[static_cast<std::size_t>(g.species.type[i])];
         const LsdCoeffs<double> c{pc.kn, pc.kt, pc.kr, pc.eta_n, pc.eta_t, pc.eta_r, pc.fs, pc.fr};
-        LsdState<double> s{{hc[0][i], hc[1][i], hc[2][i]}, {hc[3][i], hc[4][i], hc[5][i]}};
+        LsdState<double> s{{hs[0], hs[1], hs[2]}, {hs[3], hs[4], hs[5]}};
         const LsdResult<double> res = LinearSpringDashpot::evaluate(true, n, delta, v, wi - wall_w, c, dt, s);
-        hc[0][i] = s.shear.x;
-        hc[1][i] = s.shear.y;
-        hc[2][i] = s.shear.z;
-        hc[3][i] = s.roll.x;
-        hc[4][i] = s.roll.y;
-        hc[5][i] = s.roll.z;
+        hs[0] = s.shear.x;
+        hs[1] = s.shear.y;
+        hs[2] = s.shear.z;
+        hs[3] = s.roll.x;
+        hs[4] = s.roll.y;
+        hs[5] = s.roll.z;
         f = f + res.force;
         t = t + li * cross(n, res.force_t) + res.rolling_torque;
       }
@@ -207,7 +207,9 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
       }
       if (m == 0) continue;
       for (std::size_t l = m; l < m + kAhead + L; ++l) rows[l] = rows[m - 1];
-      ColumnD* hc = &h.cols[6 * w];
+      WallSprings* hs = h.springs[w].data();
+      // A spring k of row i is double 8 i + k from the column's start.
+      const double* hbase = hs[0].s;
       const double om = walls.rotation_enabled ? wall.omega : 0.0;
       const V wall_w{B(om * wall.rot_axis.x), B(om * wall.rot_axis.y), B(om * wall.rot_axis.z)};
       const V wall_o{B(wall.rot_point.x), B(wall.rot_point.y), B(wall.rot_point.z)};
@@ -217,7 +219,7 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         // come from far in the cache hierarchy: ask for those of a later batch now.
         for (std::size_t l = 0; l < L; ++l) {
           const auto a = static_cast<std::size_t>(rows[q + kAhead + l]);
-          for (std::size_t k = 0; k < 6; ++k) __builtin_prefetch(&hc[k][a]);
+          __builtin_prefetch(&hs[a]);
           __builtin_prefetch(&g.vel.x[a]);
           __builtin_prefetch(&g.vel.y[a]);
           __builtin_prefetch(&g.vel.z[a]);
@@ -245,8 +247,10 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         const V contact = p + li * n;
         const V wall_v = cross(wall_w, contact - wall_o);
         const V v = vi + cross(li * wi, n) - wall_v;
-        LsdState<B> s{{gather32(hc[0].data(), idx), gather32(hc[1].data(), idx), gather32(hc[2].data(), idx)},
-                      {gather32(hc[3].data(), idx), gather32(hc[4].data(), idx), gather32(hc[5].data(), idx)}};
+        alignas(64) std::int32_t at[L];
+        for (std::size_t l = 0; l < L; ++l) at[l] = idx[l] * 8;
+        LsdState<B> s{{gather32(hbase + 0, at), gather32(hbase + 1, at), gather32(hbase + 2, at)},
+                      {gather32(hbase + 3, at), gather32(hbase + 4, at), gather32(hbase + 5, at)}};
         const LsdResult<B> res = LinearSpringDashpot::evaluate(touching, n, delta, v, wi - wall_w, c, B(dt), s);
         const V t = li * cross(n, res.force_t) + res.rolling_torque;
         // Lanes back to their rows (rows are distinct within one wall's list).
@@ -259,7 +263,7 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         const std::size_t valid = std::min(L, m - q);
         for (std::size_t l = 0; l < valid; ++l) {
           const auto i = static_cast<std::size_t>(idx[l]);
-          for (std::size_t k = 0; k < 6; ++k) hc[k][i] = out[k][l];
+          for (std::size_t k = 0; k < 6; ++k) hs[i].s[k] = out[k][l];
           g.wall_force.x[i] += out[6][l];
           g.wall_force.y[i] += out[7][l];
           g.wall_force.z[i] += out[8][l];

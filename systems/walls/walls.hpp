@@ -47,18 +47,24 @@ Vec3d rotate_about(const Vec3d& v, const Vec3d& axis, double angle);
 // Contact history of each row against each wall: six columns per wall (spring, rolling angle),
 // and per wall a column that is 1 where the row touched the wall at the last evaluation, so the
 // kernels skip rows far from a wall without reading their springs.
+// The springs of one row against one wall: tangential (sx, sy, sz, m) then rolling (rx, ry, rz,
+// rad), padded to a cache line so that the law reads a row's springs as one line.
+struct alignas(64) WallSprings {
+  double s[8];
+};
+
 struct WallHistory {
-  std::vector<ColumnD> cols;    // 6 per wall: sx, sy, sz, rx, ry, rz
-  std::vector<Column<std::uint8_t>> active;  // 1 per wall: touching at the last evaluation
+  std::vector<Column<WallSprings>> springs;   // 1 per wall
+  std::vector<Column<std::uint8_t>> active;   // 1 per wall: touching at the last evaluation
   void shape(std::size_t walls, std::size_t rows) {
-    cols.resize(6 * walls);
+    springs.resize(walls);
     active.resize(walls);
-    for (auto& c : cols) c.resize(rows);
+    for (auto& c : springs) c.resize(rows);
     for (auto& c : active) c.resize(rows);
   }
   template <class F>
   void visit_columns(F&& f) {
-    for (auto& c : cols) f(c);
+    for (auto& c : springs) f(c);
     for (auto& c : active) f(c);
   }
 };
