@@ -14,16 +14,22 @@ namespace gf {
 bool needs_rebuild(const Grains& g, const BroadphaseState& s) {
   if (!s.valid || s.force_rebuild || s.ref_x.size() != g.n) return true;
   const double lim2 = 0.25 * s.skin * s.skin;
+  using B = BatchD;
+  constexpr std::size_t L = kLanes;
+  // Whole batches (the columns are padded with zeros in both tables, which never move), tested a
+  // batch at a time; a block stops at its first batch that moved.
+  const std::size_t nb = (g.n + L - 1) / L;
   return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, g.n, 4096), false,
+      tbb::blocked_range<std::size_t>(0, nb, 512), false,
       [&](const tbb::blocked_range<std::size_t>& r, bool moved) {
         if (moved) return true;
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          const double dx = g.pos.x[i] - s.ref_x[i];
-          const double dy = g.pos.y[i] - s.ref_y[i];
-          const double dz = g.pos.z[i] - s.ref_z[i];
+        for (std::size_t b = r.begin(); b != r.end(); ++b) {
+          const std::size_t i = b * L;
+          const B dx = B::load_aligned(&g.pos.x[i]) - B::load_aligned(&s.ref_x[i]);
+          const B dy = B::load_aligned(&g.pos.y[i]) - B::load_aligned(&s.ref_y[i]);
+          const B dz = B::load_aligned(&g.pos.z[i]) - B::load_aligned(&s.ref_z[i]);
           // The negated test also catches NaN, which then fails loudly in the grid build.
-          if (!(dx * dx + dy * dy + dz * dz <= lim2)) return true;
+          if (!xsimd::all(dx * dx + dy * dy + dz * dz <= B(lim2))) return true;
         }
         return false;
       },
