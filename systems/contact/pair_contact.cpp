@@ -18,7 +18,7 @@ constexpr std::size_t kAheadSprings = 64;
 
 // The per-contact columns hold one extra row, kept zero.
 void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
-  for (Column<std::int32_t>* c : {&out.pair, &out.ci, &out.cj, &out.ctype, &out.cslot}) c->resize(nc + 1);
+  for (Column<std::int32_t>* c : {&out.ci, &out.cj, &out.ctype, &out.cslot}) c->resize(nc + 1);
   out.next.resize(nc);
   out.next.slot.resize(np);
   std::fill(out.next.slot.begin() + np, out.next.slot.begin() + out.next.slot.padded(), -1);
@@ -52,7 +52,6 @@ std::int32_t compact_scalar(const NeighborList& list, const PairHistory& h, Pair
     // Only touching pairs write their slot: a block's slot past its last contact is the next
     // block's first, written concurrently by another thread.
     if (t) {
-      out.pair[c] = static_cast<std::int32_t>(k);
       out.next.pair[c] = static_cast<std::int32_t>(k);
       out.ci[c] = list.i_lane[k];
       out.cj[c] = list.j_lane[k];
@@ -87,7 +86,6 @@ std::int32_t compact_avx512(const NeighborList& list, const PairHistory& h, Pair
     if (cnt == 0) continue;
     const auto w = static_cast<__mmask16>(c + 16 <= c_end ? 0xffffu : (1u << cnt) - 1u);
     const __m512i kk = _mm512_maskz_compress_epi32(m, _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(k)), iota));
-    _mm512_mask_storeu_epi32(&out.pair[c], w, kk);
     _mm512_mask_storeu_epi32(&out.next.pair[c], w, kk);
     auto pack = [&](std::int32_t* dst, const std::int32_t* src) {
       _mm512_mask_storeu_epi32(dst, w, _mm512_maskz_compress_epi32(m, _mm512_loadu_si512(src + k)));
@@ -308,7 +306,7 @@ void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory
   compact_scalar(list, h, out, 0, np, 0);
   evaluate_and_sum(g, list, out, [&](std::size_t c0, std::size_t c1, const SlabTorques& st) {
     for (std::size_t c = c0; c < c1; ++c) {
-      const auto k = static_cast<std::size_t>(out.pair[c]);
+      const auto k = static_cast<std::size_t>(out.next.pair[c]);
       carry_spring(h, out.cslot[c], out.next, c);
       evaluate_one(g, list.i[k], list.j[k], out.next, table.pair_data(), table.types(), dt, out, c, st);
     }
@@ -424,9 +422,9 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
                   load_rows(g.vel.z.data(), bi) - gather32(g.vel.z.data(), bj)};
       const V v = vij + cross(li * wi + lj * wj, n);
       alignas(64) std::int32_t compact[L];
+      static_assert(kMaxSpecies == 64);
       for (std::size_t l = 0; l < L; ++l)
-        compact[l] = (bt_idx[l] / static_cast<std::int32_t>(kMaxSpecies)) * static_cast<std::int32_t>(ntypes) +
-                     bt_idx[l] % static_cast<std::int32_t>(kMaxSpecies);
+        compact[l] = (bt_idx[l] >> 6) * static_cast<std::int32_t>(ntypes) + (bt_idx[l] & 63);
       const LsdCoeffs<B> cf{coeff(0, bt_idx, compact), coeff(1, bt_idx, compact), coeff(2, bt_idx, compact),
                             coeff(3, bt_idx, compact), coeff(4, bt_idx, compact), coeff(5, bt_idx, compact),
                             coeff(6, bt_idx, compact), coeff(7, bt_idx, compact)};
@@ -473,7 +471,7 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       (lj * nxf.z - res.rolling_torque.z).store_unaligned(&st.t[5][c0 - st.c0]);
     }
     for (std::size_t c = c0; c < cend; ++c) {
-      const std::size_t k = static_cast<std::size_t>(out.pair[c]);
+      const std::size_t k = static_cast<std::size_t>(out.next.pair[c]);
       carry_spring(h, out.cslot[c], out.next, c);
       evaluate_one(g, list.i[k], list.j[k], out.next, coeffs, ntypes, dt, out, c, st);
     }

@@ -30,7 +30,7 @@ namespace gf {
 
 struct PairForces {
   // Packed contacts of the last evaluation, in list order (one slack row past the end).
-  Column<std::int32_t> pair;       // list index of each contact
+  // (The list index of each contact is next.pair while the step runs, then the live springs' pair.)
   Column<std::int32_t> ci, cj;     // its rows
   Column<std::int32_t> ctype;      // its type-pair index (NeighborList::type_pair)
   Column<std::int32_t> cslot;      // its spring's entry in the history of the last evaluation, or -1
@@ -53,7 +53,7 @@ struct PairForces {
   };
   std::vector<std::vector<Spill>> spill;
 
-  std::size_t contacts() const { return pair.size() - 1; }
+  std::size_t contacts() const { return ci.size() - 1; }
   // Force on the owner of list pair k at the last evaluation (zero when apart), given the springs
   // that evaluation left (their slot map names each pair's contact).
   V3<double> force_of(const PairHistory& live, std::size_t k) const {
