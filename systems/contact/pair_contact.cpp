@@ -1,6 +1,7 @@
 #include "systems/contact/pair_contact.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,6 +14,7 @@ namespace {
 
 // Pairs per prefilter block: a multiple of the batch width, small enough for load balance.
 constexpr std::size_t kBlock = 2048;
+static_assert(kBlock % kLanes == 0, "blocks start on whole batches");
 // Contacts between a spring prefetch and its use in the law.
 constexpr std::size_t kAheadSprings = 64;
 
@@ -330,7 +332,6 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   out.block_start.assign(nblocks + 1, 0);
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
     const std::size_t k0 = b * kBlock, k1 = std::min(np, k0 + kBlock);
-    alignas(64) bool lane[L];
     std::uint32_t count = 0;
     for (std::size_t k = k0; k < k1; k += L) {
       // Pairs are in owner order: the owners of a batch are a few adjacent rows.
@@ -340,12 +341,18 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       const B dy = gather32(g.pos.y.data(), bj) - load_rows(g.pos.y.data(), wi);
       const B dz = gather32(g.pos.z.data(), bj) - load_rows(g.pos.z.data(), wi);
       const B rs = gather32(g.radius.r.data(), bj) + load_rows(g.radius.r.data(), wi);
-      (dx * dx + dy * dy + dz * dz < rs * rs).store_aligned(lane);
-      const std::size_t m = std::min(L, k1 - k);
-      for (std::size_t l = 0; l < m; ++l) {
-        out.touching[k + l] = lane[l];
-        count += lane[l];
-      }
+      // Blocks start at multiples of the batch width, so a batch's flags never reach into
+      // another block's (past the last pair they fall in the column's padding, and are 0).
+      const std::uint32_t bits =
+          lane_bits(dx * dx + dy * dy + dz * dz < rs * rs) & ((1u << std::min(L, k1 - k)) - 1u);
+#if defined(__BMI2__)
+      static_assert(kLanes == 8 || kLanes == 4);
+      const std::uint64_t bytes = _pdep_u64(bits, 0x0101010101010101ull);
+      std::memcpy(&out.touching[k], &bytes, L);
+#else
+      for (std::size_t l = 0; l < L; ++l) out.touching[k + l] = static_cast<std::uint8_t>((bits >> l) & 1u);
+#endif
+      count += static_cast<std::uint32_t>(__builtin_popcount(bits));
     }
     out.block_start[b + 1] = count;
   });
