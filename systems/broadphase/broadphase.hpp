@@ -1,5 +1,6 @@
 // Broadphase: uniform grid by counting sort, rows re-sorted in cell order at every rebuild
-// (ties broken by particle id, so the row order depends on positions only, never on input order),
+// (ties broken by particle id, so the row order depends on positions only, never on input order;
+// cells run fastest along the shortest extent of the grains, so neighbours are close in order),
 // Verlet skin, rebuild when some row moved more than half the skin since the last rebuild.
 // Contact history moves with the pair key through rebuilds and re-sorting.
 //
