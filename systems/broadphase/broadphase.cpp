@@ -38,72 +38,36 @@ bool needs_rebuild(const Grains& g, const BroadphaseState& s) {
 
 namespace {
 
-// Springs of the old list that carry over, found by pair key through an open-addressing table
-// (one probe or two per new pair, where a sorted index took ~17 random ones).
-struct OldHistory {
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);  // no pair has this key (lo < hi)
-  // Key and slot side by side: a probe reads one cache line.
-  struct Entry {
-    std::uint64_t key;
-    std::uint64_t slot;
-  };
-  std::vector<Entry> table;
-  std::uint64_t mask = 0;
-  int shift = 64;
+// The springs of the old list, each with the rows of its pair before re-sorting (i the owner,
+// whose view the springs are in). Rows move by a permutation, so after re-sorting a spring's pair
+// is found at its rows' new places, among the new owner's partners: no search by key.
+struct OldSprings {
+  std::vector<std::uint32_t> i, j;
   std::array<std::vector<double>, 6> values;
-
-  std::size_t home(std::uint64_t key) const { return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift); }
-  void build(const std::vector<std::uint64_t>& active_keys) {
-    std::size_t cap = 16;
-    shift = 60;
-    while (cap < 2 * active_keys.size()) {
-      cap *= 2;
-      --shift;
-    }
-    mask = cap - 1;
-    table.assign(cap, Entry{kEmpty, 0});
-    for (std::size_t s = 0; s < active_keys.size(); ++s) {
-      std::size_t h = home(active_keys[s]);
-      while (table[h].key != kEmpty) h = (h + 1) & mask;
-      table[h] = {active_keys[s], s};
-    }
-  }
-  // Slot of the key's springs, or -1.
-  std::int64_t find(std::uint64_t key) const {
-    for (std::size_t h = home(key);; h = (h + 1) & mask) {
-      if (table[h].key == key) return static_cast<std::int64_t>(table[h].slot);
-      if (table[h].key == kEmpty) return -1;
-    }
-  }
-  // Asks for the line a find(key) will read first.
-  void prefetch(std::uint64_t key) const { __builtin_prefetch(&table[home(key)]); }
 };
 
-// The pair law keeps the springs as seen from the owner row i (they change sign with i and j), and
-// the owner is the lower row, which re-sorting may make the other particle. So history is carried
-// over oriented from the lower id to the higher one, and turned to the new owner's view when placed.
-double owner_sign(std::int64_t owner_id, std::int64_t partner_id) { return owner_id < partner_id ? 1.0 : -1.0; }
-
-OldHistory collect_active(const Grains& g, const NeighborList& list, const PairHistory& h) {
-  OldHistory old;
-  std::vector<std::uint64_t> active;
-  active.reserve(h.size());
-  for (std::size_t e = 0; e < h.size(); ++e) {
-    const auto k = static_cast<std::size_t>(h.pair[e]);
-    active.push_back(list.key[k]);
-    // Rows are still in the order this list was built for, so i and j name the old owner and partner.
-    const double sign = owner_sign(g.pid.id[list.i[k]], g.pid.id[list.j[k]]);
-    const double v[6] = {h.sx[e], h.sy[e], h.sz[e], h.rx[e], h.ry[e], h.rz[e]};
-    for (int c = 0; c < 6; ++c) old.values[c].push_back(sign * v[c]);
-  }
-  old.build(active);
+OldSprings collect_active(const NeighborList& list, const PairHistory& h) {
+  OldSprings old;
+  const std::size_t m = h.size();
+  old.i.resize(m);
+  old.j.resize(m);
+  for (auto& v : old.values) v.resize(m);
+  const ColumnD* cols[6] = {&h.sx, &h.sy, &h.sz, &h.rx, &h.ry, &h.rz};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t e = r.begin(); e != r.end(); ++e) {
+      const auto k = static_cast<std::size_t>(h.pair[e]);
+      old.i[e] = list.i[k];
+      old.j[e] = list.j[k];
+      for (std::size_t c = 0; c < 6; ++c) old.values[c][e] = (*cols[c])[e];
+    }
+  });
   return old;
 }
 
 }  // namespace
 
 void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHistory& history) {
-  OldHistory old = collect_active(g, list, history);
+  OldSprings old = collect_active(list, history);
   const std::size_t n = g.n;
 
   // Cells sized for the smallest pair reach: in a mixture of 1 and 3 mm grains, cells sized for
@@ -127,9 +91,16 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     }
   });
   g.permute(grid.order);
+  // New place of each old row (grid.order maps new places to old rows), then the grid in new rows.
+  s.new_row.resize(n);
   {
     std::vector<std::uint32_t> sorted_cell(n);
-    for (std::size_t r = 0; r < n; ++r) sorted_cell[r] = grid.cell_of[grid.order[r]];
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t q = r.begin(); q != r.end(); ++q) {
+        s.new_row[grid.order[q]] = static_cast<std::uint32_t>(q);
+        sorted_cell[q] = grid.cell_of[grid.order[q]];
+      }
+    });
     grid.cell_of.swap(sorted_cell);
     for (std::size_t r = 0; r < n; ++r) grid.order[r] = static_cast<std::uint32_t>(r);
   }
@@ -242,34 +213,52 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
         list.key[k] = pair_key(idi, g.pid.id[j]);
       }
     }
-    // Old springs by key: the table is read at random, so the probe a few pairs ahead is asked
-    // for before this one waits.
-    constexpr std::size_t kAhead = 16;
-    const std::size_t k0 = list.offsets[r0], k1 = list.offsets[r1];
-    for (std::size_t k = k0; k < k1; ++k) {
-      if (k + kAhead < k1) old.prefetch(list.key[k + kAhead]);
-      s.carried[k] = old.find(list.key[k]);
+  });
+
+  // Each old spring to its pair's new list index: its rows' new places, the lower one the owner,
+  // the other among the owner's partners (a pair that left the list drops its spring). Pairs are
+  // distinct, so every spring writes its own entry.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, old.i.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t e = r.begin(); e != r.end(); ++e) {
+      const std::uint32_t a = s.new_row[old.i[e]], b = s.new_row[old.j[e]];
+      const std::uint32_t own = std::min(a, b), other = std::max(a, b);
+      if (own >= nown) continue;
+      for (std::size_t k = list.offsets[own]; k < list.offsets[own + 1]; ++k)
+        if (list.j[k] == other) {
+          s.carried[k] = static_cast<std::int64_t>(e);
+          break;
+        }
     }
   });
 
-  // Carried springs in list order, turned to the new owner's view.
-  std::size_t carried = 0;
-  for (std::size_t k = 0; k < np; ++k) carried += s.carried[k] >= 0;
-  history.resize(carried);
-  for (std::size_t k = 0, e = 0; k < np; ++k) {
-    const std::int64_t slot = s.carried[k];
-    if (slot < 0) continue;
-    const double sign = owner_sign(g.pid.id[list.i[k]], g.pid.id[list.j[k]]);
-    history.pair[e] = static_cast<std::int32_t>(k);
-    history.sx[e] = sign * old.values[0][slot];
-    history.sy[e] = sign * old.values[1][slot];
-    history.sz[e] = sign * old.values[2][slot];
-    history.rx[e] = sign * old.values[3][slot];
-    history.ry[e] = sign * old.values[4][slot];
-    history.rz[e] = sign * old.values[5][slot];
-    ++e;
-  }
-  history.map_slots(np);
+  // Carried springs in list order, turned to the new owner's view (the law keeps them as seen from
+  // the owner row, and re-sorting may have made the other grain the owner), and their slot map.
+  // Blocks of pairs count, then fill from their running sum.
+  constexpr std::size_t kPairs = 8192;
+  const std::size_t npb = (np + kPairs - 1) / kPairs;
+  std::vector<std::size_t> base(npb + 1, 0);
+  tbb::parallel_for(std::size_t(0), npb, [&](std::size_t b) {
+    std::size_t c = 0;
+    for (std::size_t k = b * kPairs; k < std::min(np, (b + 1) * kPairs); ++k) c += s.carried[k] >= 0;
+    base[b + 1] = c;
+  });
+  for (std::size_t b = 0; b < npb; ++b) base[b + 1] += base[b];
+  history.resize(base[npb]);
+  history.slot.assign(np, -1);
+  ColumnD* cols[6] = {&history.sx, &history.sy, &history.sz, &history.rx, &history.ry, &history.rz};
+  tbb::parallel_for(std::size_t(0), npb, [&](std::size_t b) {
+    std::size_t e = base[b];
+    for (std::size_t k = b * kPairs; k < std::min(np, (b + 1) * kPairs); ++k) {
+      const std::int64_t from = s.carried[k];
+      if (from < 0) continue;
+      const auto f = static_cast<std::size_t>(from);
+      const double sign = list.i[k] == s.new_row[old.i[f]] ? 1.0 : -1.0;
+      history.pair[e] = static_cast<std::int32_t>(k);
+      history.slot[k] = static_cast<std::int32_t>(e);
+      for (std::size_t c = 0; c < 6; ++c) (*cols[c])[e] = sign * old.values[c][f];
+      ++e;
+    }
+  });
 
   s.ref_x.resize(n);
   s.ref_y.resize(n);

@@ -27,7 +27,8 @@ struct BroadphaseState {
   CellGrid grid;
   ColumnD ref_x, ref_y, ref_z;  // positions at the last rebuild
   std::vector<std::vector<std::uint32_t>> partners;  // search scratch per block of rows, reused
-  std::vector<std::int64_t> carried;                 // per new list pair: slot of its old spring, or -1
+  std::vector<std::int64_t> carried;                 // per new list pair: index of its old spring, or -1
+  std::vector<std::uint32_t> new_row;                // per old row: its place after re-sorting
 };
 
 // One full rebuild: sort rows, find pairs within r_i + r_j + skin, carry history over.
