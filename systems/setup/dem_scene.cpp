@@ -396,11 +396,12 @@ std::size_t planned_grain_count(const DemScene& scene) {
 
 std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n) {
   // Arrays the simulation holds, per grain: 25 double columns, type and id, the skin reference
-  // positions, seven wall-history columns per wall. A dense pack of the seed drum has about 3.4
-  // list pairs and 1.7 contacts per grain; a list pair keeps rows, 32-bit lanes, key, springs,
-  // flags and incidence (90 bytes), a contact its indices and force record (88 bytes).
-  const std::size_t per_grain = 25 * 8 + 4 + 8 + 3 * 8 + 7 * 8 * scene.walls.size();
-  const std::size_t per_pair = 90, per_contact = 88;
+  // positions, a 64-byte spring record and a flag per wall. A dense pack of the seed drum has about
+  // 3.4 list pairs and 1.7 contacts per grain; a list pair keeps rows, 32-bit lanes, type pair, key,
+  // flag, two slot maps, the carried index and search scratch (50 bytes), a contact its indices,
+  // force and two generations of springs (144 bytes).
+  const std::size_t per_grain = 25 * 8 + 4 + 8 + 3 * 8 + 65 * scene.walls.size();
+  const std::size_t per_pair = 50, per_contact = 144;
   return n * (per_grain + per_pair * 34 / 10 + per_contact * 17 / 10);
 }
 
