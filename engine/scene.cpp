@@ -18,6 +18,13 @@
 
 namespace gf {
 
+std::string short_number(double v) {
+  std::ostringstream os;
+  os.precision(4);
+  os << v;
+  return os.str();
+}
+
 namespace detail {
 
 // Where a value that came from --set stands. toml++ gives such nodes the source position of the tiny document we

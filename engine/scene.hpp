@@ -37,6 +37,10 @@ class SceneError : public std::runtime_error {
   SceneError(std::string msg);
 };
 
+// A number for a message: four significant digits ("0.0001", "2.5e+04").
+std::string short_number(double v);
+
+
 // Allowed interval for a number. Infinite bounds are open by default, so Range::any() also rejects inf and nan:
 // no physical input of a scene is meant to be infinite.
 struct Range {

@@ -7,13 +7,6 @@ namespace gf {
 
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(4);
-  os << v;
-  return os.str();
-}
-
 bool multiple_of(double length, double l0) {
   const double k = length / l0;
   return std::abs(k - std::round(k)) < 1e-6 && std::round(k) >= 1;
@@ -33,7 +26,7 @@ void read_geometry(LiquidScene& s, const SceneNode& root) {
   geo.layers = static_cast<int>(g.get_int("layers", std::max(3, min_layers), 1, 20));
   if (geo.layers < min_layers)
     g.fail("layers", std::to_string(geo.layers) + " wall+dummy layers do not cover the kernel radius (" +
-                         fmt(s.params.k.re / l0) + " l0): wall nodes would see a truncated neighbourhood",
+                         short_number(s.params.k.re / l0) + " l0): wall nodes would see a truncated neighbourhood",
            "set layers >= " + std::to_string(min_layers) + " or remove the key");
   if (geo.kind == LiquidGeometry::Kind::Pipe) {
     if (geo.dim != 3) g.fail("type", "a pipe needs liquid.dim = 3", "use type = \"channel\" in 2D");
@@ -55,12 +48,12 @@ void read_geometry(LiquidScene& s, const SceneNode& root) {
     const double L = geo.hi[0] - geo.lo[0];
     if (!multiple_of(L, l0))
       g.fail(geo.kind == LiquidGeometry::Kind::Pipe ? "length" : "hi",
-             "the periodic length along x (" + fmt(L) + " m) is not a whole number of spacings l0 = " + fmt(l0) + " m",
-             "make it a multiple of l0, e.g. " + fmt(std::max(1.0, std::round(L / l0)) * l0) + " m");
+             "the periodic length along x (" + short_number(L) + " m) is not a whole number of spacings l0 = " + short_number(l0) + " m",
+             "make it a multiple of l0, e.g. " + short_number(std::max(1.0, std::round(L / l0)) * l0) + " m");
     const double rc = s.params.k.re + s.params.skin;
     if (L < 3 * rc)
       g.fail(geo.kind == LiquidGeometry::Kind::Pipe ? "length" : "hi",
-             "the periodic length " + fmt(L) + " m is shorter than 3 search radii (" + fmt(3 * rc) + " m)",
+             "the periodic length " + short_number(L) + " m is shorter than 3 search radii (" + short_number(3 * rc) + " m)",
              "lengthen the periodic axis");
   }
   s.params.periodic = geo.periodicity();
@@ -169,15 +162,15 @@ LiquidScene load_liquid_scene(const SceneDoc& doc) {
   if (!s.allow_unstable_dt) {
     if (s.cfl > s.cfl_limit)
       run.fail("dt",
-               "time step " + fmt(s.dt) + " s gives a CFL number " + fmt(s.cfl) + " (velocity scale " +
-                   fmt(s.velocity_scale) + " m/s, l0 = " + fmt(l0) + " m) above cfl_limit = " + fmt(s.cfl_limit),
-               "set dt <= " + fmt(s.cfl_limit * l0 / s.velocity_scale) +
+               "time step " + short_number(s.dt) + " s gives a CFL number " + short_number(s.cfl) + " (velocity scale " +
+                   short_number(s.velocity_scale) + " m/s, l0 = " + short_number(l0) + " m) above cfl_limit = " + short_number(s.cfl_limit),
+               "set dt <= " + short_number(s.cfl_limit * l0 / s.velocity_scale) +
                    ", or set allow_unstable_dt = true to run anyway");
     if (s.diffusion > s.diffusion_limit)
       run.fail("dt",
-               "time step " + fmt(s.dt) + " s gives a viscous diffusion number nu dt / l0^2 = " + fmt(s.diffusion) +
-                   " above diffusion_limit = " + fmt(s.diffusion_limit),
-               "set dt <= " + fmt(s.diffusion_limit * l0 * l0 / std::max(p.nu, 1e-300)) +
+               "time step " + short_number(s.dt) + " s gives a viscous diffusion number nu dt / l0^2 = " + short_number(s.diffusion) +
+                   " above diffusion_limit = " + short_number(s.diffusion_limit),
+               "set dt <= " + short_number(s.diffusion_limit * l0 * l0 / std::max(p.nu, 1e-300)) +
                    ", or set allow_unstable_dt = true to run anyway");
   }
 

@@ -18,13 +18,6 @@ namespace gf {
 
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(4);
-  os << v;
-  return os.str();
-}
-
 Vec3d to_v(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 
 Vec3d unit_vector(const SceneNode& node, std::string_view key, std::array<double, 3> fallback, bool required) {
@@ -208,13 +201,13 @@ void read_pictures(DemScene& s, const SceneNode& out) {
   if (out.has("picture_angles")) {
     o.picture_angles = out.get_doubles("picture_angles");
     for (double a : o.picture_angles)
-      if (a < 0) out.fail("picture_angles", "angle " + fmt(a) + " rad is negative", "give rotation angles >= 0 (rad)");
+      if (a < 0) out.fail("picture_angles", "angle " + short_number(a) + " rad is negative", "give rotation angles >= 0 (rad)");
     std::sort(o.picture_angles.begin(), o.picture_angles.end());
     o.picture_angles.erase(std::unique(o.picture_angles.begin(), o.picture_angles.end()), o.picture_angles.end());
     for (std::size_t k = 1; k < o.picture_angles.size(); ++k)
       if (picture_name(o.picture_angles[k - 1]) == picture_name(o.picture_angles[k]))
         out.fail("picture_angles",
-                 "angles " + fmt(o.picture_angles[k - 1]) + " and " + fmt(o.picture_angles[k]) +
+                 "angles " + short_number(o.picture_angles[k - 1]) + " and " + short_number(o.picture_angles[k]) +
                      " rad would share the file " + picture_name(o.picture_angles[k]),
                  "file names carry two decimals: keep requested angles at least 0.01 rad apart");
   }
@@ -227,8 +220,8 @@ void read_pictures(DemScene& s, const SceneNode& out) {
       const double k = std::round(a / o.picture_interval), m = k * o.picture_interval;
       if (picture_name(m) == picture_name(a) && m != a)
         out.fail("picture_angles",
-                 "angle " + fmt(a) + " rad would share the file " + picture_name(a) + " with the interval's " +
-                     fmt(m) + " rad",
+                 "angle " + short_number(a) + " rad would share the file " + picture_name(a) + " with the interval's " +
+                     short_number(m) + " rad",
                  "move the angle onto the interval's grid or at least 0.01 rad away from it");
     }
   const std::string colour = out.get_choice("picture_colour", {"species", "speed"}, "species");
@@ -322,9 +315,9 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   const double limit = s.dt_safety * s.critical.period;
   if (s.dt > limit && !s.allow_unstable_dt)
     run.fail("dt",
-             "time step " + fmt(s.dt) + " s exceeds " + fmt(s.dt_safety) + " of the smallest collision period " +
-                 fmt(s.critical.period) + " s (" + s.critical.term + "): the limit is " + fmt(limit) + " s",
-             "set dt <= " + fmt(limit) + ", or stiffen less, or set allow_unstable_dt = true to run anyway");
+             "time step " + short_number(s.dt) + " s exceeds " + short_number(s.dt_safety) + " of the smallest collision period " +
+                 short_number(s.critical.period) + " s (" + s.critical.term + "): the limit is " + short_number(limit) + " s",
+             "set dt <= " + short_number(limit) + ", or stiffen less, or set allow_unstable_dt = true to run anyway");
 
   read_walls(s, root);
 
@@ -432,8 +425,8 @@ void build_dem_world(const DemScene& s, World& world) {
           Vec3d n;
           if (wall_gap(w, to_v(p.x), n) < p.radius)
             fill_error(s, f,
-                       "the region reaches through wall '" + w.name + "' (a grain at (" + fmt(p.x[0]) + ", " +
-                           fmt(p.x[1]) + ", " + fmt(p.x[2]) + ") m overlaps it). Fix: shrink the region to lie "
+                       "the region reaches through wall '" + w.name + "' (a grain at (" + short_number(p.x[0]) + ", " +
+                           short_number(p.x[1]) + ", " + short_number(p.x[2]) + ") m overlaps it). Fix: shrink the region to lie "
                            "inside the walls by at least the largest radius");
         }
       }
@@ -456,8 +449,8 @@ void build_dem_world(const DemScene& s, World& world) {
         const double d = s.species[sp].diameter;
         if (std::abs(r.diameter - d) > 1e-9 * d)
           fill_error(s, f,
-                     f.path.string() + ":" + std::to_string(r.line) + ": diameter " + fmt(r.diameter) +
-                         " m does not match species '" + s.species[sp].name + "' (" + fmt(d) +
+                     f.path.string() + ":" + std::to_string(r.line) + ": diameter " + short_number(r.diameter) +
+                         " m does not match species '" + s.species[sp].name + "' (" + short_number(d) +
                          " m). Fix: map the type to a species of that diameter");
         placed.push_back({r.x, sp, 0.5 * r.diameter});
       }
