@@ -70,7 +70,8 @@ std::int32_t compact_scalar(const NeighborList& list, const PairHistory& h, Pair
 // The same, sixteen pairs at a time: the touching lanes' indices are compressed in registers and
 // stored whole (the lanes past this group's contacts are overwritten by the next group), except
 // within sixteen of `c_end`, the block's last contact, past which the next block writes: there
-// under a mask. Each pair's rank is the group's base plus the count of touching lanes below it.
+// under a mask. A touching pair's contact index is the group's base plus the count of touching
+// lanes below it.
 std::int32_t compact_avx512(const NeighborList& list, const PairHistory& h, PairForces& out, std::size_t k0,
                             std::size_t k1, std::int32_t c, std::int32_t c_end) {
   const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
@@ -158,9 +159,10 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
 // list (contacts keep list order, rows own list runs); each adds to its owner and, when the partner
 // is in the same slab (partners are later rows), to the partner too, in contact order. A partner in
 // a later slab gets its share through the list of that (slab, target) pair, added after every slab
-// is done, in slab order. The columns read stream in order; the rows written stay in cache.
-// The sums of slab s (owner rows [a, b), contacts [c0, c1)). Plain restrict pointers held in
-// locals, so that the stores into the rows are not taken to change the columns read.
+// is done, in slab order. The columns read stream in order; the slab's rows are summed in per-task
+// records that stay in cache, then written to the Force and Torque columns once. Plain restrict
+// pointers held in locals, so that the stores into the records are not taken to change the
+// columns read.
 struct SlabSums {
   double* __restrict F[3];
   double* __restrict T[3];
