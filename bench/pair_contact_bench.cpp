@@ -22,6 +22,7 @@
 #include <tbb/global_control.h>
 
 #include "systems/broadphase/neighbor_list.hpp"
+#include "systems/contact/laws.hpp"
 #include "systems/contact/pair_contact.hpp"
 #include "bench/settled_drum.hpp"
 #include "systems/setup/dem_simulation.hpp"
@@ -71,8 +72,8 @@ void BM_PairForces(benchmark::State& state) {
 }
 
 // Real time: TBB workers' CPU time is not the main thread's.
-BENCHMARK_TEMPLATE(BM_PairForces, gf::compute_pair_forces)->Name("BM_PairForces/simd")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_PairForces, gf::compute_pair_forces_scalar)->Name("BM_PairForces/scalar")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_PairForces, gf::compute_pair_forces<gf::LinearSpringDashpot>)->Name("BM_PairForces/simd")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_PairForces, gf::compute_pair_forces_scalar<gf::LinearSpringDashpot>)->Name("BM_PairForces/scalar")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

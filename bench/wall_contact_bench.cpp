@@ -18,6 +18,7 @@
 
 #include "bench/settled_drum.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "systems/contact/laws.hpp"
 #include "systems/walls/wall_contact.hpp"
 
 namespace {
@@ -64,8 +65,8 @@ void BM_WallForces(benchmark::State& state) {
 }
 
 // Real time: TBB workers' CPU time is not the main thread's.
-BENCHMARK_TEMPLATE(BM_WallForces, gf::compute_wall_forces)->Name("BM_WallForces/simd")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK_TEMPLATE(BM_WallForces, gf::compute_wall_forces_scalar)->Name("BM_WallForces/scalar")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_WallForces, gf::compute_wall_forces<gf::LinearSpringDashpot>)->Name("BM_WallForces/simd")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_WallForces, gf::compute_wall_forces_scalar<gf::LinearSpringDashpot>)->Name("BM_WallForces/scalar")->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -293,13 +293,14 @@ std::size_t row_of(const Grains& g, std::int64_t id) {
 
 // Pair history keyed by pair, oriented from the lower id to the higher one: the law evaluates the
 // spring as seen from the owner row i, so a pair owned by its higher id carries the opposite sign.
-std::map<std::uint64_t, std::array<double, 6>> oriented_history(const Grains& g, const NeighborList& l,
-                                                                 PairHistory& h) {
-  std::map<std::uint64_t, std::array<double, 6>> out;
+std::map<std::uint64_t, std::vector<double>> oriented_history(const Grains& g, const NeighborList& l,
+                                                              PairHistory& h) {
+  std::map<std::uint64_t, std::vector<double>> out;
   for (std::size_t e = 0; e < h.size(); ++e) {
     const auto k = static_cast<std::size_t>(h.pair[e]);
     const double s = g.pid.id[l.i[k]] < g.pid.id[l.j[k]] ? 1.0 : -1.0;
-    out[l.key[k]] = {s * h.sx[e], s * h.sy[e], s * h.sz[e], s * h.rx[e], s * h.ry[e], s * h.rz[e]};
+    REQUIRE(h.width > 0);
+    for (std::size_t q = 0; q < h.width; ++q) out[l.key[k]].push_back(s * h.value[q][e]);
   }
   return out;
 }
@@ -624,7 +625,7 @@ TEST_CASE("broadphase: contact history survives forced rebuilds and owner change
     REQUIRE(k < l.pairs());  // A and B stay in contact throughout
     const std::int64_t e = h.find(k);
     REQUIRE(e >= 0);
-    const double spring = std::hypot(h.sx[e], h.sy[e], h.sz[e]);
+    const double spring = std::hypot(h.value[0][e], h.value[1][e], h.value[2][e]);  // shear.x, .y, .z
     max_spring = std::max(max_spring, spring);
     const std::int64_t o = g.pid.id[l.i[k]];
     if (owner >= 0 && o != owner) {
@@ -670,7 +671,8 @@ TEST_CASE("broadphase: rebuilding a stirred pile every step keeps every pair's h
   // as seen from the owner row). In the first step both runs evaluate every pair from identical inputs
   // (up to an exact sign change when the owner changed). The law is antisymmetric under that swap up
   // to the rounding of contracted multiply-adds (fma(li, wi, lj wj) against fma(lj, wj, li wi)), so
-  // history agrees to an ulp or two of each spring (1e-15 of the largest; measured 1e-17), and forces
+  // history agrees to a few ulp of each spring (1e-14 of the largest; measured 4e-15, a few ulp of
+  // the spring itself, with the geometry stage and the law compiled as separate inline stages), and forces
   // differ by that and the order of each grain's sum: |dF| <= (terms) eps sum|f| <= 1e-14 sum|f| for
   // the <= ~20 contacts of a grain. Later steps start from those rounding differences and grow them
   // through the dynamics (measured: 2e-14 of the largest spring after 50 steps); 1e-12 of the largest
@@ -736,7 +738,7 @@ TEST_CASE("broadphase: rebuilding a stirred pile every step keeps every pair's h
         const double d = std::abs(va[c] - it->second[c]);
         worst_spring = std::max(worst_spring, d / largest);
         INFO("d / largest " << d / largest << ", d / own " << d / std::max(std::abs(va[c]), 1e-300));
-        REQUIRE(d <= (step == 0 ? 1e-15 : 1e-12) * largest);
+        REQUIRE(d <= (step == 0 ? 1e-14 : 1e-12) * largest);
       }
     }
 

@@ -413,7 +413,7 @@ TEST_CASE("cli: check prints the systems and the critical step", "[dem_scene][cl
   CHECK_THAT(e.out, Contains("critical step"));
   CHECK_THAT(e.out, Contains("tangential, glass-glass"));
   // Printed to 4 significant digits: 5e-4 relative.
-  CHECK(number_after(e.out, "smallest collision period ") == Approx(expected_critical_period()).epsilon(5e-4));
+  CHECK(number_after(e.out, "smallest time-step term ") == Approx(expected_critical_period()).epsilon(5e-4));
   CHECK(e.err.empty());
 }
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "systems/broadphase/neighbor_list.hpp"
+#include "systems/contact/laws.hpp"
 #include "systems/contact/pair_contact.hpp"
 #include "tests/test_support.hpp"
 
@@ -321,10 +322,10 @@ TEST_CASE("pair contact: the xsimd driver equals the scalar driver on a stirred 
     Grains& g = w.grains;
     const auto& list = w.resources.get<gf::NeighborList>();
     const auto& table = w.resources.get<gf::ContactTable>();
-    gf::compute_pair_forces(g, list, h_simd, table, w.clock.dt, f_simd);
+    gf::compute_pair_forces<gf::LinearSpringDashpot>(g, list, h_simd, table, w.clock.dt, f_simd);
     const std::vector<double> fx(g.force.x.begin(), g.force.x.end()), fy(g.force.y.begin(), g.force.y.end()),
         fz(g.force.z.begin(), g.force.z.end()), tx(g.torque.x.begin(), g.torque.x.end());
-    gf::compute_pair_forces_scalar(g, list, h_scalar, table, w.clock.dt, f_scalar);
+    gf::compute_pair_forces_scalar<gf::LinearSpringDashpot>(g, list, h_scalar, table, w.clock.dt, f_scalar);
     REQUIRE(f_simd.contacts() == f_scalar.contacts());
     max_contacts = std::max(max_contacts, f_simd.contacts());
     double fmax = 0.0, tmax = 0.0, smax = 0.0, rmax = 0.0;
@@ -333,10 +334,12 @@ TEST_CASE("pair contact: the xsimd driver equals the scalar driver on a stirred 
       tmax = std::max(tmax, std::abs(g.torque.x[i]));
     }
     REQUIRE(h_simd.size() == h_scalar.size());
-    for (std::size_t e = 0; e < h_scalar.size(); ++e) {
-      smax = std::max(smax, std::abs(h_scalar.sx[e]));
-      rmax = std::max(rmax, std::abs(h_scalar.ry[e]));
-    }
+    // Largest tangential spring (fields 0-2) and rolling angle (3-5), the scales of each field's round-off.
+    for (std::size_t e = 0; e < h_scalar.size(); ++e)
+      for (std::size_t q = 0; q < 3; ++q) {
+        smax = std::max(smax, std::abs(h_scalar.value[q][e]));
+        rmax = std::max(rmax, std::abs(h_scalar.value[q + 3][e]));
+      }
     REQUIRE(smax > 0.0);
     for (std::size_t i = 0; i < g.n_owned; ++i) {
       REQUIRE(std::abs(fx[i] - g.force.x[i]) <= 1e-12 * fmax);
@@ -346,8 +349,8 @@ TEST_CASE("pair contact: the xsimd driver equals the scalar driver on a stirred 
     }
     for (std::size_t e = 0; e < h_scalar.size(); ++e) {
       REQUIRE(h_simd.pair[e] == h_scalar.pair[e]);
-      REQUIRE(std::abs(h_simd.sx[e] - h_scalar.sx[e]) <= 1e-12 * smax);
-      REQUIRE(std::abs(h_simd.ry[e] - h_scalar.ry[e]) <= 1e-12 * rmax);
+      for (std::size_t q = 0; q < h_scalar.width; ++q)
+        REQUIRE(std::abs(h_simd.value[q][e] - h_scalar.value[q][e]) <= 1e-12 * (q < 3 ? smax : rmax));
     }
     for (std::size_t k = 0; k < list.pairs(); ++k) REQUIRE(h_simd.slot[k] == h_scalar.slot[k]);
     ++compared;
@@ -371,7 +374,7 @@ TEST_CASE("pair contact: the slab sums equal a plain per-contact sum, partners s
   const auto& list = w.resources.get<gf::NeighborList>();
   auto& pf = w.resources.get<gf::PairForces>();
   pf.record_torques = true;
-  gf::compute_pair_forces(g, list, w.resources.get<gf::PairHistory>(), w.resources.get<gf::ContactTable>(),
+  gf::compute_pair_forces<gf::LinearSpringDashpot>(g, list, w.resources.get<gf::PairHistory>(), w.resources.get<gf::ContactTable>(),
                           w.clock.dt, pf);
   const std::size_t n = g.n_owned, nc = pf.contacts();
   const std::size_t rows = gf::slab_rows(n);

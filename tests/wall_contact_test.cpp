@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "systems/contact/laws.hpp"
 #include "systems/walls/wall_contact.hpp"
 #include "tests/test_support.hpp"
 
@@ -409,12 +410,12 @@ TEST_CASE("wall contact: the xsimd driver equals the scalar driver on a stirred 
     gf::Walls walls = w.resources.get<gf::Walls>();
     const auto& table = w.resources.get<gf::ContactTable>();
     const double t = w.clock.t;
-    gf::compute_wall_forces(g, walls, live, table, w.clock.dt, t);
+    gf::compute_wall_forces<gf::LinearSpringDashpot>(g, walls, live, table, w.clock.dt, t);
     const gf::WallHistory h_simd = live;
     const std::vector<double> fy(g.wall_force.y.begin(), g.wall_force.y.end()),
         tz(g.wall_torque.z.begin(), g.wall_torque.z.end());
     live = saved;
-    gf::compute_wall_forces_scalar(g, walls, live, table, w.clock.dt, t);
+    gf::compute_wall_forces_scalar<gf::LinearSpringDashpot>(g, walls, live, table, w.clock.dt, t);
     double fmax = 0.0, tmax = 0.0, smax = 0.0;
     std::size_t touching = 0;
     for (std::size_t i = 0; i < g.n_owned; ++i) {

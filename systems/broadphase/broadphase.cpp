@@ -38,27 +38,27 @@ bool needs_rebuild(const Grains& g, const BroadphaseState& s) {
 
 namespace {
 
-// The springs of the old list, each with the rows of its pair before re-sorting (i the owner,
-// whose view the springs are in). Rows move by a permutation, so after re-sorting a spring's pair
+// The history of the old list, each entry with the rows of its pair before re-sorting (i the
+// owner, whose view the history is in). Rows move by a permutation, so after re-sorting a spring's pair
 // is found at its rows' new places, among the new owner's partners: no search by key.
-struct OldSprings {
+struct OldHistory {
   std::vector<std::uint32_t> i, j;
-  std::array<std::vector<double>, 6> values;
+  std::array<std::vector<double>, kMaxHistory> values;  // the law's width of them
 };
 
-OldSprings collect_active(const NeighborList& list, const PairHistory& h) {
-  OldSprings old;
+OldHistory collect_active(const NeighborList& list, const PairHistory& h) {
+  OldHistory old;
   const std::size_t m = h.size();
   old.i.resize(m);
   old.j.resize(m);
-  for (auto& v : old.values) v.resize(m);
-  const ColumnD* cols[6] = {&h.sx, &h.sy, &h.sz, &h.rx, &h.ry, &h.rz};
+  const std::size_t w = h.width;
+  for (std::size_t c = 0; c < w; ++c) old.values[c].resize(m);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t e = r.begin(); e != r.end(); ++e) {
       const auto k = static_cast<std::size_t>(h.pair[e]);
       old.i[e] = list.i[k];
       old.j[e] = list.j[k];
-      for (std::size_t c = 0; c < 6; ++c) old.values[c][e] = (*cols[c])[e];
+      for (std::size_t c = 0; c < w; ++c) old.values[c][e] = h.value[c][e];
     }
   });
   return old;
@@ -67,7 +67,7 @@ OldSprings collect_active(const NeighborList& list, const PairHistory& h) {
 }  // namespace
 
 void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHistory& history) {
-  OldSprings old = collect_active(list, history);
+  OldHistory old = collect_active(list, history);
   const std::size_t n = g.n;
 
   // Cells sized for the smallest pair reach: in a mixture of 1 and 3 mm grains, cells sized for
@@ -231,7 +231,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     }
   });
 
-  // Carried springs in list order, turned to the new owner's view (the law keeps them as seen from
+  // Carried history in list order, turned to the new owner's view (the law keeps them as seen from
   // the owner row, and re-sorting may have made the other grain the owner), and their slot map.
   // Blocks of pairs count, then fill from their running sum.
   constexpr std::size_t kPairs = 8192;
@@ -245,17 +245,17 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   for (std::size_t b = 0; b < npb; ++b) base[b + 1] += base[b];
   history.resize(base[npb]);
   history.slot.assign(np, -1);
-  ColumnD* cols[6] = {&history.sx, &history.sy, &history.sz, &history.rx, &history.ry, &history.rz};
+  const std::size_t width = history.width;
   tbb::parallel_for(std::size_t(0), npb, [&](std::size_t b) {
     std::size_t e = base[b];
     for (std::size_t k = b * kPairs; k < std::min(np, (b + 1) * kPairs); ++k) {
       const std::int64_t from = s.carried[k];
       if (from < 0) continue;
       const auto f = static_cast<std::size_t>(from);
-      const double sign = list.i[k] == s.new_row[old.i[f]] ? 1.0 : -1.0;
+      const double sign = list.i[k] == s.new_row[old.i[f]] ? 1.0 : history.exchange_sign;
       history.pair[e] = static_cast<std::int32_t>(k);
       history.slot[k] = static_cast<std::int32_t>(e);
-      for (std::size_t c = 0; c < 6; ++c) (*cols[c])[e] = sign * old.values[c][f];
+      for (std::size_t c = 0; c < width; ++c) history.value[c][e] = sign * old.values[c][f];
       ++e;
     }
   });

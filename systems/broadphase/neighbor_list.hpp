@@ -3,6 +3,8 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <string>
 #include <cstdint>
 #include <vector>
 
@@ -24,21 +26,30 @@ struct NeighborList {
   std::size_t pairs() const { return j.size(); }
 };
 
-// Contact history (seed 000 Table 1 springs) of the pairs in contact at the last evaluation, packed
-// in list order: `pair` holds each spring's list index, increasing, and the six columns its values.
-// Pairs apart have no entry, which is a zero spring. Springs are seen from the pair's owner row i.
+// Doubles of history a contact law may keep per contact (a wall contact keeps them in one
+// 64-byte record).
+inline constexpr std::size_t kMaxHistory = 8;
+
+// Contact history of the pairs in contact at the last evaluation, packed in list order: `pair`
+// holds each entry's list index, increasing, and `value[q]`, q < width, the law's history doubles
+// (its component's fields, seen from the pair's owner row i). What they mean is the law's: this
+// table, the broadphase and the checkpoint carry them by name and position only.
+// Pairs apart have no entry, which is zero history.
 // `slot` is the inverse map, per list pair: its entry, or -1 (any pair past its end has none), so
-// the contact kernel finds a pair's spring with one load instead of a merge.
+// the contact kernel finds a pair's history with one load instead of a merge.
 struct PairHistory {
+  std::string component;            // the law's history component, e.g. "hertz_mindlin.shear"
+  std::vector<std::string> fields;  // its doubles' names, width of them
+  double exchange_sign = -1.0;      // factor when the owner row changes: -1 for odd fields
+  std::size_t width = 0;
   Column<std::int32_t> pair;
-  ColumnD sx, sy, sz;  // tangential spring, m
-  ColumnD rx, ry, rz;  // rolling angle, rad
+  std::array<ColumnD, kMaxHistory> value;
   Column<std::int32_t> slot;
   std::size_t size() const { return pair.size(); }
   // Sets the number of entries; `slot` is then stale until map_slots.
   void resize(std::size_t n) {
     pair.resize(n);
-    for (ColumnD* c : {&sx, &sy, &sz, &rx, &ry, &rz}) c->resize(n);
+    for (std::size_t q = 0; q < width; ++q) value[q].resize(n);
   }
   // Rebuilds `slot` for a list of `pairs` list pairs from `pair`.
   void map_slots(std::size_t pairs) {
@@ -49,7 +60,7 @@ struct PairHistory {
     resize(0);
     std::fill(slot.begin(), slot.end(), -1);
   }
-  // Entry of list pair k, or -1 when it has no spring.
+  // Entry of list pair k, or -1 when it has no history.
   std::int64_t find(std::size_t k) const {
     const std::int32_t* b = pair.begin();
     const std::int32_t* e = pair.end();

@@ -12,8 +12,22 @@
 // zero: the linear dashpot gives exactly the restitution e with contact time T/2 that Table 3 uses.
 //
 // Written once for double and for xsimd batches; branches are selections.
+//
+// Scene: [contact] model = "linear_spring_dashpot", kn, kt (N/m), kr (N m/rad), en, et, er
+// (restitution), friction (f_s), rolling_friction (f_r, m), per species pair and against walls.
+// Damping from restitution with the effective mass of each term (Table 2):
+//   eta = 2 sqrt(m k) ln(1/e) / sqrt(pi^2 + ln^2(1/e))   (e > 0),   eta = 2 sqrt(m k)   (e = 0)
+// normal m = m_i m_j/(m_i+m_j), tangential 2/7 of that, rolling I = I_i I_j/(I_i+I_j); against a
+// wall the particle's own m_i and I_i. Time-step terms: the damped collision period of each term,
+// T = 2 sqrt(pi^2 + ln^2 e) sqrt(m/k) (Table 3).
 #pragma once
 
+#include <cmath>
+#include <numbers>
+
+#include "engine/scene.hpp"
+#include "systems/contact/contact_law.hpp"
+#include "systems/contact/tangential_spring.hpp"
 #include "systems/contact/vec3.hpp"
 
 namespace gf {
@@ -36,26 +50,112 @@ struct LsdResult {
   V3<T> rolling_torque;  // on i, N m (on j it is the opposite)
 };
 
+inline double damping_coefficient(double m_eff, double k, double e) {
+  if (e <= 0.0) return 2.0 * std::sqrt(m_eff * k);
+  const double l = std::log(1.0 / e);
+  return 2.0 * std::sqrt(m_eff * k) * l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+}
+
+// Period of the damped contact oscillation, T = 2 sqrt(pi^2 + ln^2 e) sqrt(m/k) (Table 3).
+inline double collision_period(double m_eff, double k, double e) {
+  const double l = e > 0.0 ? std::log(e) : 0.0;  // e = 0 is critically damped; use the undamped bound
+  return 2.0 * std::sqrt(std::numbers::pi * std::numbers::pi + l * l) * std::sqrt(m_eff / k);
+}
+
 struct LinearSpringDashpot {
+  static constexpr std::string_view name = "linear_spring_dashpot";
+  static constexpr std::string_view title = "linear spring-dashpot-slider (seed 000 Table 1)";
+
+  // Species state nothing beyond diameter and density for this law.
+  struct Material {};
+  static Material read_material(const SceneNode&) { return {}; }
+
+  // What a scene states for one pair of species (or species and wall).
+  struct Params {
+    double kn = 0;  // N/m, normal spring
+    double kt = 0;  // N/m, tangential spring
+    double kr = 0;  // N m/rad, rolling spring
+    double en = 1;  // normal restitution, [0, 1]
+    double et = 1;  // tangential restitution
+    double er = 1;  // rolling restitution
+    double friction = 0;          // sliding friction coefficient f_s
+    double rolling_friction = 0;  // f_r, m (rolling torque cap f_r |F_n|)
+  };
+  // `base` is the [contact] table's values when reading an override ([contact.wall], [[contact.pair]]).
+  static Params read_params(const SceneNode& node, const Params* base, bool /*wall*/) {
+    Params p;
+    const bool b = base != nullptr;
+    auto num = [&](std::string_view key, double fallback, Range r) {
+      return b ? node.get_double(key, fallback, r) : node.get_double(key, r);
+    };
+    p.kn = num("kn", b ? base->kn : 0, Range::positive());
+    p.kt = num("kt", b ? base->kt : 0, Range::non_negative());
+    p.en = num("en", b ? base->en : 0, Range::closed(0, 1));
+    p.et = num("et", b ? base->et : 0, Range::closed(0, 1));
+    p.friction = num("friction", b ? base->friction : 0, Range::non_negative());
+    p.kr = node.get_double("kr", b ? base->kr : 0.0, Range::non_negative());
+    p.er = node.get_double("er", b ? base->er : p.en, Range::closed(0, 1));
+    p.rolling_friction = node.get_double("rolling_friction", b ? base->rolling_friction : 0.0, Range::non_negative());
+    return p;
+  }
+
+  // Per type-pair constants, in this order.
+  enum Constant : std::size_t { kKn, kKt, kKr, kEtaN, kEtaT, kEtaR, kFs, kFr, kConstants };
+  static constexpr std::array<std::string_view, kConstants> constant_names = {"kn",    "kt",    "kr", "eta_n",
+                                                                              "eta_t", "eta_r", "fs", "fr"};
+  // Effective mass and inertia of a pair: the reduced ones, or the particle's own against a wall.
+  static double reduced(double a, double b, bool b_wall) { return b_wall ? a : a * b / (a + b); }
+  static std::array<double, kConstants> constants(const ContactBody<Material>& a, const ContactBody<Material>& b,
+                                                  const Params& p) {
+    const double m = reduced(a.mass, b.mass, b.wall), i = reduced(a.inertia, b.inertia, b.wall);
+    return {p.kn,
+            p.kt,
+            p.kr,
+            damping_coefficient(m, p.kn, p.en),
+            damping_coefficient(2.0 / 7.0 * m, p.kt, p.et),
+            p.kr > 0.0 ? damping_coefficient(i, p.kr, p.er) : 0.0,
+            p.friction,
+            p.rolling_friction};
+  }
+  static std::vector<StepTerm> critical_terms(const ContactBody<Material>& a, const ContactBody<Material>& b,
+                                              const Params& p) {
+    const double m = reduced(a.mass, b.mass, b.wall), i = reduced(a.inertia, b.inertia, b.wall);
+    std::vector<StepTerm> t;
+    if (p.kn > 0) t.push_back({collision_period(m, p.kn, p.en), "normal"});
+    if (p.kt > 0) t.push_back({collision_period(2.0 / 7.0 * m, p.kt, p.et), "tangential"});
+    if (p.kr > 0) t.push_back({collision_period(i, p.kr, p.er), "rolling"});
+    return t;
+  }
+
+  // History: the tangential spring d_t (m) and the rolling angle a (rad), seen from row i.
+  static constexpr std::size_t kHistory = 6;
+  static HistoryLayout history() {
+    return {"linear_spring_dashpot.springs", {"shear.x", "shear.y", "shear.z", "roll.x", "roll.y", "roll.z"}};
+  }
+
+  // The pipeline's form: geometry, constants and history as the drivers hold them.
+  template <class T, class M>
+  [[gnu::always_inline]] static ContactForce<T> evaluate(const M& touching, const ContactGeometry<T>& g,
+                                  const std::array<T, kConstants>& k, const T& dt, std::array<T, kHistory>& h) {
+    const LsdCoeffs<T> c{k[kKn], k[kKt], k[kKr], k[kEtaN], k[kEtaT], k[kEtaR], k[kFs], k[kFr]};
+    LsdState<T> s{{h[0], h[1], h[2]}, {h[3], h[4], h[5]}};
+    const LsdResult<T> r = evaluate(touching, g.n, g.delta, g.v, g.w, c, dt, s);
+    h = {s.shear.x, s.shear.y, s.shear.z, s.roll.x, s.roll.y, s.roll.z};
+    return {r.force, r.force_t, r.rolling_torque, -r.rolling_torque};
+  }
+
   // `touching` masks lanes (or the scalar) in contact; elsewhere springs reset and forces vanish.
   template <class T, class M>
-  static LsdResult<T> evaluate(const M& touching, const V3<T>& n, const T& delta, const V3<T>& v, const V3<T>& w,
+  [[gnu::always_inline]] static LsdResult<T> evaluate(const M& touching, const V3<T>& n, const T& delta, const V3<T>& v, const V3<T>& w,
                                const LsdCoeffs<T>& c, const T& dt, LsdState<T>& s) {
     const T zero(0.0);
-    const T tiny(1e-300);
     const T vn = dot(v, n);
     const V3<T> vt = v - vn * n;
     const T fn_signed = -c.kn * delta - c.eta_n * vn;  // along n
     const V3<T> fnv = fn_signed * n;
-    const T fn_mag = xsimd_abs(fn_signed);
+    const T fn_mag = abs_of(fn_signed);
 
-    // Tangential spring: project the old spring on the current tangent plane, keep its length.
-    const T old_len2 = dot(s.shear, s.shear);
-    V3<T> d = s.shear - dot(s.shear, n) * n;
-    const T new_len2 = dot(d, d);
-    const auto turned = new_len2 > tiny;
-    const T keep = choose(turned, sqrt_of(old_len2) * rsqrt_of(choose(turned, new_len2, T(1.0))), T(1.0));
-    d = keep * d;
+    V3<T> d = turn_spring(s.shear, n);
     d = d + dt * vt;
     V3<T> ft = (-c.kt) * d - c.eta_t * vt;
     slide(ft, d, c.fs * fn_mag, c.kt);
@@ -75,31 +175,6 @@ struct LinearSpringDashpot {
     return r;
   }
 
- private:
-  // The slider of a spring-dashpot pair: where |f| exceeds the cap, f points along -spring with
-  // the cap's magnitude (along f itself when the spring has no direction), and the spring is
-  // shortened to cap / k so that a reversal starts from the cap.
-  // (A spring counts as having a direction when |spring|^2 > 1e-300, i.e. longer than 1e-150 m.)
-  template <class T>
-  static void slide(V3<T>& f, V3<T>& spring, const T& cap, const T& k) {
-    const T f2 = dot(f, f);
-    const T len2 = dot(spring, spring);
-    const auto over = f2 > cap * cap;
-    const auto has_dir = len2 > T(1e-300);
-    const T inv = rsqrt_of(choose(has_dir, len2, T(1.0)));
-    const T inv_f = rsqrt_of(choose(f2 > T(1e-300), f2, T(1.0)));
-    const V3<T> f_capped = choose(has_dir, (-cap * inv) * spring, (cap * inv_f) * f);
-    const T k_safe = choose(k > T(0.0), k, T(1.0));
-    const V3<T> spring_capped = choose(has_dir, (cap / k_safe * inv) * spring, spring);
-    f = choose(over, f_capped, f);
-    spring = choose(over, spring_capped, spring);
-  }
-
-  static double xsimd_abs(double v) { return v < 0 ? -v : v; }
-  template <class A>
-  static xsimd::batch<double, A> xsimd_abs(const xsimd::batch<double, A>& v) {
-    return xsimd::abs(v);
-  }
 };
 
 }  // namespace gf

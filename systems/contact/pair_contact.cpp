@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cstring>
 
+#include <utility>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "systems/contact/linear_spring_dashpot.hpp"
+#include "systems/contact/laws.hpp"
+#include "systems/contact/sphere_geometry.hpp"
 
 namespace gf {
 
@@ -18,8 +21,15 @@ static_assert(kBlock % kLanes == 0, "blocks start on whole batches");
 // Contacts between a spring prefetch and its use in the law.
 constexpr std::size_t kAheadSprings = 64;
 
-// The per-contact columns hold one extra row, kept zero.
-void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
+// The per-contact columns hold one extra row, kept zero. The history being written takes the live
+// one's layout (they are swapped after each evaluation).
+void size_outputs(PairForces& out, const PairHistory& h, std::size_t np, std::size_t nc) {
+  if (out.next.width != h.width || out.next.component != h.component) {
+    out.next.component = h.component;
+    out.next.fields = h.fields;
+    out.next.exchange_sign = h.exchange_sign;
+    out.next.width = h.width;
+  }
   for (Column<std::int32_t>* c : {&out.ci, &out.cj, &out.ctype, &out.cslot}) c->resize(nc + 1);
   out.next.resize(nc);
   out.next.slot.resize(np);
@@ -31,17 +41,12 @@ void size_outputs(PairForces& out, std::size_t np, std::size_t nc) {
   for (ColumnD* c : {&out.tix, &out.tiy, &out.tiz, &out.tjx, &out.tjy, &out.tjz}) c->resize(out.record_torques ? nc : 0);
 }
 
-// Springs of the last evaluation for contact c (entry `slot` of the old history, -1 for a new
+// History of the last evaluation for contact c (entry `slot` of the old history, -1 for a new
 // contact, which starts from zero).
-void carry_spring(const PairHistory& old, std::int32_t slot, PairHistory& next, std::size_t c) {
+void carry_history(const PairHistory& old, std::int32_t slot, PairHistory& next, std::size_t c) {
   const bool found = slot >= 0;
   const auto e = static_cast<std::size_t>(found ? slot : 0);
-  next.sx[c] = found ? old.sx[e] : 0.0;
-  next.sy[c] = found ? old.sy[e] : 0.0;
-  next.sz[c] = found ? old.sz[e] : 0.0;
-  next.rx[c] = found ? old.rx[e] : 0.0;
-  next.ry[c] = found ? old.ry[e] : 0.0;
-  next.rz[c] = found ? old.rz[e] : 0.0;
+  for (std::size_t q = 0; q < old.width; ++q) next.value[q][c] = found ? old.value[q][e] : 0.0;
 }
 
 // Compaction of list pairs [k0, k1) into contacts from index c: the contact's indices and the map
@@ -117,42 +122,34 @@ struct SlabTorques {
   double* t[6] = {};
 };
 
-// Law, lever arms and torques for one contact; shared by the scalar tail and the scalar driver.
-void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h, const PairCoeffs* coeffs,
-                  std::size_t ntypes, double dt, PairForces& out, std::size_t c, const SlabTorques& st) {
+// Geometry, law and torques for one contact; shared by the scalar tail and the scalar driver.
+template <class Law>
+void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h, const ContactTable& table, double dt,
+                  PairForces& out, std::size_t c, const SlabTorques& st) {
   const V3<double> d{g.pos.x[j] - g.pos.x[i], g.pos.y[j] - g.pos.y[i], g.pos.z[j] - g.pos.z[i]};
-  const double ri = g.radius.r[i], rj = g.radius.r[j];
   const double dist = std::sqrt(dot(d, d));
-  const double inv = 1.0 / dist;
-  const V3<double> n{d.x * inv, d.y * inv, d.z * inv};
-  const double delta = ri + rj - dist;
-  const double li = ri - 0.5 * delta, lj = rj - 0.5 * delta;
   const V3<double> wi{g.omega.x[i], g.omega.y[i], g.omega.z[i]};
   const V3<double> wj{g.omega.x[j], g.omega.y[j], g.omega.z[j]};
   const V3<double> vij{g.vel.x[i] - g.vel.x[j], g.vel.y[i] - g.vel.y[j], g.vel.z[i] - g.vel.z[j]};
-  const V3<double> v = vij + cross(li * wi + lj * wj, n);
-  const PairCoeffs& pc =
-      coeffs[static_cast<std::size_t>(g.species.type[i]) * ntypes + static_cast<std::size_t>(g.species.type[j])];
-  const LsdCoeffs<double> cf{pc.kn, pc.kt, pc.kr, pc.eta_n, pc.eta_t, pc.eta_r, pc.fs, pc.fr};
-  LsdState<double> s{{h.sx[c], h.sy[c], h.sz[c]}, {h.rx[c], h.ry[c], h.rz[c]}};
-  const LsdResult<double> res = LinearSpringDashpot::evaluate(true, n, delta, v, wi - wj, cf, dt, s);
-  h.sx[c] = s.shear.x;
-  h.sy[c] = s.shear.y;
-  h.sz[c] = s.shear.z;
-  h.rx[c] = s.roll.x;
-  h.ry[c] = s.roll.y;
-  h.rz[c] = s.roll.z;
-  const V3<double> nxf = cross(n, res.force_t);
+  const SphereContact<double> sc = sphere_sphere(d, dist, 1.0 / dist, g.radius.r[i], g.radius.r[j], vij, wi, wj);
+  const double* k = table.pair(static_cast<std::size_t>(g.species.type[i]), static_cast<std::size_t>(g.species.type[j]));
+  std::array<double, Law::kConstants> cf;
+  std::copy(k, k + Law::kConstants, cf.begin());
+  std::array<double, Law::kHistory> s;
+  for (std::size_t q = 0; q < Law::kHistory; ++q) s[q] = h.value[q][c];
+  const ContactForce<double> res = Law::evaluate(true, sc.g, cf, dt, s);
+  for (std::size_t q = 0; q < Law::kHistory; ++q) h.value[q][c] = s[q];
+  const V3<double> nxf = cross(sc.g.n, res.force_t);
   out.fx[c] = res.force.x;
   out.fy[c] = res.force.y;
   out.fz[c] = res.force.z;
-  st.t[0][c - st.c0] = li * nxf.x + res.rolling_torque.x;
-  st.t[1][c - st.c0] = li * nxf.y + res.rolling_torque.y;
-  st.t[2][c - st.c0] = li * nxf.z + res.rolling_torque.z;
+  st.t[0][c - st.c0] = sc.li * nxf.x + res.torque_i.x;
+  st.t[1][c - st.c0] = sc.li * nxf.y + res.torque_i.y;
+  st.t[2][c - st.c0] = sc.li * nxf.z + res.torque_i.z;
   // On j the force is -F and the lever -L_j n: the tangential torque has the same sign as i's.
-  st.t[3][c - st.c0] = lj * nxf.x - res.rolling_torque.x;
-  st.t[4][c - st.c0] = lj * nxf.y - res.rolling_torque.y;
-  st.t[5][c - st.c0] = lj * nxf.z - res.rolling_torque.z;
+  st.t[3][c - st.c0] = sc.lj * nxf.x + res.torque_j.x;
+  st.t[4][c - st.c0] = sc.lj * nxf.y + res.torque_j.y;
+  st.t[5][c - st.c0] = sc.lj * nxf.z + res.torque_j.z;
 }
 
 // Sums into Force and Torque by slabs of owner rows. A slab's contacts are one run of the packed
@@ -293,6 +290,7 @@ void evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&
 
 }  // namespace
 
+template <class Law>
 void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table,
                                 double dt, PairForces& out) {
   const std::size_t np = list.pairs();
@@ -306,18 +304,19 @@ void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory
   count_blocks(out, np);
   const std::size_t nc = out.block_start.back();
   if (h.slot.size() != np) h.map_slots(np);
-  size_outputs(out, np, nc);
+  size_outputs(out, h, np, nc);
   compact_scalar(list, h, out, 0, np, 0);
   evaluate_and_sum(g, list, out, [&](std::size_t c0, std::size_t c1, const SlabTorques& st) {
     for (std::size_t c = c0; c < c1; ++c) {
       const auto k = static_cast<std::size_t>(out.next.pair[c]);
-      carry_spring(h, out.cslot[c], out.next, c);
-      evaluate_one(g, list.i[k], list.j[k], out.next, table.pair_data(), table.types(), dt, out, c, st);
+      carry_history(h, out.cslot[c], out.next, c);
+      evaluate_one<Law>(g, list.i[k], list.j[k], out.next, table, dt, out, c, st);
     }
   });
   std::swap(h, out.next);
 }
 
+template <class Law>
 void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table, double dt,
                          PairForces& out) {
   using B = BatchD;
@@ -360,7 +359,7 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   });
   for (std::size_t b = 0; b < nblocks; ++b) out.block_start[b + 1] += out.block_start[b];
   const std::size_t nc = out.block_start[nblocks];
-  size_outputs(out, np, nc);
+  size_outputs(out, h, np, nc);
 
   // 2. Packed contact list in list order, each contact with the slot of its spring.
   if (h.slot.size() != np) h.map_slots(np);
@@ -375,31 +374,30 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
 #endif
   });
 
-  // 3. The law over whole batches of contacts; the remainder through the scalar path.
-  const PairCoeffs* coeffs = table.pair_data();
-  for (int q = 0; q < 8; ++q) out.coeff[q].clear();
+  // 3. Geometry and law over whole batches of contacts; the remainder through the scalar path.
+  constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
+  for (std::size_t q = 0; q < K; ++q) out.coeff[q].clear();
   for (std::size_t a = 0; a < ntypes; ++a)
     for (std::size_t t = 0; t < static_cast<std::size_t>(kMaxSpecies); ++t) {
-      const PairCoeffs& pc = coeffs[a * ntypes + std::min(t, ntypes - 1)];
-      const double v[8] = {pc.kn, pc.kt, pc.kr, pc.eta_n, pc.eta_t, pc.eta_r, pc.fs, pc.fr};
-      for (int q = 0; q < 8; ++q) out.coeff[q].push_back(v[q]);
+      const double* v = table.pair(a, std::min(t, ntypes - 1));
+      for (std::size_t q = 0; q < K; ++q) out.coeff[q].push_back(v[q]);
     }
   // A constant that is the same for every type pair is broadcast instead of gathered.
-  for (int q = 0; q < 8; ++q)
+  for (std::size_t q = 0; q < K; ++q)
     out.coeff_uniform[q] = std::all_of(out.coeff[q].begin(), out.coeff[q].end(),
                                        [&](double x) { return x == out.coeff[q][0]; });
   // With few species (a binary mixture has four type pairs) each varying constant sits in a
   // register, indexed by the compact type pair species_i * ntypes + species_j.
   const bool in_register = ntypes * ntypes <= RegisterTable::capacity;
-  RegisterTable reg[8];
+  RegisterTable reg[K];
   if (in_register)
-    for (int q = 0; q < 8; ++q) {
+    for (std::size_t q = 0; q < K; ++q) {
       double v[RegisterTable::capacity] = {};
       for (std::size_t a = 0; a < ntypes; ++a)
         for (std::size_t t = 0; t < ntypes; ++t) v[a * ntypes + t] = out.coeff[q][a * kMaxSpecies + t];
       reg[q] = RegisterTable(v, ntypes * ntypes);
     }
-  auto coeff = [&](int q, const std::int32_t* idx, const std::int32_t* compact) {
+  auto coeff = [&](std::size_t q, const std::int32_t* idx, const std::int32_t* compact) {
     return out.coeff_uniform[q] ? B(out.coeff[q][0])
                                 : (in_register ? reg[q].lookup(compact) : gather32(out.coeff[q].data(), idx));
   };
@@ -419,70 +417,57 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       // The distance correctly rounded (the overlap is its small difference from r_i + r_j), the
       // reciprocal from the estimate (touching pairs are apart by more than 0).
       const B d2 = dot(d, d);
-      const B dist = xsimd::sqrt(d2);
-      const B inv = rsqrt_of(d2);
-      const V n = inv * d;
-      const B delta = ri + rj - dist;
-      const B li = ri - B(0.5) * delta, lj = rj - B(0.5) * delta;
       const V wi{load_rows(g.omega.x.data(), bi), load_rows(g.omega.y.data(), bi), load_rows(g.omega.z.data(), bi)};
       const V wj{gather32(g.omega.x.data(), bj), gather32(g.omega.y.data(), bj), gather32(g.omega.z.data(), bj)};
       const V vij{load_rows(g.vel.x.data(), bi) - gather32(g.vel.x.data(), bj),
                   load_rows(g.vel.y.data(), bi) - gather32(g.vel.y.data(), bj),
                   load_rows(g.vel.z.data(), bi) - gather32(g.vel.z.data(), bj)};
-      const V v = vij + cross(li * wi + lj * wj, n);
+      const SphereContact<B> sc = sphere_sphere(d, xsimd::sqrt(d2), rsqrt_of(d2), ri, rj, vij, wi, wj);
       alignas(64) std::int32_t compact[L];
       static_assert(kMaxSpecies == 64);
       for (std::size_t l = 0; l < L; ++l)
         compact[l] = (bt_idx[l] >> 6) * static_cast<std::int32_t>(ntypes) + (bt_idx[l] & 63);
-      const LsdCoeffs<B> cf{coeff(0, bt_idx, compact), coeff(1, bt_idx, compact), coeff(2, bt_idx, compact),
-                            coeff(3, bt_idx, compact), coeff(4, bt_idx, compact), coeff(5, bt_idx, compact),
-                            coeff(6, bt_idx, compact), coeff(7, bt_idx, compact)};
+      std::array<B, K> cf;
+      for (std::size_t q = 0; q < K; ++q) cf[q] = coeff(q, bt_idx, compact);
       PairHistory& nh = out.next;
-      // Springs of the last evaluation: between rebuilds a batch's contacts usually all persist
+      // History of the last evaluation: between rebuilds a batch's contacts usually all persist
       // and sit in a run of the old history, read with plain loads; otherwise gathered by slot.
       const std::int32_t* sl = &out.cslot[c0];
-      // The old springs are one stream among many and are read once: ask for those of a batch
+      // The old history is one stream among many and is read once: ask for that of a batch
       // kAheadSprings contacts on (the slot there, when it has one, is a few entries from sl[0] +
       // kAheadSprings).
       if (c0 + kAheadSprings < cend) {
         const std::int32_t ahead = out.cslot[c0 + kAheadSprings];
         if (ahead >= 0) {
           const auto e = static_cast<std::size_t>(ahead);
-          for (const ColumnD* col : {&h.sx, &h.sy, &h.sz, &h.rx, &h.ry, &h.rz}) __builtin_prefetch(col->data() + e);
+          for (std::size_t q = 0; q < H; ++q) __builtin_prefetch(h.value[q].data() + e);
         }
       }
-      LsdState<B> s;
+      std::array<B, H> s;
       if (sl[0] >= 0 && sl[L - 1] - sl[0] == static_cast<std::int32_t>(L - 1) && is_run(sl)) {
         const auto e = static_cast<std::size_t>(sl[0]);
-        s = {{B::load_unaligned(&h.sx[e]), B::load_unaligned(&h.sy[e]), B::load_unaligned(&h.sz[e])},
-             {B::load_unaligned(&h.rx[e]), B::load_unaligned(&h.ry[e]), B::load_unaligned(&h.rz[e])}};
+        for (std::size_t q = 0; q < H; ++q) s[q] = B::load_unaligned(&h.value[q][e]);
       } else {
-        s = {{gather32_or_zero(h.sx.data(), sl), gather32_or_zero(h.sy.data(), sl), gather32_or_zero(h.sz.data(), sl)},
-             {gather32_or_zero(h.rx.data(), sl), gather32_or_zero(h.ry.data(), sl), gather32_or_zero(h.rz.data(), sl)}};
+        for (std::size_t q = 0; q < H; ++q) s[q] = gather32_or_zero(h.value[q].data(), sl);
       }
       const auto all = B(0.0) == B(0.0);
-      const LsdResult<B> res = LinearSpringDashpot::evaluate(all, n, delta, v, wi - wj, cf, B(dt), s);
-      s.shear.x.store_unaligned(&nh.sx[c0]);
-      s.shear.y.store_unaligned(&nh.sy[c0]);
-      s.shear.z.store_unaligned(&nh.sz[c0]);
-      s.roll.x.store_unaligned(&nh.rx[c0]);
-      s.roll.y.store_unaligned(&nh.ry[c0]);
-      s.roll.z.store_unaligned(&nh.rz[c0]);
-      const V nxf = cross(n, res.force_t);
-      (li * nxf.x + res.rolling_torque.x).store_unaligned(&st.t[0][c0 - st.c0]);
-      (li * nxf.y + res.rolling_torque.y).store_unaligned(&st.t[1][c0 - st.c0]);
-      (li * nxf.z + res.rolling_torque.z).store_unaligned(&st.t[2][c0 - st.c0]);
+      const ContactForce<B> res = Law::evaluate(all, sc.g, cf, B(dt), s);
+      for (std::size_t q = 0; q < H; ++q) s[q].store_unaligned(&nh.value[q][c0]);
+      const V nxf = cross(sc.g.n, res.force_t);
+      (sc.li * nxf.x + res.torque_i.x).store_unaligned(&st.t[0][c0 - st.c0]);
+      (sc.li * nxf.y + res.torque_i.y).store_unaligned(&st.t[1][c0 - st.c0]);
+      (sc.li * nxf.z + res.torque_i.z).store_unaligned(&st.t[2][c0 - st.c0]);
       res.force.x.store_unaligned(&out.fx[c0]);
       res.force.y.store_unaligned(&out.fy[c0]);
       res.force.z.store_unaligned(&out.fz[c0]);
-      (lj * nxf.x - res.rolling_torque.x).store_unaligned(&st.t[3][c0 - st.c0]);
-      (lj * nxf.y - res.rolling_torque.y).store_unaligned(&st.t[4][c0 - st.c0]);
-      (lj * nxf.z - res.rolling_torque.z).store_unaligned(&st.t[5][c0 - st.c0]);
+      (sc.lj * nxf.x + res.torque_j.x).store_unaligned(&st.t[3][c0 - st.c0]);
+      (sc.lj * nxf.y + res.torque_j.y).store_unaligned(&st.t[4][c0 - st.c0]);
+      (sc.lj * nxf.z + res.torque_j.z).store_unaligned(&st.t[5][c0 - st.c0]);
     }
     for (std::size_t c = c0; c < cend; ++c) {
       const std::size_t k = static_cast<std::size_t>(out.next.pair[c]);
-      carry_spring(h, out.cslot[c], out.next, c);
-      evaluate_one(g, list.i[k], list.j[k], out.next, coeffs, ntypes, dt, out, c, st);
+      carry_history(h, out.cslot[c], out.next, c);
+      evaluate_one<Law>(g, list.i[k], list.j[k], out.next, table, dt, out, c, st);
     }
   };
   // 4. The law and the sums, slab by slab.
@@ -490,9 +475,11 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   std::swap(h, out.next);
 }
 
-void PairContact::run(World& world) {
-  compute_pair_forces(world.grains, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(),
-                      world.resources.get<ContactTable>(), world.clock.dt, world.resources.get<PairForces>());
+// Both drivers for every registered law: the table's external linkage makes the compiler emit them.
+template <class... Laws>
+constexpr auto pair_drivers(LawList<Laws...>) {
+  return std::array{std::pair{&compute_pair_forces<Laws>, &compute_pair_forces_scalar<Laws>}...};
 }
+extern const auto kPairDrivers = pair_drivers(ContactLaws{});
 
 }  // namespace gf

@@ -1,10 +1,11 @@
-// Particle-particle contact driver for the linear spring-dashpot-slider law. The driver owns the
-// iteration; the law (linear_spring_dashpot.hpp) owns the physics. Per step:
+// Particle-particle contact driver, a template on the contact law (laws.hpp lists them). The driver
+// owns the iteration, the geometry stage (sphere_geometry.hpp) the contact, the law the physics.
+// Per step:
 //   1. prefilter: the overlap test over every pair of the Verlet list, in xsimd batches;
 //   2. compaction of the touching pairs into a packed contact list, in list order, merged with the
-//      packed springs of the last evaluation (pairs that separated drop theirs);
-//   3. the law over the packed contacts in xsimd batches (a scalar tail), springs read and written
-//      with vector loads and stores, per-contact force and the torques on both sides;
+//      packed history of the last evaluation (pairs that separated drop theirs);
+//   3. geometry and law over the packed contacts in xsimd batches (a scalar tail), history read and
+//      written with vector loads and stores, per-contact force and the torques on both sides;
 //   4. the sums into Force and Torque, by fixed slabs of slab_rows(n) owner rows, right after the
 //      law has run over the slab's contacts (steps 3 and 4 are one task per slab, so the law's
 //      outputs are summed while in cache): a slab's contacts add into its own rows in contact order
@@ -23,7 +24,8 @@
 
 #include "engine/system.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
-#include "systems/contact/contact_params.hpp"
+#include "systems/contact/contact_law.hpp"
+#include "systems/contact/contact_table.hpp"
 #include "systems/contact/vec3.hpp"
 
 namespace gf {
@@ -44,8 +46,8 @@ struct PairForces {
   Column<std::uint8_t> touching;       // overlap flag per list pair
   PairHistory next;                    // springs being written, swapped with the live ones
   std::vector<std::uint32_t> block_start;  // contacts before each block of list pairs
-  std::vector<double> coeff[8];  // law constants per type pair: kn kt kr eta_n eta_t eta_r fs fr
-  bool coeff_uniform[8] = {};
+  std::vector<double> coeff[kMaxConstants];  // the law's constants per type pair (index q, type pair)
+  bool coeff_uniform[kMaxConstants] = {};
   // Partner sides that land past their owner's slab: one list per (owner slab, target slab).
   struct Spill {
     std::uint32_t j;
@@ -72,18 +74,25 @@ inline std::size_t slab_rows(std::size_t n) {
   return s < 256 ? 256 : (s > 2048 ? 2048 : s);
 }
 
-// Evaluates every pair of `list` and sums per row into Force and Torque.
+// Evaluates every pair of `list` with law L and sums per row into Force and Torque. Instantiated
+// for every law of ContactLaws.
+template <class L>
 void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
                          double dt, PairForces& out);
+template <class L>
 void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
                                 double dt, PairForces& out);
 
-class PairContact : public SystemBase<PairContact> {
+template <class L>
+class PairContact : public SystemBase<PairContact<L>> {
  public:
   using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, NeighborList, ContactTable, Clock>;
   using Writes = gf::Writes<Force, Torque, PairHistory, PairForces>;
   std::string_view name() const override { return "pair_contact"; }
-  void run(World& world) override;
+  void run(World& world) override {
+    compute_pair_forces<L>(world.grains, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(),
+                           world.resources.get<ContactTable>(), world.clock.dt, world.resources.get<PairForces>());
+  }
 };
 
 }  // namespace gf

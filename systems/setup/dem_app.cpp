@@ -12,6 +12,7 @@
 #include "engine/cli.hpp"
 #include "engine/run_loop.hpp"
 #include "systems/broadphase/broadphase.hpp"
+#include "systems/contact/laws.hpp"
 #include "systems/fill/state_csv.hpp"
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
@@ -53,7 +54,7 @@ int check_dem_command(const CliOptions& opt) {
   const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
   const DemScene s = load_dem_scene(doc);
   Schedule step;
-  schedule_dem_step(step);
+  schedule_dem_step(step, s.law);
   World probe;
   probe.resources.emplace<StepMode>();
   step.build(probe);
@@ -63,12 +64,19 @@ int check_dem_command(const CliOptions& opt) {
     for (const FillSpec& f : s.fills)
       if (f.kind == FillSpec::Kind::File) n += read_state_csv(f.path).size();
   std::printf("scene %s: valid\n", s.file.string().c_str());
-  std::printf("model: dry soft-sphere DEM, linear spring-dashpot-slider (seed 000 Table 1)\n");
+  with_law(s.law, [&]<class Law>() {
+    const HistoryLayout h = Law::history();
+    std::string fields;
+    for (std::string_view f : h.fields) fields += (fields.empty() ? "" : ", ") + std::string(f);
+    std::printf("model: dry soft-sphere DEM; contact law %s: %s\n", s.law.c_str(), std::string(Law::title).c_str());
+    std::printf("contact history: %s (%s; %zu doubles per contact)\n", std::string(h.component).c_str(),
+                fields.c_str(), h.fields.size());
+  });
   std::printf("grains: %zu in %zu species; walls: %zu; fills: %zu\n", n, s.species.size(), s.walls.size(),
               s.fills.size());
   std::printf("systems per step (with the systems each waits for):\n%s", step.describe().c_str());
   std::printf("observers: series_output, frame_output, picture_output\n");
-  std::printf("critical step: smallest collision period %.4g s (%s); dt = %.4g s = %.3f of it (limit %.3f)%s\n",
+  std::printf("critical step: smallest time-step term %.4g s (%s); dt = %.4g s = %.3f of it (limit %.3f)%s\n",
               s.critical.period, s.critical.term.c_str(), s.dt, s.dt / s.critical.period, s.dt_safety,
               s.allow_unstable_dt && s.dt > s.dt_safety * s.critical.period ? " OVERRIDDEN" : "");
   std::printf("steps: %lld settling + %lld main (%.4g s simulated)\n", static_cast<long long>(s.settle_steps()),

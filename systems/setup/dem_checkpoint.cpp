@@ -24,14 +24,12 @@ void list_sections(Io& io, List& list, History& h, State& bp) {
   io.column("neighbors.j_lane", list.j_lane);
   io.column("neighbors.type_pair", list.type_pair);
   io.vector("neighbors.key", list.key);
-  io.column("springs.pair", h.pair);
-  io.column("springs.sx", h.sx);
-  io.column("springs.sy", h.sy);
-  io.column("springs.sz", h.sz);
-  io.column("springs.rx", h.rx);
-  io.column("springs.ry", h.ry);
-  io.column("springs.rz", h.rz);
-  io.column("springs.slot", h.slot);
+  // The contact history by its component's and fields' names: a checkpoint of a scene with another
+  // law lacks them (restore_dem_state names both laws first).
+  const std::string c = "history." + h.component;
+  io.column(c + ".pair", h.pair);
+  for (std::size_t q = 0; q < h.width; ++q) io.column(c + "." + h.fields[q], h.value[q]);
+  io.column(c + ".slot", h.slot);
   io.column("broadphase.ref_x", bp.ref_x);
   io.column("broadphase.ref_y", bp.ref_y);
   io.column("broadphase.ref_z", bp.ref_z);
@@ -55,6 +53,7 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) 
   out.value("clock.t0", world.clock.t0);
   out.value("scene.species", static_cast<std::uint64_t>(scene.species.size()));
   out.value("scene.walls", static_cast<std::uint64_t>(scene.walls.size()));
+  out.vector("contact.law", std::vector<char>(scene.law.begin(), scene.law.end()));
   out.value("grains.n_owned", static_cast<std::uint64_t>(gr.n_owned));
   out.value("grains.n", static_cast<std::uint64_t>(gr.n));
   std::size_t k = 0;
@@ -80,6 +79,13 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
                                same_scene);
   require_equal<std::uint64_t>(in, "wall count", in.value<std::uint64_t>("scene.walls"), scene.walls.size(),
                                same_scene);
+  std::vector<char> law;
+  if (in.has("contact.law")) in.vector("contact.law", law);
+  const std::string stored_law(law.begin(), law.end());
+  if (stored_law != scene.law)
+    in.fail("it was written with the contact law '" + (stored_law.empty() ? std::string("linear_spring_dashpot (unnamed)") : stored_law) +
+                "', the scene now uses '" + scene.law + "'",
+            "resume with the scene's original [contact] model: a checkpoint carries that law's history");
   Grains& gr = world.grains;
   const auto n_owned = in.value<std::uint64_t>("grains.n_owned");
   require_equal<std::uint64_t>(in, "grain count", n_owned, gr.n_owned, same_scene);

@@ -9,6 +9,7 @@
 #include "systems/analysis/metrics.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
+#include "systems/contact/laws.hpp"
 #include "systems/contact/pair_contact.hpp"
 #include "systems/fill/random_fill.hpp"
 #include "systems/fill/state_csv.hpp"
@@ -35,21 +36,32 @@ std::int32_t species_index(const DemScene& s, const SceneNode& node, std::string
   node.fail(key, "no species is named '" + name + "'", "use one of the [[species]] names: " + names);
 }
 
-ContactParams read_contact(const SceneNode& node, const ContactParams* base) {
-  ContactParams p;
-  auto num = [&](std::string_view key, double fallback_value, bool has_fallback, Range r) {
-    return has_fallback ? node.get_double(key, fallback_value, r) : node.get_double(key, r);
-  };
-  const bool b = base != nullptr;
-  p.kn = num("kn", b ? base->kn : 0, b, Range::positive());
-  p.kt = num("kt", b ? base->kt : 0, b, Range::non_negative());
-  p.en = num("en", b ? base->en : 0, b, Range::closed(0, 1));
-  p.et = num("et", b ? base->et : 0, b, Range::closed(0, 1));
-  p.friction = num("friction", b ? base->friction : 0, b, Range::non_negative());
-  p.kr = node.get_double("kr", b ? base->kr : 0.0, Range::non_negative());
-  p.er = node.get_double("er", b ? base->er : p.en, Range::closed(0, 1));
-  p.rolling_friction = node.get_double("rolling_friction", b ? base->rolling_friction : 0.0, Range::non_negative());
-  return p;
+// [contact] for every pair; [contact.wall] and [[contact.pair]] override single keys. The law
+// reads its own keys, and each species' material from its [[species]] table.
+template <class Law>
+void read_contacts(DemScene& s, const SceneNode& root, const SceneNode& ct) {
+  using Params = typename Law::Params;
+  const std::size_t n = s.species.size();
+  std::vector<ContactBody<typename Law::Material>> bodies;
+  std::vector<std::string> names;
+  const auto species_nodes = root.tables("species");
+  for (std::size_t k = 0; k < n; ++k) {
+    const SpeciesSpec& sp = s.species[k];
+    bodies.push_back({sp.mass, sp.inertia, 0.5 * sp.diameter, Law::read_material(species_nodes[k]), false});
+    names.push_back(sp.name);
+  }
+  const Params base = Law::read_params(ct, nullptr, false);
+  std::vector<Params> pp(n * n, base);
+  const auto wall = ct.maybe_table("wall");
+  std::vector<Params> pw(n, wall ? Law::read_params(*wall, &base, true) : base);
+  for (const SceneNode& pr : ct.tables("pair")) {
+    const std::string a = pr.get_string("species_a"), b = pr.get_string("species_b");
+    const std::int32_t ia = species_index(s, pr, "species_a", a), ib = species_index(s, pr, "species_b", b);
+    const Params p = Law::read_params(pr, &base, false);
+    pp[ia * n + ib] = p;
+    pp[ib * n + ia] = p;
+  }
+  s.contacts = std::make_shared<ContactTable>(make_contact_table<Law>(bodies, names, pp, pw));
 }
 
 void read_walls(DemScene& s, const SceneNode& root) {
@@ -285,31 +297,9 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   if (s.species.size() > static_cast<std::size_t>(kMaxSpecies))
     root.fail("species", "more than " + std::to_string(kMaxSpecies) + " species", "merge species");
 
-  // Contacts: [contact] for every pair; [contact.wall] and [[contact.pair]] override single keys.
   const SceneNode ct = root.table("contact");
-  ct.get_choice("model", {"linear_spring_dashpot"});
-  const ContactParams base = read_contact(ct, nullptr);
-  const std::size_t n = s.species.size();
-  std::vector<ContactParams> pp(n * n, base);
-  std::vector<ContactParams> pw(n, base);
-  if (auto w = ct.maybe_table("wall")) {
-    const ContactParams wall = read_contact(*w, &base);
-    std::fill(pw.begin(), pw.end(), wall);
-  }
-  for (const SceneNode& pr : ct.tables("pair")) {
-    const std::string a = pr.get_string("species_a"), b = pr.get_string("species_b");
-    const std::int32_t ia = species_index(s, pr, "species_a", a), ib = species_index(s, pr, "species_b", b);
-    const ContactParams p = read_contact(pr, &base);
-    pp[ia * n + ib] = p;
-    pp[ib * n + ia] = p;
-  }
-  std::vector<SpeciesMass> masses;
-  std::vector<std::string> names;
-  for (auto& sp : s.species) {
-    masses.push_back({sp.mass, sp.inertia});
-    names.push_back(sp.name);
-  }
-  s.contacts = std::make_shared<ContactTable>(masses, pp, pw, names);
+  s.law = ct.get_choice("model", law_names());
+  with_law(s.law, [&]<class Law>() { read_contacts<Law>(s, root, ct); });
   s.critical = s.contacts->critical_period();
 
   const double limit = s.dt_safety * s.critical.period;
@@ -370,11 +360,14 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   return s;
 }
 
-void schedule_dem_step(Schedule& step) {
+void schedule_dem_step(Schedule& step, std::string_view law) {
   step.emplace<IntegratePositions>();
   step.emplace<Broadphase>();
-  step.emplace<PairContact>();
-  step.emplace<WallContact>();
+  const bool known = with_law(law, [&]<class Law>() {
+    step.emplace<PairContact<Law>>();
+    step.emplace<WallContact<Law>>();
+  });
+  if (!known) throw std::invalid_argument("schedule_dem_step: no contact law is named '" + std::string(law) + "'");
   step.emplace<IntegrateVelocities>();
 }
 
@@ -483,7 +476,7 @@ void build_dem_world(const DemScene& s, World& world) {
   BroadphaseState& bp = world.resources.emplace<BroadphaseState>();
   bp.skin = s.skin;
   world.resources.emplace<NeighborList>();
-  world.resources.emplace<PairHistory>();
+  with_law(s.law, [&]<class Law>() { set_layout(world.resources.emplace<PairHistory>(), Law::history()); });
   world.resources.emplace<PairForces>();
 }
 

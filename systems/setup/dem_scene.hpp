@@ -11,7 +11,7 @@
 #include "engine/scene.hpp"
 #include "engine/schedule.hpp"
 #include "engine/world.hpp"
-#include "systems/contact/contact_params.hpp"
+#include "systems/contact/contact_table.hpp"
 #include "systems/fill/region.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/output/drum_picture.hpp"
@@ -68,6 +68,7 @@ struct DemScene {
   double settle_time = 0;     // s of settling before the main stage, rotation off
   Gravity gravity;
   std::vector<SpeciesSpec> species;
+  std::string law;  // the contact law's name (laws.hpp)
   std::shared_ptr<ContactTable> contacts;
   CriticalStep critical;
   std::vector<Wall> walls;
@@ -84,8 +85,8 @@ struct DemScene {
 // Reads and validates everything; throws SceneError naming file, line, key and fix.
 DemScene load_dem_scene(const SceneDoc& doc);
 
-// The DEM systems of one step in phase order, and the observers (outputs, monitors).
-void schedule_dem_step(Schedule& step);
+// The DEM systems of one step in phase order, with the drivers of the scene's contact law.
+void schedule_dem_step(Schedule& step, std::string_view law);
 
 // Creates the grains of every fill (random placement, state files) and the resources.
 // Random fills that cannot be placed, or a state file that does not match the scene, are errors

@@ -1,10 +1,13 @@
 #include "systems/walls/wall_contact.hpp"
 
+#include <utility>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "systems/broadphase/neighbor_list.hpp"
-#include "systems/contact/linear_spring_dashpot.hpp"
+#include "systems/contact/laws.hpp"
+#include "systems/contact/sphere_geometry.hpp"
 
 namespace gf {
 
@@ -19,30 +22,21 @@ void prepare(Grains& g, Walls& walls, WallHistory& h, double t_contact) {
 // Per-type law constants as columns, so a batch gathers its lanes' values by type. Fixed size
 // (scenes have at most kMaxSpecies species): built on the stack each call, no allocation.
 struct CoeffColumns {
-  alignas(64) double kn[kMaxSpecies], kt[kMaxSpecies], kr[kMaxSpecies], eta_n[kMaxSpecies], eta_t[kMaxSpecies],
-      eta_r[kMaxSpecies], fs[kMaxSpecies], fr[kMaxSpecies];
+  alignas(64) double col[kMaxConstants][kMaxSpecies];
   explicit CoeffColumns(const ContactTable& table) {
-    for (std::size_t a = 0; a < table.types(); ++a) {
-      const PairCoeffs& c = table.wall(a);
-      kn[a] = c.kn;
-      kt[a] = c.kt;
-      kr[a] = c.kr;
-      eta_n[a] = c.eta_n;
-      eta_t[a] = c.eta_t;
-      eta_r[a] = c.eta_r;
-      fs[a] = c.fs;
-      fr[a] = c.fr;
-    }
+    for (std::size_t a = 0; a < table.types(); ++a)
+      for (std::size_t q = 0; q < table.width(); ++q) col[q][a] = table.wall(a)[q];
   }
 };
 
 }  // namespace
 
+template <class Law>
 void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
                                 double t_contact) {
   prepare(g, walls, h, t_contact);
   const std::size_t nw = walls.list.size();
-  const PairCoeffs* coeffs = table.wall_data();
+  constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const Vec3d p{g.pos.x[i], g.pos.y[i], g.pos.z[i]};
@@ -54,31 +48,24 @@ void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
         Vec3d n;
         const double gap = wall_gap(wall, p, n);
         if (gap >= ri) {
-          for (int c = 0; c < 6; ++c) hs[c] = 0.0;
+          for (std::size_t c = 0; c < H; ++c) hs[c] = 0.0;
           h.active[w][i] = 0;
           continue;
         }
         h.active[w][i] = 1;
-        const double delta = ri - gap;
-        const double li = ri - 0.5 * delta;
         const Vec3d wi{g.omega.x[i], g.omega.y[i], g.omega.z[i]};
-        const Vec3d contact = p + li * n;
         const double om = walls.rotation_enabled ? wall.omega : 0.0;
-        const Vec3d wall_w = om * wall.rot_axis;
-        const Vec3d wall_v = cross(wall_w, contact - wall.rot_point);
-        const Vec3d v = Vec3d{g.vel.x[i], g.vel.y[i], g.vel.z[i]} + cross(li * wi, n) - wall_v;
-        const PairCoeffs& pc = coeffs[static_cast<std::size_t>(g.species.type[i])];
-        const LsdCoeffs<double> c{pc.kn, pc.kt, pc.kr, pc.eta_n, pc.eta_t, pc.eta_r, pc.fs, pc.fr};
-        LsdState<double> s{{hs[0], hs[1], hs[2]}, {hs[3], hs[4], hs[5]}};
-        const LsdResult<double> res = LinearSpringDashpot::evaluate(true, n, delta, v, wi - wall_w, c, dt, s);
-        hs[0] = s.shear.x;
-        hs[1] = s.shear.y;
-        hs[2] = s.shear.z;
-        hs[3] = s.roll.x;
-        hs[4] = s.roll.y;
-        hs[5] = s.roll.z;
+        const SphereContact<double> sc = sphere_wall(p, n, gap, ri, Vec3d{g.vel.x[i], g.vel.y[i], g.vel.z[i]}, wi,
+                                                     om * wall.rot_axis, wall.rot_point);
+        const double* k = table.wall(static_cast<std::size_t>(g.species.type[i]));
+        std::array<double, K> c;
+        std::copy(k, k + K, c.begin());
+        std::array<double, H> s;
+        std::copy(hs, hs + H, s.begin());
+        const ContactForce<double> res = Law::evaluate(true, sc.g, c, dt, s);
+        std::copy(s.begin(), s.end(), hs);
         f = f + res.force;
-        t = t + li * cross(n, res.force_t) + res.rolling_torque;
+        t = t + sc.li * cross(n, res.force_t) + res.torque_i;
       }
       g.wall_force.x[i] = f.x;
       g.wall_force.y[i] = f.y;
@@ -172,6 +159,7 @@ template <class V, class B>
 
 }  // namespace
 
+template <class Law>
 void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
                          double t_contact) {
   prepare(g, walls, h, t_contact);
@@ -180,14 +168,14 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
   constexpr std::size_t L = kLanes;
   static_assert(kWallBlock % L == 0);
   const std::size_t nw = walls.list.size();
+  constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
+  static_assert(H <= sizeof(WallSprings::s) / sizeof(double), "a wall contact's history fits one record");
   const CoeffColumns cc(table);
   // With few species each constant sits in a register, looked up by type with a permute.
   const bool in_register = table.types() <= RegisterTable::capacity;
-  RegisterTable reg[8];
-  if (in_register) {
-    const double* cols[8] = {cc.kn, cc.kt, cc.kr, cc.eta_n, cc.eta_t, cc.eta_r, cc.fs, cc.fr};
-    for (int q = 0; q < 8; ++q) reg[q] = RegisterTable(cols[q], table.types());
-  }
+  RegisterTable reg[K];
+  if (in_register)
+    for (std::size_t q = 0; q < K; ++q) reg[q] = RegisterTable(cc.col[q], table.types());
   const std::size_t nown = g.n_owned;
   const std::size_t nblocks = (nown + kWallBlock - 1) / kWallBlock;
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
@@ -234,42 +222,36 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         const auto touching = gap < ri;
         alignas(64) std::int32_t ty[L];
         for (std::size_t l = 0; l < L; ++l) ty[l] = g.species.type[static_cast<std::size_t>(idx[l])];
-        auto coeff = [&](const double* col, const RegisterTable& reg) {
-          return in_register ? reg.lookup(ty) : gather32(col, ty);
-        };
-        const LsdCoeffs<B> c{coeff(cc.kn, reg[0]),    coeff(cc.kt, reg[1]),    coeff(cc.kr, reg[2]),
-                             coeff(cc.eta_n, reg[3]), coeff(cc.eta_t, reg[4]), coeff(cc.eta_r, reg[5]),
-                             coeff(cc.fs, reg[6]),    coeff(cc.fr, reg[7])};
-        const B delta = ri - gap;
-        const B li = ri - B(0.5) * delta;
+        std::array<B, K> c;
+        for (std::size_t k = 0; k < K; ++k) c[k] = in_register ? reg[k].lookup(ty) : gather32(cc.col[k], ty);
         const V wi{gather32(g.omega.x.data(), idx), gather32(g.omega.y.data(), idx), gather32(g.omega.z.data(), idx)};
         const V vi{gather32(g.vel.x.data(), idx), gather32(g.vel.y.data(), idx), gather32(g.vel.z.data(), idx)};
-        const V contact = p + li * n;
-        const V wall_v = cross(wall_w, contact - wall_o);
-        const V v = vi + cross(li * wi, n) - wall_v;
+        const SphereContact<B> sc = sphere_wall(p, n, gap, ri, vi, wi, wall_w, wall_o);
         alignas(64) std::int32_t at[L];
         for (std::size_t l = 0; l < L; ++l) at[l] = idx[l] * 8;
-        LsdState<B> s{{gather32(hbase + 0, at), gather32(hbase + 1, at), gather32(hbase + 2, at)},
-                      {gather32(hbase + 3, at), gather32(hbase + 4, at), gather32(hbase + 5, at)}};
-        const LsdResult<B> res = LinearSpringDashpot::evaluate(touching, n, delta, v, wi - wall_w, c, B(dt), s);
-        const V t = li * cross(n, res.force_t) + res.rolling_torque;
+        std::array<B, H> s;
+        for (std::size_t k = 0; k < H; ++k) s[k] = gather32(hbase + k, at);
+        const ContactForce<B> res = Law::evaluate(touching, sc.g, c, B(dt), s);
+        const V t = sc.li * cross(n, res.force_t) + res.torque_i;
         // Lanes back to their rows (rows are distinct within one wall's list).
-        constexpr std::size_t F = 12;
+        constexpr std::size_t F = H + 6;
         alignas(64) double out[F][L];
-        const B vals[F] = {s.shear.x, s.shear.y, s.shear.z, s.roll.x, s.roll.y, s.roll.z,
-                           res.force.x, res.force.y, res.force.z, t.x, t.y, t.z};
+        B vals[F];
+        for (std::size_t k = 0; k < H; ++k) vals[k] = s[k];
+        const B sums[6] = {res.force.x, res.force.y, res.force.z, t.x, t.y, t.z};
+        for (std::size_t k = 0; k < 6; ++k) vals[H + k] = sums[k];
         const std::uint32_t now = lane_bits(touching);
         for (std::size_t f = 0; f < F; ++f) vals[f].store_aligned(out[f]);
         const std::size_t valid = std::min(L, m - q);
         for (std::size_t l = 0; l < valid; ++l) {
           const auto i = static_cast<std::size_t>(idx[l]);
-          for (std::size_t k = 0; k < 6; ++k) hs[i].s[k] = out[k][l];
-          g.wall_force.x[i] += out[6][l];
-          g.wall_force.y[i] += out[7][l];
-          g.wall_force.z[i] += out[8][l];
-          g.wall_torque.x[i] += out[9][l];
-          g.wall_torque.y[i] += out[10][l];
-          g.wall_torque.z[i] += out[11][l];
+          for (std::size_t k = 0; k < H; ++k) hs[i].s[k] = out[k][l];
+          g.wall_force.x[i] += out[H][l];
+          g.wall_force.y[i] += out[H + 1][l];
+          g.wall_force.z[i] += out[H + 2][l];
+          g.wall_torque.x[i] += out[H + 3][l];
+          g.wall_torque.y[i] += out[H + 4][l];
+          g.wall_torque.z[i] += out[H + 5][l];
           act[i] = static_cast<std::uint8_t>((now >> l) & 1u);
         }
       }
@@ -277,12 +259,11 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
   });
 }
 
-void WallContact::run(World& world) {
-  // Positions were advanced by the first half of the step: they refer to t + dt.
-  const bool prime = world.resources.get<StepMode>().prime;
-  const double t = world.clock.t + (prime ? 0.0 : world.clock.dt);
-  compute_wall_forces(world.grains, world.resources.get<Walls>(), world.grains.extras.get<WallHistory>(),
-                      world.resources.get<ContactTable>(), world.clock.dt, t);
+// Both drivers for every registered law: the table's external linkage makes the compiler emit them.
+template <class... Laws>
+constexpr auto wall_drivers(LawList<Laws...>) {
+  return std::array{std::pair{&compute_wall_forces<Laws>, &compute_wall_forces_scalar<Laws>}...};
 }
+extern const auto kWallDrivers = wall_drivers(ContactLaws{});
 
 }  // namespace gf

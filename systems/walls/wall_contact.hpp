@@ -1,5 +1,6 @@
-// Particle-wall contacts with the same linear spring-dashpot-slider law, with the particle's own
-// mass and inertia in the damping (seed 000, Table 2). Lever arm L = r - delta/2 as for pairs.
+// Particle-wall contacts, a template on the contact law (laws.hpp), with the law's constants for
+// a species against a wall (for seed 000's law: the particle's own mass and inertia in the
+// damping, Table 2). Geometry from sphere_geometry.hpp (lever arm L = r - delta/2 as for pairs).
 // Two drivers share the law: an xsimd one over batches of rows (the default) and its scalar twin,
 // kept as the reference the tests compare it with.
 //
@@ -8,25 +9,35 @@
 #pragma once
 
 #include "engine/system.hpp"
-#include "systems/contact/contact_params.hpp"
+#include "systems/contact/contact_table.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
 
 // Sums every wall's force and torque on each owned row into WallForce/WallTorque; the walls are
-// placed at time t_contact (the time the positions refer to).
+// placed at time t_contact (the time the positions refer to). Instantiated for every law of
+// ContactLaws.
+template <class L>
 void compute_wall_forces(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
                          double t_contact);
+template <class L>
 void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
                                 double t_contact);
 
-class WallContact : public SystemBase<WallContact> {
+template <class L>
+class WallContact : public SystemBase<WallContact<L>> {
  public:
   using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ContactTable, Clock, StepMode>;
   using Writes = gf::Writes<WallForce, WallTorque, WallHistory, Walls>;  // Walls: current geometry
   std::string_view name() const override { return "wall_contact"; }
-  void run(World& world) override;
+  void run(World& world) override {
+    // Positions were advanced by the first half of the step: they refer to t + dt.
+    const bool prime = world.resources.get<StepMode>().prime;
+    const double t = world.clock.t + (prime ? 0.0 : world.clock.dt);
+    compute_wall_forces<L>(world.grains, world.resources.get<Walls>(), world.grains.extras.get<WallHistory>(),
+                           world.resources.get<ContactTable>(), world.clock.dt, t);
+  }
 };
 
 }  // namespace gf
