@@ -305,7 +305,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   const double limit = s.dt_safety * s.critical.period;
   if (s.dt > limit && !s.allow_unstable_dt)
     run.fail("dt",
-             "time step " + short_number(s.dt) + " s exceeds " + short_number(s.dt_safety) + " of the smallest collision period " +
+             "time step " + short_number(s.dt) + " s exceeds " + short_number(s.dt_safety) + " of the contact law's smallest time-step term " +
                  short_number(s.critical.period) + " s (" + s.critical.term + "): the limit is " + short_number(limit) + " s",
              "set dt <= " + short_number(limit) + ", or stiffen less, or set allow_unstable_dt = true to run anyway");
 
