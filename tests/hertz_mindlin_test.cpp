@@ -100,6 +100,16 @@ void record(const std::string& test, const std::string& quantity, double referen
   out << test << "," << quantity << "," << reference << "," << ours << "," << (ours - reference) / reference << "\n";
 }
 
+// An impact against Chung & Ooi's published peak force (N), largest overlap (m) and duration (s), within 1 %.
+void check_published(const std::string& test, const Impact& imp, double force, double overlap, double duration) {
+  record(test, "peak force (N)", force, imp.peak_force);
+  record(test, "max overlap (m)", overlap, imp.max_overlap);
+  record(test, "contact time (s)", duration, imp.duration);
+  CHECK(imp.peak_force == Approx(force).epsilon(0.01));
+  CHECK(imp.max_overlap == Approx(overlap).epsilon(0.01));
+  CHECK(imp.duration == Approx(duration).epsilon(0.01));
+}
+
 // Sphere of `m` dropped on the floor with velocity v (and no spin); returns the impact.
 Impact plane_impact(const Material& m, double dt, double restitution, double friction, gf::V3<double> v,
                     const std::string& wall_contact = "") {
@@ -132,24 +142,14 @@ TEST_CASE("hertz_mindlin: Chung-Ooi T1, two glass spheres head-on at 10 m/s each
         return 2 * r - std::hypot(g.pos.x[1] - g.pos.x[0], g.pos.y[1] - g.pos.y[0], g.pos.z[1] - g.pos.z[0]);
       },
       [](const gf::Grains& g) { return std::hypot(g.force.x[0], g.force.y[0], g.force.z[0]); }, 100000);
-  record("T1 glass-glass 10 m/s", "peak force (N)", 10.70e3, imp.peak_force);
-  record("T1 glass-glass 10 m/s", "max overlap (m)", 274e-6, imp.max_overlap);
-  record("T1 glass-glass 10 m/s", "contact time (s)", 40.3e-6, imp.duration);
-  CHECK(imp.peak_force == Approx(10.70e3).epsilon(0.01));
-  CHECK(imp.max_overlap == Approx(274e-6).epsilon(0.01));
-  CHECK(imp.duration == Approx(40.3e-6).epsilon(0.01));
+  check_published("T1 glass-glass 10 m/s", imp, 10.70e3, 274e-6, 40.3e-6);
   // Elastic: the spheres leave at their impact speed (e = 1 makes beta = 0, no damping).
   CHECK(imp.v_after.x == Approx(-10.0).epsilon(1e-4));
 }
 
 TEST_CASE("hertz_mindlin: Chung-Ooi T2, an aluminium-alloy sphere on a rigid plane at 0.2 m/s", "[contact][hertz]") {
   const Impact imp = plane_impact(kAlAlloy, 1.0e-7, 1.0, 0.0, {0.0, -0.2, 0.0});
-  record("T2 Al alloy-plane 0.2 m/s", "peak force (N)", 11.37e3, imp.peak_force);
-  record("T2 Al alloy-plane 0.2 m/s", "max overlap (m)", 49.7e-6, imp.max_overlap);
-  record("T2 Al alloy-plane 0.2 m/s", "contact time (s)", 0.732e-3, imp.duration);
-  CHECK(imp.peak_force == Approx(11.37e3).epsilon(0.01));
-  CHECK(imp.max_overlap == Approx(49.7e-6).epsilon(0.01));
-  CHECK(imp.duration == Approx(0.732e-3).epsilon(0.01));
+  check_published("T2 Al alloy-plane 0.2 m/s", imp, 11.37e3, 49.7e-6, 0.732e-3);
 }
 
 TEST_CASE("hertz_mindlin: Chung-Ooi T3, rebound over impact speed equals the input restitution", "[contact][hertz]") {
