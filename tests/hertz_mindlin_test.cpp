@@ -210,11 +210,24 @@ TEST_CASE("hertz_mindlin: a checkpoint of another law is refused by name", "[con
                           "en = 0.3\net = 0.3\ner = 0.3\nfriction = 0.3\nrolling_friction = 5.0e-5\n";
   REQUIRE(hertz.find(lsd) != std::string::npos);
   hertz.replace(hertz.find(lsd), lsd.size(), "model = \"hertz_mindlin\"\nrestitution = 0.5\nfriction = 0.3\n");
-  for (const char* sp : {"density = 2500.0\n"})
-    for (std::size_t at = hertz.find(sp); at != std::string::npos; at = hertz.find(sp, at + 1))
-      hertz.insert(at + std::string(sp).size(), "youngs_modulus = 1.0e6\npoisson_ratio = 0.25\n");
+  // Both species (each has this density line) get a soft material that passes the Rayleigh-time check at dt = 1e-5 s.
+  const std::string density = "density = 2500.0\n";
+  for (std::size_t at = hertz.find(density); at != std::string::npos; at = hertz.find(density, at + 1))
+    hertz.insert(at + density.size(), "youngs_modulus = 1.0e6\npoisson_ratio = 0.25\n");
   DemSimulation hm = DemSimulation::from_text(hertz);
   const gf::CheckpointReader in(dir.path / "lin.gfc");
   REQUIRE_THROWS_WITH(hm.resume(in), Catch::Contains("contact law 'linear_spring_dashpot'") &&
                                          Catch::Contains("'hertz_mindlin'"));
+}
+
+TEST_CASE("hertz_mindlin: a wall material needs both of its keys, named with the scene's line", "[contact][hertz][scene]") {
+  const std::string half = "[contact.wall]\npoisson_ratio = 0.3\n";
+  REQUIRE_THROWS_WITH(DemSimulation::from_text(scene(kAl2O3, 1e-9, 1, 0.5, 0.1, kFloor, half)),
+                      Catch::Contains("scene.toml:") && Catch::Contains("contact.wall.youngs_modulus") &&
+                          Catch::Contains("give both"));
+  const std::string missing = scene(kAl2O3, 1e-9, 1, 0.5, 0.1, kFloor);
+  const std::string no_e = missing.substr(0, missing.find("youngs_modulus")) +
+                           missing.substr(missing.find("poisson_ratio"));
+  REQUIRE_THROWS_WITH(DemSimulation::from_text(no_e), Catch::Contains("species[0].youngs_modulus") &&
+                                                         Catch::Contains("missing required key"));
 }

@@ -12,7 +12,7 @@
 // Rolling is the constant directional torque of the seed: each sphere's own radius, against the
 // relative angular velocity w = w_i - w_j (a sphere on a wall at rest: its own w_i, as the seed
 // writes; a sphere turning with a rotating drum wall feels none). The normal force is not clipped
-// at zero, as LIGGGHTS does not by default; the restitution is then e to within 0.01 % (checked
+// at zero, as LIGGGHTS does not by default; the restitution is then e to within 0.02 % (checked
 // in the tests, Chung & Ooi test 3).
 // A wall is rigid unless [contact.wall] gives youngs_modulus and poisson_ratio; R* = R_i, m* = m_i.
 //
@@ -68,8 +68,15 @@ struct HertzMindlin {
     p.rolling_friction = node.get_double("rolling_friction", b ? base->rolling_friction : 0.0, Range::non_negative());
     p.impact_speed = node.get_double("impact_speed", b ? base->impact_speed : 1.0, Range::positive());
     if (wall) {
-      if (node.has("youngs_modulus")) p.wall.youngs_modulus = node.get_double("youngs_modulus", Range::positive());
-      p.wall.poisson_ratio = node.get_double("poisson_ratio", 0.0, Range::closed(-0.99, 0.5));
+      // A rigid wall has no Poisson ratio to give: the two keys come together or not at all.
+      if (node.has("youngs_modulus") != node.has("poisson_ratio"))
+        node.fail(node.has("youngs_modulus") ? "poisson_ratio" : "youngs_modulus",
+                  "a wall's material needs both youngs_modulus and poisson_ratio",
+                  "give both (Pa, and a ratio in [-0.99, 0.5]), or neither for a rigid wall");
+      if (node.has("youngs_modulus")) {
+        p.wall.youngs_modulus = node.get_double("youngs_modulus", Range::positive());
+        p.wall.poisson_ratio = node.get_double("poisson_ratio", Range::closed(-0.99, 0.5));
+      }
     }
     return p;
   }
