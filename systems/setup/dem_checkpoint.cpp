@@ -83,8 +83,9 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
   if (in.has("contact.law")) in.vector("contact.law", law);
   const std::string stored_law(law.begin(), law.end());
   if (stored_law != scene.law)
-    in.fail("it was written with the contact law '" + (stored_law.empty() ? std::string("linear_spring_dashpot (unnamed)") : stored_law) +
-                "', the scene now uses '" + scene.law + "'",
+    in.fail((stored_law.empty() ? std::string("it records no contact law (an earlier build wrote it)")
+                                : "it was written with the contact law '" + stored_law + "'") +
+                ", the scene now uses '" + scene.law + "'",
             "resume with the scene's original [contact] model: a checkpoint carries that law's history");
   Grains& gr = world.grains;
   const auto n_owned = in.value<std::uint64_t>("grains.n_owned");

@@ -384,10 +384,12 @@ std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n) {
   // Arrays the simulation holds, per grain: 25 double columns, type and id, the skin reference
   // positions, a 64-byte spring record and a flag per wall. A dense pack of the seed drum has about
   // 3.4 list pairs and 1.7 contacts per grain; a list pair keeps rows, 32-bit lanes, type pair, key,
-  // flag, two slot maps, the carried index and search scratch (50 bytes), a contact its indices,
-  // force and two generations of springs (144 bytes).
+  // flag, two slot maps, the carried index and search scratch (50 bytes), a contact its indices
+  // and force (48 bytes) and two generations of the law's history doubles.
   const std::size_t per_grain = 25 * 8 + 4 + 8 + 3 * 8 + 65 * scene.walls.size();
-  const std::size_t per_pair = 50, per_contact = 144;
+  std::size_t width = 0;
+  with_law(scene.law, [&]<class Law>() { width = Law::kHistory; });
+  const std::size_t per_pair = 50, per_contact = 48 + 2 * 8 * width;
   return n * (per_grain + per_pair * 34 / 10 + per_contact * 17 / 10);
 }
 
