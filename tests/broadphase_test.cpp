@@ -671,8 +671,10 @@ TEST_CASE("broadphase: rebuilding a stirred pile every step keeps every pair's h
   // as seen from the owner row). In the first step both runs evaluate every pair from identical inputs
   // (up to an exact sign change when the owner changed). The law is antisymmetric under that swap up
   // to the rounding of contracted multiply-adds (fma(li, wi, lj wj) against fma(lj, wj, li wi)), so
-  // history agrees to a few ulp of each spring (1e-14 of the largest; measured 4e-15, a few ulp of
-  // the spring itself, with the geometry stage and the law compiled as separate inline stages), and forces
+  // history agrees to rounding: 1e-14 of the largest spring (measured 4e-15 of the largest, 9e-15 of
+  // that spring itself, since the tangential velocity v - (v.n) n is a difference of larger terms and
+  // amplifies the contracted multiply-adds' rounding; 1e-17 before the geometry stage and the law
+  // became separate inline functions, which changed what the compiler contracts), and forces
   // differ by that and the order of each grain's sum: |dF| <= (terms) eps sum|f| <= 1e-14 sum|f| for
   // the <= ~20 contacts of a grain. Later steps start from those rounding differences and grow them
   // through the dynamics (measured: 2e-14 of the largest spring after 50 steps); 1e-12 of the largest
