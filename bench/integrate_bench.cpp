@@ -31,9 +31,10 @@ void BM_KickDrift(benchmark::State& state) {
   gf::World& w = sim->world();
   gf::Grains& g = w.grains;
   const auto& gravity = w.resources.get<gf::Gravity>();
+  const gf::ForceTerms terms = gf::dem_force_terms();
   double dt = w.clock.dt;
   for (auto _ : state) {
-    gf::kick_drift(g, gravity, 0.5 * dt, dt);
+    gf::kick_drift(g, terms, gravity, 0.5 * dt, dt);
     benchmark::ClobberMemory();
     dt = -dt;
   }
@@ -50,9 +51,10 @@ void BM_Kick(benchmark::State& state) {
   gf::World& w = sim->world();
   gf::Grains& g = w.grains;
   const auto& gravity = w.resources.get<gf::Gravity>();
+  const gf::ForceTerms terms = gf::dem_force_terms();
   double h = 0.5 * w.clock.dt;
   for (auto _ : state) {
-    gf::kick(g, gravity, h);
+    gf::kick(g, terms, gravity, h);
     benchmark::ClobberMemory();
     h = -h;
   }

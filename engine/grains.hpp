@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <tuple>
+#include <type_traits>
 
 #include "engine/column.hpp"
 #include "engine/table.hpp"
@@ -95,5 +96,19 @@ struct Grains {
 
   std::size_t bytes();
 };
+
+// A component of the grains by type: a core member, or one a system attached.
+template <class C, class Tuple>
+inline constexpr bool is_core_component = false;
+template <class C, class... T>
+inline constexpr bool is_core_component<C, std::tuple<T...>> = (std::is_same_v<C&, T> || ...);
+
+template <class C>
+C& component(Grains& g) {
+  if constexpr (is_core_component<C, decltype(g.components())>)
+    return std::get<C&>(g.components());
+  else
+    return g.extras.get<C>();
+}
 
 }  // namespace gf

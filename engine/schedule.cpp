@@ -56,6 +56,7 @@ void Schedule::build(World& world) {
       if (!implied) edges_.emplace_back(a, b);
     }
 
+  for (auto& s : systems_) s->build(world);
   graph_ = std::make_unique<tbb::flow::graph>();
   root_ = std::make_unique<tbb::flow::broadcast_node<tbb::flow::continue_msg>>(*graph_);
   nodes_.clear();
@@ -71,7 +72,7 @@ void Schedule::build(World& world) {
           }
           const auto t0 = std::chrono::steady_clock::now();
           try {
-            sys->run(world);
+            sys->run(world, ctx_);
           } catch (...) {
             std::lock_guard<std::mutex> lock(error_mutex_);
             if (!error_) error_ = std::current_exception();
@@ -90,7 +91,8 @@ void Schedule::build(World& world) {
     if (!has_pred[i]) tbb::flow::make_edge(*root_, *nodes_[i]->node);
 }
 
-void Schedule::run_step() {
+void Schedule::run_step(const StepContext& ctx) {
+  ctx_ = ctx;
   root_->try_put(tbb::flow::continue_msg());
   graph_->wait_for_all();
   if (error_) {
@@ -98,6 +100,20 @@ void Schedule::run_step() {
     error_ = nullptr;
     std::rethrow_exception(e);
   }
+}
+
+Access Schedule::access() const {
+  Access all;
+  auto add = [](std::vector<std::size_t>& to, const std::vector<std::size_t>& from) {
+    for (std::size_t x : from)
+      if (std::find(to.begin(), to.end(), x) == to.end()) to.push_back(x);
+  };
+  for (auto& s : systems_) {
+    const Access a = s->access();
+    add(all.reads, a.reads);
+    add(all.writes, a.writes);
+  }
+  return all;
 }
 
 std::vector<std::string> Schedule::names() const {

@@ -38,7 +38,10 @@ class Schedule {
   }
 
   void build(World& world);
-  void run_step();  // triggers the graph once and waits; rethrows the first failure of a system
+  // Triggers the graph once for the step `ctx` and waits; rethrows the first failure of a system.
+  void run_step(const StepContext& ctx);
+  // Every component and resource its systems read and write (a sub-schedule declares these).
+  Access access() const;
 
   std::size_t size() const { return systems_.size(); }
   const std::vector<std::pair<std::size_t, std::size_t>>& edges() const { return edges_; }
@@ -56,6 +59,7 @@ class Schedule {
   std::vector<std::unique_ptr<Node>> nodes_;
   std::mutex error_mutex_;
   std::exception_ptr error_;
+  StepContext ctx_;
 };
 
 }  // namespace gf

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/step_context.hpp"
 #include "engine/type_id.hpp"
 #include "engine/world.hpp"
 
@@ -44,7 +45,9 @@ class System {
   virtual ~System() = default;
   virtual std::string_view name() const = 0;
   virtual Access access() const = 0;
-  virtual void run(World& world) = 0;
+  // Called once by Schedule::build, before the first run (a sub-schedule builds its own graph).
+  virtual void build(World&) {}
+  virtual void run(World& world, const StepContext& step) = 0;
 };
 
 template <class Derived>

@@ -5,16 +5,22 @@
 
 #include "engine/grains.hpp"
 #include "engine/resources.hpp"
+#include "engine/step_context.hpp"
 
 namespace gf {
 
-// Simulated time. `step` counts completed steps of the current stage.
+// Simulated time, kept by the stepping loop (run_loop.hpp) and checkpointed; systems are told the
+// step they serve through a StepContext. `step` counts completed steps of the current stage.
 struct Clock {
   double t = 0.0;   // s
   double dt = 0.0;  // s
   std::int64_t step = 0;
   double t0 = 0.0;  // s, time at step 0 of the stage: t = t0 + step dt, however the stage is split
 };
+
+// The context of the next step from a clock (observers, which run between steps, are given the
+// time reached: the same values).
+inline StepContext next_step(const Clock& c) { return {c.t, c.dt, c.step, 0, 1, false}; }
 
 struct World {
   Grains grains;

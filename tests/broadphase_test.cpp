@@ -424,7 +424,7 @@ TEST_CASE("broadphase: a non-finite position is an error naming the row", "[broa
   world.grains.pos.z[77] = std::numeric_limits<double>::quiet_NaN();
   CHECK(gf::needs_rebuild(world.grains, world.resources.get<BroadphaseState>()));
   gf::Broadphase sys;
-  REQUIRE_THROWS_WITH(sys.run(world), Catch::Contains("particle row 77 "));
+  REQUIRE_THROWS_WITH(sys.run(world, {}), Catch::Contains("particle row 77 "));
 }
 
 TEST_CASE("broadphase: rebuild exactly when a row moved more than skin/2", "[broadphase]") {
@@ -442,7 +442,7 @@ TEST_CASE("broadphase: rebuild exactly when a row moved more than skin/2", "[bro
   Grains& g = world.grains;
 
   CHECK(gf::needs_rebuild(g, s));  // no list yet
-  sys.run(world);
+  sys.run(world, {});
   REQUIRE(s.rebuilds == 1);
   REQUIRE(s.valid);
   CHECK_FALSE(gf::needs_rebuild(g, s));
@@ -452,7 +452,7 @@ TEST_CASE("broadphase: rebuild exactly when a row moved more than skin/2", "[bro
   SECTION("0.49 skin: no rebuild") {
     g.pos.x[r] = x0 + 0.49 * 0.5;
     CHECK_FALSE(gf::needs_rebuild(g, s));
-    sys.run(world);
+    sys.run(world, {});
     CHECK(s.rebuilds == 1);
     CHECK(s.checks == 2);
   }
@@ -463,7 +463,7 @@ TEST_CASE("broadphase: rebuild exactly when a row moved more than skin/2", "[bro
   SECTION("one ulp beyond skin/2: rebuild") {
     g.pos.x[r] = std::nextafter(x0 + 0.25, 100.0);
     CHECK(gf::needs_rebuild(g, s));
-    sys.run(world);
+    sys.run(world, {});
     CHECK(s.rebuilds == 2);
     CHECK_FALSE(gf::needs_rebuild(g, s));  // reference positions were refreshed
   }
@@ -476,7 +476,7 @@ TEST_CASE("broadphase: rebuild exactly when a row moved more than skin/2", "[bro
   }
   SECTION("small moves of every row do not accumulate into a rebuild") {
     for (std::size_t q = 0; q < g.n; ++q) g.pos.x[q] += 0.125;
-    for (int k = 0; k < 5; ++k) sys.run(world);
+    for (int k = 0; k < 5; ++k) sys.run(world, {});
     CHECK(s.rebuilds == 1);
     CHECK(s.checks == 6);
   }
@@ -486,10 +486,10 @@ TEST_CASE("broadphase: rebuild exactly when a row moved more than skin/2", "[bro
   }
   SECTION("force_rebuild is honoured once") {
     s.force_rebuild = true;
-    sys.run(world);
+    sys.run(world, {});
     CHECK(s.rebuilds == 2);
     CHECK_FALSE(s.force_rebuild);
-    sys.run(world);
+    sys.run(world, {});
     CHECK(s.rebuilds == 2);
   }
 }

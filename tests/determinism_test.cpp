@@ -25,6 +25,8 @@
 using gf::DemSimulation;
 using gf::Grains;
 using gf::test::stir_by_id;
+using gf::test::State;
+using gf::test::state_by_id;
 
 namespace {
 
@@ -45,21 +47,6 @@ std::string box_scene(int small, int large, double side) {
     << 1.5 * side - 0.0015 << ", " << side - 0.0015 << "] }\n"
     << "count = { small = " << small << ", large = " << large << " }\n";
   return s.str();
-}
-
-// Position, velocity and angular velocity of every grain, indexed by id, as raw bits: bit
-// identity is the claim, and comparing bits also tells -0.0 from 0.0 and compares NaNs.
-using State = std::vector<std::array<std::uint64_t, 9>>;
-
-State state_by_id(const Grains& g) {
-  State s(g.n);
-  for (std::size_t r = 0; r < g.n; ++r) {
-    const double v[9] = {g.pos.x[r], g.pos.y[r], g.pos.z[r], g.vel.x[r], g.vel.y[r],
-                         g.vel.z[r], g.omega.x[r], g.omega.y[r], g.omega.z[r]};
-    auto& out = s[static_cast<std::size_t>(g.pid.id[r])];
-    for (int c = 0; c < 9; ++c) out[c] = std::bit_cast<std::uint64_t>(v[c]);
-  }
-  return s;
 }
 
 struct Difference {

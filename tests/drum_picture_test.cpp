@@ -316,16 +316,16 @@ TEST_CASE("picture: an interval draws every multiple once, named after the multi
   ps.options.palette = gf::species_palette(kDiameters);
   gf::PictureOutput pics(ps);
   gf::World& w = sim.world();
-  pics.run(w);  // angle 0
-  pics.run(w);  // the same state again: nothing new is due
+  pics.run(w, gf::next_step(w.clock));  // angle 0
+  pics.run(w, gf::next_step(w.clock));  // the same state again: nothing new is due
   CHECK(pics.pictures() == 1);
   sim.advance(99);  // 0.0099 rad: the next multiple not yet reached
-  pics.run(w);
+  pics.run(w, gf::next_step(w.clock));
   CHECK(pics.pictures() == 1);
   sim.advance(1);  // 0.01 rad, up to the clock's round-off
-  pics.run(w);
+  pics.run(w, gf::next_step(w.clock));
   sim.advance(100);
-  pics.run(w);
+  pics.run(w, gf::next_step(w.clock));
   CHECK(pics.pictures() == 3);
   for (const char* name : {"angle_00.00.png", "angle_00.01.png", "angle_00.02.png"}) {
     INFO(name);

@@ -47,7 +47,7 @@ class Probe : public gf::SystemBase<Probe<R, W>> {
   using Writes = W;
   Probe(std::string name, std::function<void(World&)> body = {}) : name_(std::move(name)), body_(std::move(body)) {}
   std::string_view name() const override { return name_; }
-  void run(World& w) override {
+  void run(World& w, const gf::StepContext&) override {
     if (body_) body_(w);
   }
 
@@ -73,7 +73,7 @@ class Dynamic : public gf::System {
       : name_(std::move(name)), acc_(std::move(acc)), body_(std::move(body)) {}
   std::string_view name() const override { return name_; }
   gf::Access access() const override { return acc_; }
-  void run(World&) override { body_(); }
+  void run(World&, const gf::StepContext&) override { body_(); }
 
  private:
   std::string name_;
@@ -256,7 +256,7 @@ TEST_CASE("schedule: random access patterns give the transitive reduction of the
     }
     // Every conflicting pair ran one after the other, in phase order.
     for (int step = 0; step < 3; ++step) {
-      s.run_step();
+      s.run_step({});
       for (auto [a, b] : dep) {
         INFO("step " << step << ": s" << a << " and s" << b << " conflict");
         CHECK(finish[a] < start[b]);
@@ -290,7 +290,7 @@ TEST_CASE("schedule: independent systems run at the same time", "[schedule]") {
   REQUIRE(s.edges().empty());
   for (int step = 0; step < 3 && missed == 0; ++step) {
     meet.reset();
-    arena.execute([&] { s.run_step(); });
+    arena.execute([&] { s.run_step({}); });
   }
   CHECK(missed == 0);
   CHECK(met == 6);
@@ -318,7 +318,7 @@ TEST_CASE("schedule: dependent systems never overlap", "[schedule]") {
     --in_flight;
   });
   s.build(world);
-  for (int step = 0; step < 5; ++step) s.run_step();
+  for (int step = 0; step < 5; ++step) s.run_step({});
   CHECK(overlaps == 0);
   CHECK(consumer_saw_unfinished == 0);
 }
@@ -340,12 +340,12 @@ TEST_CASE("schedule: an exception in a system reaches run_step, and the schedule
   add<Reads<>, Writes<C>>(s, "beside", [&](World&) { ++ran_beside; });
   s.build(world);
 
-  s.run_step();
+  s.run_step({});
   fail_next = true;
-  REQUIRE_THROWS_AS(s.run_step(), Boom);  // the system's own exception type, not a wrapper
+  REQUIRE_THROWS_AS(s.run_step({}), Boom);  // the system's own exception type, not a wrapper
   CHECK(ran_after == 1);                  // the dependent system did not run on a failed input
   fail_next = false;
-  REQUIRE_NOTHROW(s.run_step());  // the error is cleared: the next step runs normally
+  REQUIRE_NOTHROW(s.run_step({}));  // the error is cleared: the next step runs normally
   CHECK(ran_after == 2);
   // An independent system runs in every good step; in the failed one it runs only if it started
   // before the failure was recorded (systems that start later are skipped), which is up to timing.
@@ -353,9 +353,9 @@ TEST_CASE("schedule: an exception in a system reaches run_step, and the schedule
   CHECK(ran_beside <= 3);
 
   fail_next = true;
-  REQUIRE_THROWS_WITH(s.run_step(), "boom in step 4");
+  REQUIRE_THROWS_WITH(s.run_step({}), "boom in step 4");
   fail_next = false;
-  s.run_step();
+  s.run_step({});
 
   // Calls are counted per node: a failed call counts, a skipped one does not.
   const auto t = s.timings();
@@ -383,7 +383,7 @@ TEST_CASE("schedule: two systems failing in one step give one exception", "[sche
   s.build(world);
   bool caught = false;
   try {
-    s.run_step();
+    s.run_step({});
   } catch (const Boom& e) {
     caught = std::string(e.what()) == "first";
   } catch (const std::logic_error& e) {
@@ -391,7 +391,7 @@ TEST_CASE("schedule: two systems failing in one step give one exception", "[sche
   }
   CHECK(caught);
   fail = false;
-  CHECK_NOTHROW(s.run_step());
+  CHECK_NOTHROW(s.run_step({}));
 }
 
 TEST_CASE("schedule: timings count calls and time per system", "[schedule]") {
@@ -404,7 +404,7 @@ TEST_CASE("schedule: timings count calls and time per system", "[schedule]") {
   CHECK(s.timings().size() == 2);  // before build: names, nothing counted
   CHECK(s.timings()[0].calls == 0);
   s.build(world);
-  for (int k = 0; k < 4; ++k) s.run_step();
+  for (int k = 0; k < 4; ++k) s.run_step({});
   auto t = s.timings();
   REQUIRE(t.size() == 2);
   CHECK(t[0].name == "sleeper");
@@ -417,6 +417,6 @@ TEST_CASE("schedule: timings count calls and time per system", "[schedule]") {
   t = s.timings();
   CHECK(t[0].calls == 0);
   CHECK(t[0].seconds == 0.0);
-  s.run_step();
+  s.run_step({});
   CHECK(s.timings()[1].calls == 1);
 }

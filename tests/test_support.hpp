@@ -4,6 +4,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -93,6 +95,21 @@ inline void stir_by_id(Grains& g, std::uint64_t seed, double max_speed = 0.3, do
 }
 
 // "key=value" for a scene override, the value written with 17 significant digits so it reads back exactly.
+// Position, velocity and angular velocity of every grain, indexed by id, as raw bits: bit
+// identity is the claim, and comparing bits also tells -0.0 from 0.0 and compares NaNs.
+using State = std::vector<std::array<std::uint64_t, 9>>;
+
+inline State state_by_id(const Grains& g) {
+  State s(g.n);
+  for (std::size_t r = 0; r < g.n; ++r) {
+    const double v[9] = {g.pos.x[r], g.pos.y[r], g.pos.z[r], g.vel.x[r], g.vel.y[r],
+                         g.vel.z[r], g.omega.x[r], g.omega.y[r], g.omega.z[r]};
+    auto& out = s[static_cast<std::size_t>(g.pid.id[r])];
+    for (int c = 0; c < 9; ++c) out[c] = std::bit_cast<std::uint64_t>(v[c]);
+  }
+  return s;
+}
+
 inline std::string set_override(const std::string& key, double value) {
   std::ostringstream os;
   os.precision(17);

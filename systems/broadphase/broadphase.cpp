@@ -271,7 +271,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   ++s.rebuilds;
 }
 
-void Broadphase::run(World& world) {
+void Broadphase::run(World& world, const StepContext&) {
   auto& s = world.resources.get<BroadphaseState>();
   ++s.checks;
   if (!needs_rebuild(world.grains, s)) return;

@@ -42,7 +42,7 @@ class Broadphase : public SystemBase<Broadphase> {
   using Writes = gf::Writes<Position, Velocity, AngularVelocity, Force, Torque, WallForce, WallTorque, Radius, Mass,
                             Species, ParticleId, NeighborList, PairHistory, BroadphaseState>;
   std::string_view name() const override { return "broadphase"; }
-  void run(World& world) override;
+  void run(World& world, const StepContext& step) override;
 };
 
 }  // namespace gf

@@ -15,7 +15,7 @@
 // Lever arms are L = r - delta/2 on each side (centre to contact point).
 // compute_pair_forces_scalar is the plain reference the tests and benchmarks compare with.
 //
-// Reads:  Position, Velocity, AngularVelocity, Radius, Species, NeighborList, ContactTable, Clock.
+// Reads:  Position, Velocity, AngularVelocity, Radius, Species, NeighborList, ContactTable.
 // Writes: Force, Torque, PairHistory, PairForces.
 #pragma once
 
@@ -27,6 +27,7 @@
 #include "systems/contact/contact_law.hpp"
 #include "systems/contact/contact_table.hpp"
 #include "systems/contact/vec3.hpp"
+#include "systems/integrate/force_terms.hpp"
 
 namespace gf {
 
@@ -83,15 +84,18 @@ template <class L>
 void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
                                 double dt, PairForces& out);
 
+// The integrator's term this system fills.
+inline ForceTerm pair_force_term() { return force_term<Force, Torque>("pair_contact"); }
+
 template <class L>
 class PairContact : public SystemBase<PairContact<L>> {
  public:
-  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, NeighborList, ContactTable, Clock>;
+  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, NeighborList, ContactTable>;
   using Writes = gf::Writes<Force, Torque, PairHistory, PairForces>;
   std::string_view name() const override { return "pair_contact"; }
-  void run(World& world) override {
+  void run(World& world, const StepContext& step) override {
     compute_pair_forces<L>(world.grains, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(),
-                           world.resources.get<ContactTable>(), world.clock.dt, world.resources.get<PairForces>());
+                           world.resources.get<ContactTable>(), step.dt, world.resources.get<PairForces>());
   }
 };
 

@@ -3,28 +3,72 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <stdexcept>
+
 namespace gf {
 
 namespace {
+
+struct IntegratorReads {
+  using Reads = gf::Reads<Mass, Gravity>;
+  using Writes = gf::Writes<>;
+};
+struct PositionWrites {
+  using Reads = gf::Reads<>;
+  using Writes = gf::Writes<Position, Velocity, AngularVelocity>;
+};
+struct VelocityWrites {
+  using Reads = gf::Reads<>;
+  using Writes = gf::Writes<Velocity, AngularVelocity>;
+};
+
+// The columns of every term, resolved for this pass (rows move at rebuilds, so never cached).
+struct TermColumns {
+  std::size_t nf = 0, nt = 0;
+  Vec3Columns f[kMaxForceTerms], t[kMaxForceTerms];
+};
+
+TermColumns resolve(Grains& g, const ForceTerms& terms) {
+  if (terms.list.size() > kMaxForceTerms) throw std::logic_error("more force terms than the integrator sums");
+  TermColumns c;
+  for (const ForceTerm& term : terms.list) {
+    c.f[c.nf++] = term.force_columns(g);
+    if (term.has_torque) c.t[c.nt++] = term.torque_columns(g);
+  }
+  return c;
+}
+
+// Sum of one coordinate of every term at row (or batch) i, in declared order.
+template <class T, class Load>
+T sum_terms(const Vec3Columns* cols, std::size_t n, const double* Vec3Columns::*axis, std::size_t i, Load load) {
+  if (n == 0) return T(0.0);
+  T s = load(cols[0].*axis, i);
+  for (std::size_t k = 1; k < n; ++k) s += load(cols[k].*axis, i);
+  return s;
+}
 
 // One pass over the owned rows: v += h a, w += h alpha and, with Drift, x += dt v. Whole batches
 // with vector loads (the columns are separate arrays, which the compiler cannot prove, so it would
 // not vectorise the plain loop), the last partial batch row by row; padding rows are not touched.
 template <bool Drift>
-void kick_rows(Grains& g, const Gravity& grav, double h, double dt) {
+void kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
   using B = BatchD;
   constexpr std::size_t L = kLanes;
   const std::size_t n = g.n_owned, full = n / L;
   const double gx = h * grav.x, gy = h * grav.y, gz = h * grav.z;
+  const TermColumns tc = resolve(g, terms);
+  const Vec3Columns* F = tc.f;
+  const Vec3Columns* T = tc.t;
+  auto one = [](const double* c, std::size_t i) { return c[i]; };
   auto row = [&](std::size_t i) {
     const double a = h * g.mass.inv_m[i];
-    g.vel.x[i] += a * (g.force.x[i] + g.wall_force.x[i]) + gx;
-    g.vel.y[i] += a * (g.force.y[i] + g.wall_force.y[i]) + gy;
-    g.vel.z[i] += a * (g.force.z[i] + g.wall_force.z[i]) + gz;
+    g.vel.x[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::x, i, one) + gx;
+    g.vel.y[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::y, i, one) + gy;
+    g.vel.z[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::z, i, one) + gz;
     const double b = h * g.mass.inv_inertia[i];
-    g.omega.x[i] += b * (g.torque.x[i] + g.wall_torque.x[i]);
-    g.omega.y[i] += b * (g.torque.y[i] + g.wall_torque.y[i]);
-    g.omega.z[i] += b * (g.torque.z[i] + g.wall_torque.z[i]);
+    g.omega.x[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::x, i, one);
+    g.omega.y[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::y, i, one);
+    g.omega.z[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::z, i, one);
     if constexpr (Drift) {
       g.pos.x[i] += dt * g.vel.x[i];
       g.pos.y[i] += dt * g.vel.y[i];
@@ -34,19 +78,20 @@ void kick_rows(Grains& g, const Gravity& grav, double h, double dt) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, full, 512), [&](const tbb::blocked_range<std::size_t>& r) {
     const B bh(h), bgx(gx), bgy(gy), bgz(gz), bdt(dt);
     auto ld = [](const ColumnD& c, std::size_t i) { return B::load_aligned(&c[i]); };
+    auto lp = [](const double* c, std::size_t i) { return B::load_aligned(c + i); };
     for (std::size_t bt = r.begin(); bt != r.end(); ++bt) {
       const std::size_t i = bt * L;
       const B a = bh * ld(g.mass.inv_m, i);
-      const B vx = ld(g.vel.x, i) + (a * (ld(g.force.x, i) + ld(g.wall_force.x, i)) + bgx);
-      const B vy = ld(g.vel.y, i) + (a * (ld(g.force.y, i) + ld(g.wall_force.y, i)) + bgy);
-      const B vz = ld(g.vel.z, i) + (a * (ld(g.force.z, i) + ld(g.wall_force.z, i)) + bgz);
+      const B vx = ld(g.vel.x, i) + (a * sum_terms<B>(F, tc.nf, &Vec3Columns::x, i, lp) + bgx);
+      const B vy = ld(g.vel.y, i) + (a * sum_terms<B>(F, tc.nf, &Vec3Columns::y, i, lp) + bgy);
+      const B vz = ld(g.vel.z, i) + (a * sum_terms<B>(F, tc.nf, &Vec3Columns::z, i, lp) + bgz);
       vx.store_aligned(&g.vel.x[i]);
       vy.store_aligned(&g.vel.y[i]);
       vz.store_aligned(&g.vel.z[i]);
       const B b = bh * ld(g.mass.inv_inertia, i);
-      (ld(g.omega.x, i) + b * (ld(g.torque.x, i) + ld(g.wall_torque.x, i))).store_aligned(&g.omega.x[i]);
-      (ld(g.omega.y, i) + b * (ld(g.torque.y, i) + ld(g.wall_torque.y, i))).store_aligned(&g.omega.y[i]);
-      (ld(g.omega.z, i) + b * (ld(g.torque.z, i) + ld(g.wall_torque.z, i))).store_aligned(&g.omega.z[i]);
+      (ld(g.omega.x, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::x, i, lp)).store_aligned(&g.omega.x[i]);
+      (ld(g.omega.y, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::y, i, lp)).store_aligned(&g.omega.y[i]);
+      (ld(g.omega.z, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::z, i, lp)).store_aligned(&g.omega.z[i]);
       if constexpr (Drift) {
         (ld(g.pos.x, i) + bdt * vx).store_aligned(&g.pos.x[i]);
         (ld(g.pos.y, i) + bdt * vy).store_aligned(&g.pos.y[i]);
@@ -59,18 +104,40 @@ void kick_rows(Grains& g, const Gravity& grav, double h, double dt) {
 
 }  // namespace
 
-void kick(Grains& g, const Gravity& grav, double h) { kick_rows<false>(g, grav, h, 0.0); }
-
-void kick_drift(Grains& g, const Gravity& grav, double h, double dt) { kick_rows<true>(g, grav, h, dt); }
-
-void IntegratePositions::run(World& world) {
-  if (world.resources.get<StepMode>().prime) return;
-  kick_drift(world.grains, world.resources.get<Gravity>(), 0.5 * world.clock.dt, world.clock.dt);
+void kick(Grains& g, const ForceTerms& terms, const Gravity& grav, double h) {
+  kick_rows<false>(g, terms, grav, h, 0.0);
 }
 
-void IntegrateVelocities::run(World& world) {
-  if (world.resources.get<StepMode>().prime) return;
-  kick(world.grains, world.resources.get<Gravity>(), 0.5 * world.clock.dt);
+void kick_drift(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
+  kick_rows<true>(g, terms, grav, h, dt);
+}
+
+Access integrator_access(const ForceTerms& terms, Access writes) {
+  Access a = access_of<IntegratorReads>();
+  a.writes = std::move(writes.writes);
+  for (const ForceTerm& t : terms.list) {
+    a.reads.push_back(t.force);
+    if (t.has_torque) a.reads.push_back(t.torque);
+  }
+  return a;
+}
+
+Access IntegratePositions::access() const {
+  return integrator_access(terms_, access_of<PositionWrites>());
+}
+
+Access IntegrateVelocities::access() const {
+  return integrator_access(terms_, access_of<VelocityWrites>());
+}
+
+void IntegratePositions::run(World& world, const StepContext& step) {
+  if (step.prime) return;
+  kick_drift(world.grains, terms_, world.resources.get<Gravity>(), 0.5 * step.dt, step.dt);
+}
+
+void IntegrateVelocities::run(World& world, const StepContext& step) {
+  if (step.prime) return;
+  kick(world.grains, terms_, world.resources.get<Gravity>(), 0.5 * step.dt);
 }
 
 }  // namespace gf

@@ -3,10 +3,13 @@
 //   integrate_positions:  v += dt/2 a(t), w += dt/2 alpha(t), x += dt v
 //   (broadphase, contacts at t + dt)
 //   integrate_velocities: v += dt/2 a(t + dt), w += dt/2 alpha(t + dt)
-// with a = (F_pair + F_wall)/m + g and alpha = (T_pair + T_wall)/I (spheres: I isotropic).
+// with a = (sum of the declared force terms)/m + g and alpha = (sum of the torque terms)/I (spheres:
+// I isotropic); force_terms.hpp says how a system declares a term. The terms are added in the order
+// declared, so the sum, and the run, do not depend on anything else.
 #pragma once
 
 #include "engine/system.hpp"
+#include "systems/integrate/force_terms.hpp"
 
 namespace gf {
 
@@ -14,30 +17,35 @@ struct Gravity {
   double x = 0, y = 0, z = 0;  // m/s^2
 };
 
-// A priming pass computes the forces of the initial state without moving anything, so the first
-// half-kick uses a(0) rather than zero.
-struct StepMode {
-  bool prime = false;
-};
-
-void kick(Grains& g, const Gravity& grav, double half_dt);
+void kick(Grains& g, const ForceTerms& terms, const Gravity& grav, double half_dt);
 // The kick, then x += dt v with the kicked velocity, in one pass (integrate_positions' work).
-void kick_drift(Grains& g, const Gravity& grav, double half_dt, double dt);
+void kick_drift(Grains& g, const ForceTerms& terms, const Gravity& grav, double half_dt, double dt);
 
-class IntegratePositions : public SystemBase<IntegratePositions> {
+// The accesses of an integrator: it reads mass, gravity and every term, writes `Writes`.
+Access integrator_access(const ForceTerms& terms, Access writes);
+
+// Kick and drift at the start of the step (a priming pass, which only computes forces, skips it).
+class IntegratePositions : public System {
  public:
-  using Reads = gf::Reads<Force, Torque, WallForce, WallTorque, Mass, Gravity, Clock, StepMode>;
-  using Writes = gf::Writes<Position, Velocity, AngularVelocity>;
+  explicit IntegratePositions(ForceTerms terms) : terms_(std::move(terms)) {}
   std::string_view name() const override { return "integrate_positions"; }
-  void run(World& world) override;
+  Access access() const override;
+  void run(World& world, const StepContext& step) override;
+
+ private:
+  ForceTerms terms_;
 };
 
-class IntegrateVelocities : public SystemBase<IntegrateVelocities> {
+// The closing kick with the forces of the step's end.
+class IntegrateVelocities : public System {
  public:
-  using Reads = gf::Reads<Force, Torque, WallForce, WallTorque, Mass, Gravity, Clock, StepMode>;
-  using Writes = gf::Writes<Velocity, AngularVelocity>;
+  explicit IntegrateVelocities(ForceTerms terms) : terms_(std::move(terms)) {}
   std::string_view name() const override { return "integrate_velocities"; }
-  void run(World& world) override;
+  Access access() const override;
+  void run(World& world, const StepContext& step) override;
+
+ private:
+  ForceTerms terms_;
 };
 
 }  // namespace gf

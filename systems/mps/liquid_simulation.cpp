@@ -34,7 +34,7 @@ LiquidParams& LiquidSimulation::params() { return world_->resources.get<LiquidPa
 const LiquidDiagnostics& LiquidSimulation::diagnostics() { return world_->resources.get<LiquidDiagnostics>(); }
 
 void LiquidSimulation::step_once() {
-  step_->run_step();
+  step_->run_step(next_step(world_->clock));
   Clock& c = world_->clock;
   ++c.step;
   c.t = t0_ + static_cast<double>(c.step) * c.dt;

@@ -19,14 +19,14 @@ R& res(World& w) {
 }
 
 struct NeighborSearch : SystemBase<NeighborSearch> {
-  using Reads = gf::Reads<LiquidParams, Clock>;
+  using Reads = gf::Reads<LiquidParams>;
   using Writes = gf::Writes<FluidNodes, NeighborPairs>;
   std::string_view name() const override { return "neighbour_search"; }
-  void run(World& w) override {
+  void run(World& w, const StepContext& step) override {
     auto& f = res<FluidNodes>(w);
     auto& lp = res<LiquidParams>(w);
     NeighborPairs& nb = res<NeighborPairs>(w);
-    if (!neighbors_stale(f, nb, lp.skin, w.clock.dt)) return;
+    if (!neighbors_stale(f, nb, lp.skin, step.dt)) return;
     wrap_periodic(f, lp.periodic);
     build_neighbors(f, lp.k.re + lp.skin, lp.periodic, nb);
   }
@@ -36,25 +36,25 @@ struct NumberDensity : SystemBase<NumberDensity> {
   using Reads = gf::Reads<LiquidParams>;
   using Writes = gf::Writes<FluidNodes, NeighborPairs>;
   std::string_view name() const override { return "number_density"; }
-  void run(World& w) override { compute_number_density(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w).k.re); }
+  void run(World& w, const StepContext&) override { compute_number_density(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w).k.re); }
 };
 
 struct ExplicitStep : SystemBase<ExplicitStep> {
-  using Reads = gf::Reads<LiquidParams, NeighborPairs, Clock>;
+  using Reads = gf::Reads<LiquidParams, NeighborPairs>;
   using Writes = gf::Writes<FluidNodes>;
   std::string_view name() const override { return "explicit_step"; }
-  void run(World& w) override { predict_velocity(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w), w.clock.dt); }
+  void run(World& w, const StepContext& step) override { predict_velocity(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w), step.dt); }
 };
 
 struct PredictedDensity : SystemBase<PredictedDensity> {
-  using Reads = gf::Reads<LiquidParams, StabilityLimits, Clock>;
+  using Reads = gf::Reads<LiquidParams, StabilityLimits>;
   using Writes = gf::Writes<FluidNodes, NeighborPairs, LiquidDiagnostics>;
   std::string_view name() const override { return "predicted_density"; }
-  void run(World& w) override {
+  void run(World& w, const StepContext& step) override {
     auto& f = res<FluidNodes>(w);
     auto& lp = res<LiquidParams>(w);
     compute_number_density(f, res<NeighborPairs>(w), lp.k.re);
-    check_density(f, lp, res<StabilityLimits>(w), w.clock.t + w.clock.dt, res<LiquidDiagnostics>(w));
+    check_density(f, lp, res<StabilityLimits>(w), step.t + step.dt, res<LiquidDiagnostics>(w));
   }
 };
 
@@ -62,20 +62,20 @@ struct FreeSurface : SystemBase<FreeSurface> {
   using Reads = gf::Reads<LiquidParams>;
   using Writes = gf::Writes<FluidNodes, LiquidDiagnostics>;
   std::string_view name() const override { return "free_surface"; }
-  void run(World& w) override {
+  void run(World& w, const StepContext&) override {
     res<LiquidDiagnostics>(w).surface_nodes = detect_free_surface(res<FluidNodes>(w), res<LiquidParams>(w));
   }
 };
 
 struct PressureSolve : SystemBase<PressureSolve> {
-  using Reads = gf::Reads<LiquidParams, NeighborPairs, Clock>;
+  using Reads = gf::Reads<LiquidParams, NeighborPairs>;
   using Writes = gf::Writes<FluidNodes, PpeWorkspace, LiquidDiagnostics>;
   std::string_view name() const override { return "pressure_solve"; }
-  void run(World& w) override {
+  void run(World& w, const StepContext& step) override {
     auto& lp = res<LiquidParams>(w);
     auto& d = res<LiquidDiagnostics>(w);
-    d.ppe = solve_pressure(res<FluidNodes>(w), res<NeighborPairs>(w), lp, w.clock.dt, res<PpeWorkspace>(w));
-    check_ppe(d.ppe, lp.solver, w.clock.t + w.clock.dt);
+    d.ppe = solve_pressure(res<FluidNodes>(w), res<NeighborPairs>(w), lp, step.dt, res<PpeWorkspace>(w));
+    check_ppe(d.ppe, lp.solver, step.t + step.dt);
   }
 };
 
@@ -83,31 +83,31 @@ struct DummyPressure : SystemBase<DummyPressure> {
   using Reads = gf::Reads<LiquidParams, NeighborPairs>;
   using Writes = gf::Writes<FluidNodes>;
   std::string_view name() const override { return "dummy_pressure"; }
-  void run(World& w) override { extrapolate_dummy_pressure(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w)); }
+  void run(World& w, const StepContext&) override { extrapolate_dummy_pressure(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w)); }
 };
 
 struct PressureCorrect : SystemBase<PressureCorrect> {
-  using Reads = gf::Reads<LiquidParams, NeighborPairs, Clock>;
+  using Reads = gf::Reads<LiquidParams, NeighborPairs>;
   using Writes = gf::Writes<FluidNodes>;
   std::string_view name() const override { return "pressure_correct"; }
-  void run(World& w) override { correct_velocity(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w), w.clock.dt); }
+  void run(World& w, const StepContext& step) override { correct_velocity(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w), step.dt); }
 };
 
 struct Collision : SystemBase<Collision> {
-  using Reads = gf::Reads<LiquidParams, NeighborPairs, Clock>;
+  using Reads = gf::Reads<LiquidParams, NeighborPairs>;
   using Writes = gf::Writes<FluidNodes>;
   std::string_view name() const override { return "collision"; }
-  void run(World& w) override {
-    apply_collisions(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w).collision, w.clock.dt);
+  void run(World& w, const StepContext& step) override {
+    apply_collisions(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w).collision, step.dt);
   }
 };
 
 struct MotionCheck : SystemBase<MotionCheck> {
-  using Reads = gf::Reads<FluidNodes, LiquidParams, StabilityLimits, Clock>;
+  using Reads = gf::Reads<FluidNodes, LiquidParams, StabilityLimits>;
   using Writes = gf::Writes<LiquidDiagnostics>;
   std::string_view name() const override { return "motion_check"; }
-  void run(World& w) override {
-    check_motion(res<FluidNodes>(w), res<LiquidParams>(w), res<StabilityLimits>(w), w.clock.dt, w.clock.t + w.clock.dt,
+  void run(World& w, const StepContext& step) override {
+    check_motion(res<FluidNodes>(w), res<LiquidParams>(w), res<StabilityLimits>(w), step.dt, step.t + step.dt,
                  res<LiquidDiagnostics>(w));
   }
 };

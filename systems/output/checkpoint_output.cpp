@@ -11,9 +11,9 @@ CheckpointOutput::CheckpointOutput(CheckpointSettings s, SaveWorld save_world, s
   ensure_directory(s_.dir / "checkpoints");
 }
 
-void CheckpointOutput::run(World& world) {
+void CheckpointOutput::run(World& world, const StepContext& now) {
   if (s_.interval <= 0) return;
-  const double t = world.clock.t, dt = world.clock.dt;
+  const double t = now.t, dt = now.dt;
   if (t < next_ - 1e-6 * dt) return;
   while (t >= next_ - 1e-6 * dt) next_ += s_.interval;  // stays on the grid k * interval
   write(world);

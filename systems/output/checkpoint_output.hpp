@@ -25,13 +25,13 @@ class CheckpointOutput : public SystemBase<CheckpointOutput>, public Checkpointa
  public:
   // Reads everything a checkpoint holds; the output resources order it after the other observers.
   using Reads = gf::Reads<Position, Velocity, AngularVelocity, Force, Torque, WallForce, WallTorque, Radius, Mass,
-                          Species, ParticleId, SeriesRow, FrameSeries, Clock>;
+                          Species, ParticleId, SeriesRow, FrameSeries>;
   using Writes = gf::Writes<>;
   using SaveWorld = std::function<void(CheckpointWriter&, World&)>;
 
   CheckpointOutput(CheckpointSettings s, SaveWorld save_world, std::vector<const Checkpointable*> parts);
   std::string_view name() const override { return "checkpoint_output"; }
-  void run(World& world) override;
+  void run(World& world, const StepContext& now) override;
   // Writes a checkpoint of the current state now; returns its path.
   std::filesystem::path write(World& world);
   std::size_t written() const { return written_; }

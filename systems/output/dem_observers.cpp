@@ -47,21 +47,20 @@ void SeriesOutput::restore(const CheckpointReader& in) {
   rows_ = in.value<std::uint64_t>("series_output.rows");
 }
 
-void SeriesOutput::run(World& world) {
-  const double t = world.clock.t;
-  if (!due(t, next_, world.clock.dt)) return;
-  next_ = next_sample(t, next_, s_.interval, world.clock.dt);
-  sample(world);
+void SeriesOutput::run(World& world, const StepContext& now) {
+  const double t = now.t;
+  if (!due(t, next_, now.dt)) return;
+  next_ = next_sample(t, next_, s_.interval, now.dt);
+  sample(world, t);
 }
 
 void SeriesOutput::finish(World& world) {
   const SeriesRow& row = world.resources.get<SeriesRow>();
   if (row.valid && row.time == world.clock.t) return;
-  sample(world);
+  sample(world, world.clock.t);
 }
 
-void SeriesOutput::sample(World& world) {
-  const double t = world.clock.t;
+void SeriesOutput::sample(World& world, double t) {
   const Grains& g = world.grains;
   const Walls& walls = world.resources.get<Walls>();
   SeriesRow& row = world.resources.get<SeriesRow>();
@@ -139,10 +138,10 @@ void FrameOutput::restore(const CheckpointReader& in) {
   series_.resume(times);
 }
 
-void FrameOutput::run(World& world) {
-  const double t = world.clock.t;
-  if (!due(t, next_, world.clock.dt)) return;
-  next_ = next_sample(t, next_, interval_, world.clock.dt);
+void FrameOutput::run(World& world, const StepContext& now) {
+  const double t = now.t;
+  if (!due(t, next_, now.dt)) return;
+  next_ = next_sample(t, next_, interval_, now.dt);
   series_.write(world.grains, t, fields_);
   last_written_ = t;
 }
@@ -174,9 +173,9 @@ double PictureOutput::next_target() const {
   return t;
 }
 
-void PictureOutput::run(World& world) {
+void PictureOutput::run(World& world, const StepContext& now) {
   const Walls& walls = world.resources.get<Walls>();
-  const double t = world.clock.t;
+  const double t = now.t;
   double omega = 0;
   for (const Wall& w : walls.list)
     if (w.omega != 0.0) {
@@ -184,7 +183,7 @@ void PictureOutput::run(World& world) {
       break;
     }
   // Reached up to round-off of the clock, as the time-based observers are.
-  const double angle = std::abs(rotation_angle(walls, t)) + 1e-6 * std::abs(omega) * world.clock.dt;
+  const double angle = std::abs(rotation_angle(walls, t)) + 1e-6 * std::abs(omega) * now.dt;
   if (next_target() > angle) return;
 
   const auto drum = find_drum(walls);

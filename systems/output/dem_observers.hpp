@@ -51,18 +51,18 @@ struct SeriesSettings {
 class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
  public:
   using Reads =
-      gf::Reads<Position, Velocity, AngularVelocity, Radius, Mass, Species, NeighborList, Walls, Gravity, Clock>;
+      gf::Reads<Position, Velocity, AngularVelocity, Radius, Mass, Species, NeighborList, Walls, Gravity>;
   using Writes = gf::Writes<SeriesRow>;
   explicit SeriesOutput(SeriesSettings s);
   std::string_view name() const override { return "series_output"; }
-  void run(World& world) override;
+  void run(World& world, const StepContext& now) override;
   // Samples the last state too (summary.json reports it) unless the latest row already is it.
   void finish(World& world);
   void save(CheckpointWriter& out) const override;
   void restore(const CheckpointReader& in) override;
 
  private:
-  void sample(World& world);
+  void sample(World& world, double t);
   SeriesSettings s_;
   std::unique_ptr<SeriesCsv> csv_;
   double next_ = 0;
@@ -71,11 +71,11 @@ class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
 
 class FrameOutput : public SystemBase<FrameOutput>, public Checkpointable {
  public:
-  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ParticleId, Force, WallForce, Clock>;
+  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ParticleId, Force, WallForce>;
   using Writes = gf::Writes<FrameSeries>;
   FrameOutput(std::filesystem::path dir, double interval, FrameFields fields);
   std::string_view name() const override { return "frame_output"; }
-  void run(World& world) override;
+  void run(World& world, const StepContext& now) override;
   // Writes the last state as a frame unless the latest frame already shows it.
   void finish(World& world);
   std::size_t frames() const { return series_.count(); }
@@ -106,11 +106,11 @@ struct PictureSettings {
 // requested angle (the state drawn is the first step at or past it, at most omega dt later).
 class PictureOutput : public SystemBase<PictureOutput>, public Checkpointable {
  public:
-  using Reads = gf::Reads<Position, Velocity, Radius, Species, Walls, Gravity, Clock>;
+  using Reads = gf::Reads<Position, Velocity, Radius, Species, Walls, Gravity>;
   using Writes = gf::Writes<DrumPictures>;
   explicit PictureOutput(PictureSettings s);
   std::string_view name() const override { return "picture_output"; }
-  void run(World& world) override;
+  void run(World& world, const StepContext& now) override;
   std::size_t pictures() const { return written_; }
   void save(CheckpointWriter& out) const override;
   void restore(const CheckpointReader& in) override;

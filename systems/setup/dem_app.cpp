@@ -56,7 +56,6 @@ int check_dem_command(const CliOptions& opt) {
   Schedule step;
   schedule_dem_step(step, s.law);
   World probe;
-  probe.resources.emplace<StepMode>();
   step.build(probe);
   std::size_t n = planned_grain_count(s);
   std::string note = n ? "" : " (from state files: counted when loaded)";

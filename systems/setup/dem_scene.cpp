@@ -360,15 +360,17 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   return s;
 }
 
+ForceTerms dem_force_terms() { return {{pair_force_term(), wall_force_term()}}; }
+
 void schedule_dem_step(Schedule& step, std::string_view law) {
-  step.emplace<IntegratePositions>();
+  step.emplace<IntegratePositions>(dem_force_terms());
   step.emplace<Broadphase>();
   const bool known = with_law(law, [&]<class Law>() {
     step.emplace<PairContact<Law>>();
     step.emplace<WallContact<Law>>();
   });
   if (!known) throw std::invalid_argument("schedule_dem_step: no contact law is named '" + std::string(law) + "'");
-  step.emplace<IntegrateVelocities>();
+  step.emplace<IntegrateVelocities>(dem_force_terms());
 }
 
 std::size_t planned_grain_count(const DemScene& scene) {
@@ -471,7 +473,6 @@ void build_dem_world(const DemScene& s, World& world) {
 
   world.clock = Clock{0.0, s.dt, 0};
   world.resources.emplace<Gravity>(s.gravity);
-  world.resources.emplace<StepMode>();
   world.resources.emplace<ContactTable>(*s.contacts);
   Walls& walls = world.resources.emplace<Walls>();
   walls.list = s.walls;

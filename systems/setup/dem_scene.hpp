@@ -13,6 +13,7 @@
 #include "engine/world.hpp"
 #include "systems/contact/contact_table.hpp"
 #include "systems/fill/region.hpp"
+#include "systems/integrate/force_terms.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/output/drum_picture.hpp"
 #include "systems/output/vtk_frames.hpp"
@@ -86,6 +87,8 @@ struct DemScene {
 DemScene load_dem_scene(const SceneDoc& doc);
 
 // The DEM systems of one step in phase order, with the drivers of the scene's contact law.
+// The force terms the DEM step's integrator sums: pair contacts, then walls.
+ForceTerms dem_force_terms();
 void schedule_dem_step(Schedule& step, std::string_view law);
 
 // Creates the grains of every fill (random placement, state files) and the resources.

@@ -25,10 +25,9 @@ DemSimulation DemSimulation::from_text(std::string_view toml, const std::vector<
 }
 
 void DemSimulation::prime() {
-  StepMode& mode = world_->resources.get<StepMode>();
-  mode.prime = true;
-  step_->run_step();
-  mode.prime = false;
+  StepContext now = next_step(world_->clock);
+  now.prime = true;
+  step_->run_step(now);
   primed_ = true;
   // The law advanced every spring by v_t dt while evaluating; no time has passed, and the springs
   // of a new state start from zero, so that increment is undone.

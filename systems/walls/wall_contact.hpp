@@ -4,7 +4,7 @@
 // Two drivers share the law: an xsimd one over batches of rows (the default) and its scalar twin,
 // kept as the reference the tests compare it with.
 //
-// Reads:  Position, Velocity, AngularVelocity, Radius, Species, ContactTable, Clock, StepMode.
+// Reads:  Position, Velocity, AngularVelocity, Radius, Species, ContactTable.
 // Writes: WallForce, WallTorque, WallHistory, Walls (the current, rotated geometry).
 #pragma once
 
@@ -25,18 +25,20 @@ template <class L>
 void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
                                 double t_contact);
 
+// The integrator's term this system fills.
+inline ForceTerm wall_force_term() { return force_term<WallForce, WallTorque>("wall_contact"); }
+
 template <class L>
 class WallContact : public SystemBase<WallContact<L>> {
  public:
-  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ContactTable, Clock, StepMode>;
+  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ContactTable>;
   using Writes = gf::Writes<WallForce, WallTorque, WallHistory, Walls>;  // Walls: current geometry
   std::string_view name() const override { return "wall_contact"; }
-  void run(World& world) override {
+  void run(World& world, const StepContext& step) override {
     // Positions were advanced by the first half of the step: they refer to t + dt.
-    const bool prime = world.resources.get<StepMode>().prime;
-    const double t = world.clock.t + (prime ? 0.0 : world.clock.dt);
+    const double t = step.t + (step.prime ? 0.0 : step.dt);
     compute_wall_forces<L>(world.grains, world.resources.get<Walls>(), world.grains.extras.get<WallHistory>(),
-                           world.resources.get<ContactTable>(), world.clock.dt, t);
+                           world.resources.get<ContactTable>(), step.dt, t);
   }
 };
 

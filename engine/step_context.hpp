@@ -1,0 +1,18 @@
+// What a system is told about the step it serves. Systems read time only from here, never from a
+// world clock, so the same system can serve an outer step or one of k sub-steps of it.
+#pragma once
+
+#include <cstdint>
+
+namespace gf {
+
+struct StepContext {
+  double t = 0.0;          // s, time at the start of the step (observers: the time now)
+  double dt = 0.0;         // s, the step's length (dt/k in a sub-schedule run k times)
+  std::int64_t step = 0;   // index of the outer step (observers: steps completed)
+  int substep = 0;         // 0 .. substeps-1 inside a sub-schedule, else 0
+  int substeps = 1;
+  bool prime = false;      // forces of the current state only: nothing moves and no time passes
+};
+
+}  // namespace gf
