@@ -55,7 +55,7 @@ void BM_PairForces(benchmark::State& state) {
   auto& out = w.resources.get<gf::PairForces>();
   const double dt = w.clock.dt;
   for (auto _ : state) {
-    Driver(g, list, history, table, dt, out);
+    Driver(g, list, history, table, dt, out, w.resources.get<gf::OverlapLimit>().ratio);
     benchmark::ClobberMemory();
   }
   const auto pairs = static_cast<std::int64_t>(list.pairs());

@@ -53,7 +53,7 @@ void BM_WallForces(benchmark::State& state) {
   const double dt = w.clock.dt;
   const double t = w.clock.t;  // positions of the last completed step refer to this time
   for (auto _ : state) {
-    Driver(g, walls, history, table, dt, t);
+    Driver(g, walls, history, table, dt, t, w.resources.get<gf::OverlapLimit>().ratio);
     benchmark::ClobberMemory();
   }
   const auto rows = static_cast<std::int64_t>(g.n_owned);

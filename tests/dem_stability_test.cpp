@@ -2,14 +2,18 @@
 // allow_unstable_dt, the run itself detects the blow-up: it stops with exit status 3, a message
 // naming what broke and the fix, and summary.json "failed", keeping what it wrote. The boundary
 // for this drum (seed-000 contact parameters, 1 and 3 mm grains, smallest collision period
-// 1.19e-4 s): 3e-5 s still runs, 4e-5 s trips the overlap limit, 8e-5 s goes non-finite.
+// 1.19e-4 s): 3e-5 s still runs, 4e-5 s trips the overlap limit, 8e-5 s goes non-finite. The
+// checks run in every step, inside the kernels, and name the step and the grains.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "systems/analysis/metrics.hpp"
+#include "systems/setup/dem_simulation.hpp"
 #include "tests/test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -56,5 +60,54 @@ TEST_CASE("stability: the run detects a blow-up and says what to change", "[stab
     const auto summary = nlohmann::json::parse(read_file(dir.path / ("dt" + dt) / "summary.json"));
     CHECK(summary.at("status") == "failed");
     CHECK_THAT(summary.at("failure").get<std::string>(), Contains("Fix:"));
+  }
+}
+
+TEST_CASE("stability: an overlap past the limit stops the step that made it, with no output configured",
+          "[stability]") {
+  // The small drum at 4e-5 s (past the stable step, forced), stepped without any observer (no
+  // series, no frames): the check runs inside the contact kernels, so it cannot depend on an output. After every step that
+  // passes, an independent all-pairs measure (metrics.hpp) must be within the limit; the step that
+  // throws must be the first whose contacts are past it.
+  gf::DemSimulation sim = gf::DemSimulation::from_text(
+      kDrum, {"run.dt=4e-5", "run.allow_unstable_dt=true"});
+  const double limit = sim.scene().max_overlap;
+  std::string message;
+  std::int64_t steps = 0;
+  for (; steps < 20000 && message.empty(); ++steps) {
+    try {
+      sim.advance(1);
+    } catch (const gf::StabilityError& e) {
+      message = e.what();
+      break;
+    }
+    gf::World& w = sim.world();
+    const auto cs = gf::contact_stats(sim.grains(), w.resources.get<gf::NeighborList>(), w.resources.get<gf::Walls>());
+    REQUIRE(cs.max_overlap_ratio <= limit);
+  }
+  INFO(message);
+  REQUIRE_FALSE(message.empty());
+  gf::World& w = sim.world();
+  const auto cs = gf::contact_stats(sim.grains(), w.resources.get<gf::NeighborList>(), w.resources.get<gf::Walls>());
+  CHECK(cs.max_overlap_ratio > limit);  // the state the kernel saw is past the limit
+  CHECK_THAT(message, Contains("in step " + std::to_string(steps + 1) + " of the stage") &&
+                          Contains("grain id ") && Contains("run.max_overlap = 0.1") && Contains("Fix: reduce run.dt"));
+}
+
+TEST_CASE("stability: a non-finite value stops the step that made it and names the grain", "[stability]") {
+  gf::DemSimulation sim = gf::DemSimulation::from_text(kDrum);
+  sim.advance(10);
+  gf::Grains& g = sim.grains();
+  std::size_t row = 0;
+  while (g.pid.id[row] != 42) ++row;
+  g.vel.y[row] = std::numeric_limits<double>::infinity();
+  try {
+    sim.advance(5);
+    FAIL("no error");
+  } catch (const gf::StabilityError& e) {
+    const std::string m = e.what();
+    INFO(m);
+    CHECK_THAT(m, Contains("grain id 42 ") && Contains("became non-finite in step 11 of the stage") &&
+                      Contains("Fix: reduce run.dt"));
   }
 }

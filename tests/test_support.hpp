@@ -128,10 +128,12 @@ inline double contact_time(double m, double k, double e) {
 
 // A binary pack (1 and 3 mm glass, seed-000 contact parameters) placed at random in a closed
 // 20 x 30 x 20 mm box: the state the SIMD-against-scalar driver tests stir and compare on. Strong
-// gravity (m/s^2, along -y) packs it within a couple of thousand steps.
+// gravity (m/s^2, along -y) packs it within a couple of thousand steps; under 500 m/s^2 the soft
+// seed-000 springs let a grain on the floor sink past 0.1 of its diameter, so the overlap limit is
+// raised to 0.5 (these tests compare drivers, not the physics of the pile).
 inline std::string binary_box_scene(int small, int large, double gravity = 9.81) {
   std::ostringstream s;
-  s << "[run]\ndt = 1.0e-5\nduration = 0.01\nskin = 1.5e-4\ngravity = [0.0, " << -gravity << ", 0.0]\n"
+  s << "[run]\ndt = 1.0e-5\nduration = 0.01\nskin = 1.5e-4\nmax_overlap = 0.5\ngravity = [0.0, " << -gravity << ", 0.0]\n"
     << "[[species]]\nname = \"small\"\ndiameter = 1.0e-3\ndensity = 2500.0\n"
     << "[[species]]\nname = \"large\"\ndiameter = 3.0e-3\ndensity = 2500.0\n"
     << "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nkr = 1.0e-5\n"

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 
 #include <utility>
 
@@ -123,9 +124,10 @@ struct SlabTorques {
 };
 
 // Geometry, law and torques for one contact; shared by the scalar tail and the scalar driver.
+// Returns the contact's overlap excess, delta - lim2 min(r_i, r_j) (positive: past the limit).
 template <class Law>
-void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h, const ContactTable& table, double dt,
-                  PairForces& out, std::size_t c, const SlabTorques& st) {
+double evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h, const ContactTable& table, double dt,
+                    PairForces& out, std::size_t c, const SlabTorques& st, double lim2) {
   const V3<double> d{g.pos.x[j] - g.pos.x[i], g.pos.y[j] - g.pos.y[i], g.pos.z[j] - g.pos.z[i]};
   const double dist = std::sqrt(dot(d, d));
   const V3<double> wi{g.omega.x[i], g.omega.y[i], g.omega.z[i]};
@@ -150,6 +152,7 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
   st.t[3][c - st.c0] = sc.lj * nxf.x + res.torque_j.x;
   st.t[4][c - st.c0] = sc.lj * nxf.y + res.torque_j.y;
   st.t[5][c - st.c0] = sc.lj * nxf.z + res.torque_j.z;
+  return sc.g.delta - lim2 * std::min(g.radius.r[i], g.radius.r[j]);
 }
 
 // Sums into Force and Torque by slabs of owner rows. A slab's contacts are one run of the packed
@@ -237,13 +240,14 @@ void count_blocks(PairForces& out, std::size_t np) {
 }
 
 // Runs law(c0, c1) over each slab's contacts, then that slab's sums, one task per slab; then the
-// shares set aside for later slabs.
+// shares set aside for later slabs. Returns the largest overlap excess the law reported.
 template <class Law>
-void evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&& law) {
+double evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&& law) {
   const std::size_t n = g.n_owned;
   const std::size_t rows = slab_rows(n);
   const std::size_t ns = (n + rows - 1) / rows;
   if (out.spill.size() < ns * ns) out.spill.resize(ns * ns);
+  out.slab_excess.assign(ns, -std::numeric_limits<double>::infinity());
   const SlabSums sums{{g.force.x.data(), g.force.y.data(), g.force.z.data()},
                       {g.torque.x.data(), g.torque.y.data(), g.torque.z.data()},
                       out.ci.data(),
@@ -258,7 +262,7 @@ void evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&
     if (scratch.size() < 6 * stride) scratch.resize(6 * stride);
     SlabTorques st{c0, {}};
     for (std::size_t k = 0; k < 6; ++k) st.t[k] = scratch.data() + k * stride;
-    law(c0, c1, st);
+    out.slab_excess[s] = law(c0, c1, st);
     if (out.record_torques) {
       ColumnD* cols[6] = {&out.tix, &out.tiy, &out.tiz, &out.tjx, &out.tjy, &out.tjz};
       for (std::size_t k = 0; k < 6; ++k) std::copy(st.t[k], st.t[k] + (c1 - c0), cols[k]->begin() + c0);
@@ -286,13 +290,15 @@ void evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&
         Tz[e.j] += e.tz;
       }
   });
+  return *std::max_element(out.slab_excess.begin(), out.slab_excess.end());
 }
 
 }  // namespace
 
 template <class Law>
-void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table,
-                                double dt, PairForces& out) {
+double compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table,
+                                  double dt, PairForces& out, double overlap_limit) {
+  const double lim2 = 2.0 * overlap_limit;
   const std::size_t np = list.pairs();
   out.touching.resize(padded_size(np));
   for (std::size_t k = 0; k < np; ++k) {
@@ -306,19 +312,23 @@ void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory
   if (h.slot.size() != np) h.map_slots(np);
   size_outputs(out, h, np, nc);
   compact_scalar(list, h, out, 0, np, 0);
-  evaluate_and_sum(g, list, out, [&](std::size_t c0, std::size_t c1, const SlabTorques& st) {
+  const double excess = evaluate_and_sum(g, list, out, [&](std::size_t c0, std::size_t c1, const SlabTorques& st) {
+    double worst = -std::numeric_limits<double>::infinity();
     for (std::size_t c = c0; c < c1; ++c) {
       const auto k = static_cast<std::size_t>(out.next.pair[c]);
       carry_history(h, out.cslot[c], out.next, c);
-      evaluate_one<Law>(g, list.i[k], list.j[k], out.next, table, dt, out, c, st);
+      worst = std::max(worst, evaluate_one<Law>(g, list.i[k], list.j[k], out.next, table, dt, out, c, st, lim2));
     }
+    return worst;
   });
   std::swap(h, out.next);
+  return excess;
 }
 
 template <class Law>
-void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table, double dt,
-                         PairForces& out) {
+double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table, double dt,
+                           PairForces& out, double overlap_limit) {
+  const double lim2 = 2.0 * overlap_limit;
   using B = BatchD;
   using V = V3<B>;
   constexpr std::size_t L = kLanes;
@@ -403,6 +413,9 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
   };
   // Whole batches of a slab's contacts from its first; the remainder through the scalar path.
   auto law = [&](std::size_t cbeg, std::size_t cend, const SlabTorques& st) {
+    // The overlap check rides along: the largest delta - 2 limit min(r_i, r_j) of the slab.
+    B worst(-std::numeric_limits<double>::infinity());
+    const B blim2(lim2);
     std::size_t c0 = cbeg;
     for (; c0 + L <= cend; c0 += L) {
       // Contacts are in owner order: the owners of a batch are a few adjacent rows, loaded whole
@@ -423,6 +436,7 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
                   load_rows(g.vel.y.data(), bi) - gather32(g.vel.y.data(), bj),
                   load_rows(g.vel.z.data(), bi) - gather32(g.vel.z.data(), bj)};
       const SphereContact<B> sc = sphere_sphere(d, xsimd::sqrt(d2), rsqrt_of(d2), ri, rj, vij, wi, wj);
+      worst = xsimd::max(worst, sc.g.delta - blim2 * xsimd::min(ri, rj));
       alignas(64) std::int32_t compact[L];
       static_assert(kMaxSpecies == 64);
       for (std::size_t l = 0; l < L; ++l)
@@ -464,15 +478,18 @@ void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
       (sc.lj * nxf.y + res.torque_j.y).store_unaligned(&st.t[4][c0 - st.c0]);
       (sc.lj * nxf.z + res.torque_j.z).store_unaligned(&st.t[5][c0 - st.c0]);
     }
+    double tail = lane_max(worst);
     for (std::size_t c = c0; c < cend; ++c) {
       const std::size_t k = static_cast<std::size_t>(out.next.pair[c]);
       carry_history(h, out.cslot[c], out.next, c);
-      evaluate_one<Law>(g, list.i[k], list.j[k], out.next, table, dt, out, c, st);
+      tail = std::max(tail, evaluate_one<Law>(g, list.i[k], list.j[k], out.next, table, dt, out, c, st, lim2));
     }
+    return tail;
   };
   // 4. The law and the sums, slab by slab.
-  evaluate_and_sum(g, list, out, law);
+  const double excess = evaluate_and_sum(g, list, out, law);
   std::swap(h, out.next);
+  return excess;
 }
 
 // Both drivers for every registered law: the table's external linkage makes the compiler emit them.

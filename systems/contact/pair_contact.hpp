@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "engine/system.hpp"
@@ -28,6 +29,7 @@
 #include "systems/contact/contact_table.hpp"
 #include "systems/contact/vec3.hpp"
 #include "systems/integrate/force_terms.hpp"
+#include "systems/stability/stability_report.hpp"
 
 namespace gf {
 
@@ -55,6 +57,7 @@ struct PairForces {
     double fx, fy, fz, tx, ty, tz;
   };
   std::vector<std::vector<Spill>> spill;
+  std::vector<double> slab_excess;  // per slab: the largest overlap excess of its contacts
 
   std::size_t contacts() const { return ci.size() - 1; }
   // Force on the owner of list pair k at the last evaluation (zero when apart), given the springs
@@ -76,13 +79,17 @@ inline std::size_t slab_rows(std::size_t n) {
 }
 
 // Evaluates every pair of `list` with law L and sums per row into Force and Torque. Instantiated
-// for every law of ContactLaws.
+// for every law of ContactLaws. Returns the largest overlap excess delta - 2 overlap_limit
+// min(r_i, r_j) over the contacts (positive: some overlap passed overlap_limit of the smaller
+// diameter; -infinity without contacts), found in the same pass.
 template <class L>
-void compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
-                         double dt, PairForces& out);
+double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
+                           double dt, PairForces& out,
+                           double overlap_limit = std::numeric_limits<double>::infinity());
 template <class L>
-void compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
-                                double dt, PairForces& out);
+double compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
+                                  double dt, PairForces& out,
+                                  double overlap_limit = std::numeric_limits<double>::infinity());
 
 // The integrator's term this system fills.
 inline ForceTerm pair_force_term() { return force_term<Force, Torque>("pair_contact"); }
@@ -90,12 +97,15 @@ inline ForceTerm pair_force_term() { return force_term<Force, Torque>("pair_cont
 template <class L>
 class PairContact : public SystemBase<PairContact<L>> {
  public:
-  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, NeighborList, ContactTable>;
+  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, NeighborList, ContactTable, OverlapLimit>;
   using Writes = gf::Writes<Force, Torque, PairHistory, PairForces>;
   std::string_view name() const override { return "pair_contact"; }
   void run(World& world, const StepContext& step) override {
-    compute_pair_forces<L>(world.grains, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(),
-                           world.resources.get<ContactTable>(), step.dt, world.resources.get<PairForces>());
+    const double limit = world.resources.get<OverlapLimit>().ratio;
+    PairForces& out = world.resources.get<PairForces>();
+    if (compute_pair_forces<L>(world.grains, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(),
+                               world.resources.get<ContactTable>(), step.dt, out, limit) > 0.0)
+      report_pair_overlap(world.grains, out, limit, step);
   }
 };
 

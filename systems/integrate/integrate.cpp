@@ -1,7 +1,10 @@
 #include "systems/integrate/integrate.hpp"
 
+#include "systems/stability/stability_report.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <stdexcept>
 
@@ -50,8 +53,10 @@ T sum_terms(const Vec3Columns* cols, std::size_t n, const double* Vec3Columns::*
 // One pass over the owned rows: v += h a, w += h alpha and, with Drift, x += dt v. Whole batches
 // with vector loads (the columns are separate arrays, which the compiler cannot prove, so it would
 // not vectorise the plain loop), the last partial batch row by row; padding rows are not touched.
+// Returns whether every value it wrote is finite: x - x is 0 for a finite x and NaN otherwise, and
+// a NaN stays in the running sum (a few additions per batch, on values already in registers).
 template <bool Drift>
-void kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
+bool kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
   using B = BatchD;
   constexpr std::size_t L = kLanes;
   const std::size_t n = g.n_owned, full = n / L;
@@ -62,6 +67,7 @@ void kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h
   auto one = [](const double* c, std::size_t i) { return c[i]; };
   auto row = [&](std::size_t i) {
     const double a = h * g.mass.inv_m[i];
+    double bad = 0.0;
     g.vel.x[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::x, i, one) + gx;
     g.vel.y[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::y, i, one) + gy;
     g.vel.z[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::z, i, one) + gz;
@@ -73,10 +79,15 @@ void kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h
       g.pos.x[i] += dt * g.vel.x[i];
       g.pos.y[i] += dt * g.vel.y[i];
       g.pos.z[i] += dt * g.vel.z[i];
+      bad += (g.pos.x[i] - g.pos.x[i]) + (g.pos.y[i] - g.pos.y[i]) + (g.pos.z[i] - g.pos.z[i]);
     }
+    bad += (g.vel.x[i] - g.vel.x[i]) + (g.vel.y[i] - g.vel.y[i]) + (g.vel.z[i] - g.vel.z[i]);
+    bad += (g.omega.x[i] - g.omega.x[i]) + (g.omega.y[i] - g.omega.y[i]) + (g.omega.z[i] - g.omega.z[i]);
+    return bad == 0.0;
   };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, full, 512), [&](const tbb::blocked_range<std::size_t>& r) {
+  auto batches = [&](const tbb::blocked_range<std::size_t>& r, bool finite) {
     const B bh(h), bgx(gx), bgy(gy), bgz(gz), bdt(dt);
+    B bad(0.0);
     auto ld = [](const ColumnD& c, std::size_t i) { return B::load_aligned(&c[i]); };
     auto lp = [](const double* c, std::size_t i) { return B::load_aligned(c + i); };
     for (std::size_t bt = r.begin(); bt != r.end(); ++bt) {
@@ -89,27 +100,37 @@ void kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h
       vy.store_aligned(&g.vel.y[i]);
       vz.store_aligned(&g.vel.z[i]);
       const B b = bh * ld(g.mass.inv_inertia, i);
-      (ld(g.omega.x, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::x, i, lp)).store_aligned(&g.omega.x[i]);
-      (ld(g.omega.y, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::y, i, lp)).store_aligned(&g.omega.y[i]);
-      (ld(g.omega.z, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::z, i, lp)).store_aligned(&g.omega.z[i]);
+      const B wx = ld(g.omega.x, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::x, i, lp);
+      const B wy = ld(g.omega.y, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::y, i, lp);
+      const B wz = ld(g.omega.z, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::z, i, lp);
+      wx.store_aligned(&g.omega.x[i]);
+      wy.store_aligned(&g.omega.y[i]);
+      wz.store_aligned(&g.omega.z[i]);
+      bad += ((vx - vx) + (vy - vy)) + ((vz - vz) + (wx - wx)) + ((wy - wy) + (wz - wz));
       if constexpr (Drift) {
-        (ld(g.pos.x, i) + bdt * vx).store_aligned(&g.pos.x[i]);
-        (ld(g.pos.y, i) + bdt * vy).store_aligned(&g.pos.y[i]);
-        (ld(g.pos.z, i) + bdt * vz).store_aligned(&g.pos.z[i]);
+        const B px = ld(g.pos.x, i) + bdt * vx, py = ld(g.pos.y, i) + bdt * vy, pz = ld(g.pos.z, i) + bdt * vz;
+        px.store_aligned(&g.pos.x[i]);
+        py.store_aligned(&g.pos.y[i]);
+        pz.store_aligned(&g.pos.z[i]);
+        bad += (px - px) + (py - py) + (pz - pz);
       }
     }
-  });
-  for (std::size_t i = full * L; i < n; ++i) row(i);
+    return finite && xsimd::all(bad == B(0.0));
+  };
+  bool finite = tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, full, 512), true, batches,
+                                     [](bool a, bool b) { return a && b; });
+  for (std::size_t i = full * L; i < n; ++i) finite = row(i) && finite;
+  return finite;
 }
 
 }  // namespace
 
-void kick(Grains& g, const ForceTerms& terms, const Gravity& grav, double h) {
-  kick_rows<false>(g, terms, grav, h, 0.0);
+bool kick(Grains& g, const ForceTerms& terms, const Gravity& grav, double h) {
+  return kick_rows<false>(g, terms, grav, h, 0.0);
 }
 
-void kick_drift(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
-  kick_rows<true>(g, terms, grav, h, dt);
+bool kick_drift(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
+  return kick_rows<true>(g, terms, grav, h, dt);
 }
 
 Access integrator_access(const ForceTerms& terms, Access writes) {
@@ -132,12 +153,14 @@ Access IntegrateVelocities::access() const {
 
 void IntegratePositions::run(World& world, const StepContext& step) {
   if (step.prime) return;
-  kick_drift(world.grains, terms_, world.resources.get<Gravity>(), 0.5 * step.dt, step.dt);
+  if (!kick_drift(world.grains, terms_, world.resources.get<Gravity>(), 0.5 * step.dt, step.dt))
+    report_nonfinite(world.grains, step, "the opening half-kick and drift");
 }
 
 void IntegrateVelocities::run(World& world, const StepContext& step) {
   if (step.prime) return;
-  kick(world.grains, terms_, world.resources.get<Gravity>(), 0.5 * step.dt);
+  if (!kick(world.grains, terms_, world.resources.get<Gravity>(), 0.5 * step.dt))
+    report_nonfinite(world.grains, step, "the closing half-kick");
 }
 
 }  // namespace gf

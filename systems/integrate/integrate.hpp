@@ -17,9 +17,10 @@ struct Gravity {
   double x = 0, y = 0, z = 0;  // m/s^2
 };
 
-void kick(Grains& g, const ForceTerms& terms, const Gravity& grav, double half_dt);
+// Both return whether every value they wrote is finite (checked in the same pass).
+bool kick(Grains& g, const ForceTerms& terms, const Gravity& grav, double half_dt);
 // The kick, then x += dt v with the kicked velocity, in one pass (integrate_positions' work).
-void kick_drift(Grains& g, const ForceTerms& terms, const Gravity& grav, double half_dt, double dt);
+bool kick_drift(Grains& g, const ForceTerms& terms, const Gravity& grav, double half_dt, double dt);
 
 // The accesses of an integrator: it reads mass, gravity and every term, writes `Writes`.
 Access integrator_access(const ForceTerms& terms, Access writes);

@@ -106,19 +106,6 @@ void SeriesOutput::sample(World& world, double t) {
     csv_->append(std::span<const double>(v.data(), s_.pattern ? 12 : 8));
     ++rows_;
   }
-  char buf[256];
-  if (!cs.finite || !std::isfinite(e.translational) || !std::isfinite(e.rotational)) {
-    std::snprintf(buf, sizeof buf, "at t = %.6g s a position or velocity is not finite", t);
-    throw StabilityError(std::string(buf) +
-                         ": the run blew up. Fix: reduce run.dt (see the critical step from `grainflow check`)");
-  }
-  if (cs.max_overlap_ratio > s_.max_overlap) {
-    std::snprintf(buf, sizeof buf, "at t = %.6g s an overlap reached %.3g of the smaller diameter (limit %.3g)", t,
-                  cs.max_overlap_ratio, s_.max_overlap);
-    throw StabilityError(std::string(buf) +
-                         ". Fix: reduce run.dt, raise the stiffness kn, or raise run.max_overlap if such overlaps "
-                         "are intended");
-  }
 }
 
 FrameOutput::FrameOutput(std::filesystem::path dir, double interval, FrameFields fields)

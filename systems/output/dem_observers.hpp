@@ -1,5 +1,6 @@
-// Observers of a DEM run, scheduled after each step: the time series (with the stability checks
-// every long run needs), the VTK frames and the drum pictures. Each decides itself whether it is due.
+// Observers of a DEM run, scheduled after each step: the time series, the VTK frames and the drum
+// pictures; each decides itself whether it is due. (The stability checks run inside the step:
+// stability_report.hpp.)
 #pragma once
 
 #include <cmath>
@@ -42,7 +43,6 @@ struct SeriesSettings {
   double interval = 0;                       // s between rows and checks
   int segregation_type = -1;
   double segregation_cell = 0;
-  double max_overlap = 0.1;
   std::optional<std::size_t> resume_rows;  // continue an existing csv, keeping this many rows
   bool pattern = false;  // classify the drum pattern at each row (needs a drum wall)
   PatternSettings pattern_settings;

@@ -140,7 +140,6 @@ int run_dem_command(const CliOptions& opt) {
   ss.interval = s.output.series_interval > 0 ? s.output.series_interval : 1000 * s.dt;
   ss.segregation_type = s.segregation_type;
   ss.segregation_cell = s.segregation_cell;
-  ss.max_overlap = s.max_overlap;
   ss.pattern = s.pattern;
   ss.pattern_settings.large_type = s.segregation_type;
   if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");

@@ -474,6 +474,7 @@ void build_dem_world(const DemScene& s, World& world) {
   world.clock = Clock{0.0, s.dt, 0};
   world.resources.emplace<Gravity>(s.gravity);
   world.resources.emplace<ContactTable>(*s.contacts);
+  world.resources.emplace<OverlapLimit>(OverlapLimit{s.max_overlap});
   Walls& walls = world.resources.emplace<Walls>();
   walls.list = s.walls;
   BroadphaseState& bp = world.resources.emplace<BroadphaseState>();

@@ -4,6 +4,11 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <limits>
+#include <vector>
 
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/contact/laws.hpp"
@@ -32,12 +37,13 @@ struct CoeffColumns {
 }  // namespace
 
 template <class Law>
-void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
-                                double t_contact) {
+double compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
+                                  double t_contact, double overlap_limit) {
   prepare(g, walls, h, t_contact);
   const std::size_t nw = walls.list.size();
   constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+  const double lim2 = 2.0 * overlap_limit;
+  auto rows = [&](const tbb::blocked_range<std::size_t>& r, double worst) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const Vec3d p{g.pos.x[i], g.pos.y[i], g.pos.z[i]};
       const double ri = g.radius.r[i];
@@ -53,6 +59,7 @@ void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
           continue;
         }
         h.active[w][i] = 1;
+        worst = std::max(worst, (ri - gap) - lim2 * ri);
         const Vec3d wi{g.omega.x[i], g.omega.y[i], g.omega.z[i]};
         const double om = walls.rotation_enabled ? wall.omega : 0.0;
         const SphereContact<double> sc = sphere_wall(p, n, gap, ri, Vec3d{g.vel.x[i], g.vel.y[i], g.vel.z[i]}, wi,
@@ -74,7 +81,11 @@ void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
       g.wall_torque.y[i] = t.y;
       g.wall_torque.z[i] = t.z;
     }
-  });
+    return worst;
+  };
+  return tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024),
+                              -std::numeric_limits<double>::infinity(), rows,
+                              [](double a, double b) { return std::max(a, b); });
 }
 
 // The same arithmetic, wall by wall over fixed blocks of rows: a first pass computes the gap of
@@ -160,9 +171,11 @@ template <class V, class B>
 }  // namespace
 
 template <class Law>
-void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
-                         double t_contact) {
+double compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
+                           double t_contact, double overlap_limit) {
   prepare(g, walls, h, t_contact);
+  constexpr double kNone = -std::numeric_limits<double>::infinity();
+  const double lim2 = 2.0 * overlap_limit;
   using B = BatchD;
   using V = V3<B>;
   constexpr std::size_t L = kLanes;
@@ -178,8 +191,11 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
     for (std::size_t q = 0; q < K; ++q) reg[q] = RegisterTable(cc.col[q], table.types());
   const std::size_t nown = g.n_owned;
   const std::size_t nblocks = (nown + kWallBlock - 1) / kWallBlock;
+  // The overlap check rides along: per block the largest delta - 2 limit r of its contacts.
+  std::vector<double> block_excess(nblocks, kNone);
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
     const std::size_t r0 = blk * kWallBlock, r1 = std::min(nown, r0 + kWallBlock);
+    B worst(kNone);
     for (ColumnD* c : {&g.wall_force.x, &g.wall_force.y, &g.wall_force.z, &g.wall_torque.x, &g.wall_torque.y,
                        &g.wall_torque.z})
       std::fill(c->begin() + r0, c->begin() + r1, 0.0);
@@ -220,6 +236,7 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         V n;
         const B gap = wall_gap_batch<V, B>(wall, p, n);
         const auto touching = gap < ri;
+        worst = xsimd::max(worst, xsimd::select(touching, (ri - gap) - B(lim2) * ri, B(kNone)));
         alignas(64) std::int32_t ty[L];
         for (std::size_t l = 0; l < L; ++l) ty[l] = g.species.type[static_cast<std::size_t>(idx[l])];
         std::array<B, K> c;
@@ -256,7 +273,9 @@ void compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         }
       }
     }
+    block_excess[blk] = lane_max(worst);
   });
+  return nblocks ? *std::max_element(block_excess.begin(), block_excess.end()) : kNone;
 }
 
 // Both drivers for every registered law: the table's external linkage makes the compiler emit them.

@@ -8,22 +8,26 @@
 // Writes: WallForce, WallTorque, WallHistory, Walls (the current, rotated geometry).
 #pragma once
 
+#include <limits>
+
 #include "engine/system.hpp"
 #include "systems/contact/contact_table.hpp"
 #include "systems/integrate/integrate.hpp"
+#include "systems/stability/stability_report.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
 
 // Sums every wall's force and torque on each owned row into WallForce/WallTorque; the walls are
 // placed at time t_contact (the time the positions refer to). Instantiated for every law of
-// ContactLaws.
+// ContactLaws. Returns the largest overlap excess delta - 2 overlap_limit r over the wall contacts
+// (positive: an overlap passed overlap_limit of the diameter; -infinity without contacts).
 template <class L>
-void compute_wall_forces(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
-                         double t_contact);
+double compute_wall_forces(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
+                           double t_contact, double overlap_limit = std::numeric_limits<double>::infinity());
 template <class L>
-void compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
-                                double t_contact);
+double compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
+                                  double t_contact, double overlap_limit = std::numeric_limits<double>::infinity());
 
 // The integrator's term this system fills.
 inline ForceTerm wall_force_term() { return force_term<WallForce, WallTorque>("wall_contact"); }
@@ -31,14 +35,17 @@ inline ForceTerm wall_force_term() { return force_term<WallForce, WallTorque>("w
 template <class L>
 class WallContact : public SystemBase<WallContact<L>> {
  public:
-  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ContactTable>;
+  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ContactTable, OverlapLimit>;
   using Writes = gf::Writes<WallForce, WallTorque, WallHistory, Walls>;  // Walls: current geometry
   std::string_view name() const override { return "wall_contact"; }
   void run(World& world, const StepContext& step) override {
     // Positions were advanced by the first half of the step: they refer to t + dt.
     const double t = step.t + (step.prime ? 0.0 : step.dt);
-    compute_wall_forces<L>(world.grains, world.resources.get<Walls>(), world.grains.extras.get<WallHistory>(),
-                           world.resources.get<ContactTable>(), step.dt, t);
+    const double limit = world.resources.get<OverlapLimit>().ratio;
+    Walls& walls = world.resources.get<Walls>();
+    if (compute_wall_forces<L>(world.grains, walls, world.grains.extras.get<WallHistory>(),
+                               world.resources.get<ContactTable>(), step.dt, t, limit) > 0.0)
+      report_wall_overlap(world.grains, walls, limit, step);
   }
 };
 
