@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
+#include <vector>
 #include <tuple>
 #include <type_traits>
 
@@ -59,9 +61,30 @@ struct ParticleId {
   auto columns() { return std::tie(id); }
 };
 
+// One grain's state, for a row queued for insertion (Grains::queue_insert).
+struct GrainRow {
+  double x[3] = {}, v[3] = {}, w[3] = {};  // m, m/s, rad/s
+  double radius = 0, mass = 0, inv_inertia = 0;  // m, kg, 1/(kg m^2)
+  std::int32_t type = 0;
+  std::int32_t unused = 0;  // explicit padding: checkpoints copy the bytes
+  std::int64_t id = -1;     // given by queue_insert
+};
+
+// Rows to insert and ids to remove, applied together at the next neighbour-list rebuild (the only
+// point where rows move), so kernels never see a table change under them mid-step.
+struct RowChanges {
+  std::vector<GrainRow> insert;
+  std::vector<std::int64_t> remove;
+  bool empty() const { return insert.empty() && remove.empty(); }
+};
+
 struct Grains {
+  static constexpr std::string_view kName = "grains";
   std::size_t n_owned = 0;
   std::size_t n = 0;  // owned + ghosts
+  // The next id queue_insert hands out; ids are never reused (checkpointed with the table).
+  std::int64_t next_id = 0;
+  RowChanges pending;
 
   Position pos;
   Velocity vel;
@@ -90,6 +113,24 @@ struct Grains {
     extras.resize(rows);
     n = n_owned = rows;
   }
+  // Room for `ghosts` rows after the owned ones (their contents are the exchange's to fill).
+  void set_ghosts(std::size_t ghosts) {
+    const std::size_t owned = n_owned;
+    for_each_core_column([&](auto& col) { col.resize(owned + ghosts); });
+    extras.resize(owned + ghosts);
+    n = owned + ghosts;
+  }
+  std::size_t owned_rows() const { return n_owned; }
+  std::size_t rows() const { return n; }
+
+  // Queues a new grain (its id is returned, unique for the run) or the removal of one by id.
+  std::int64_t queue_insert(GrainRow row);
+  void queue_remove(std::int64_t id) { pending.remove.push_back(id); }
+  // Applies the queued changes as one reorder: removed rows leave, the others keep their order,
+  // new rows follow with zero forces and zero attached columns (contact history); ghost rows are
+  // dropped (the exchange refills them). Returns, per old row, its new row or -1 if removed.
+  // Unknown ids in the removal queue throw std::invalid_argument naming them.
+  std::vector<std::int64_t> apply_pending();
 
   // New row r takes old row perm[r], in every core and attached column.
   void permute(std::span<const std::uint32_t> perm);

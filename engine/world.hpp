@@ -1,4 +1,4 @@
-// The world: tables of entities plus resources. Systems receive it explicitly; there are no globals.
+// The world: tables of entities plus resources.
 #pragma once
 
 #include <cstdint>
@@ -6,6 +6,7 @@
 #include "engine/grains.hpp"
 #include "engine/resources.hpp"
 #include "engine/step_context.hpp"
+#include "engine/tables.hpp"
 
 namespace gf {
 
@@ -22,8 +23,15 @@ struct Clock {
 // time reached: the same values).
 inline StepContext next_step(const Clock& c) { return {c.t, c.dt, c.step, 0, 1, false}; }
 
+// Systems receive the world explicitly; there are no globals. The grains table is reached directly
+// (every DEM system reads it); other tables through `tables`.
 struct World {
-  Grains grains;
+  World() : grains(tables.add<Grains>()) {}
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  Tables tables;
+  Grains& grains;
   Resources resources;
   Clock clock;
 };

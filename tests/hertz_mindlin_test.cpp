@@ -7,6 +7,8 @@
 // (tools/contact/chung_ooi_table.py turns that file into the README's table).
 #include <catch2/catch.hpp>
 
+#include <cstring>
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -15,6 +17,7 @@
 #include <string>
 
 #include "systems/contact/hertz_mindlin.hpp"
+#include "systems/broadphase/broadphase.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
 #include "systems/setup/dem_simulation.hpp"
 #include "tests/test_support.hpp"
@@ -198,6 +201,21 @@ TEST_CASE("hertz_mindlin: Chung-Ooi T4, oblique impact in gross sliding follows 
   }
 }
 
+// The small drum of test_support with Hertz-Mindlin instead of the linear law: both species get a soft
+// material (E = 1 MPa) that passes the Rayleigh-time check at dt = 1e-5 s, with rolling resistance.
+std::string hertz_drum(double gravity, const std::string& extra_run = "") {
+  std::string hertz = gf::test::small_drum_scene(gravity, extra_run);
+  const std::string lsd = "model = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nkr = 1.0e-5\n"
+                          "en = 0.3\net = 0.3\ner = 0.3\nfriction = 0.3\nrolling_friction = 5.0e-5\n";
+  REQUIRE(hertz.find(lsd) != std::string::npos);
+  hertz.replace(hertz.find(lsd), lsd.size(),
+                "model = \"hertz_mindlin\"\nrestitution = 0.5\nfriction = 0.3\nrolling_friction = 0.05\n");
+  const std::string density = "density = 2500.0\n";
+  for (std::size_t at = hertz.find(density); at != std::string::npos; at = hertz.find(density, at + 1))
+    hertz.insert(at + density.size(), "youngs_modulus = 1.0e6\npoisson_ratio = 0.25\n");
+  return hertz;
+}
+
 TEST_CASE("hertz_mindlin: a checkpoint of another law is refused by name", "[contact][hertz][checkpoint]") {
   gf::test::TempDir dir("hertz_ckpt");
   DemSimulation lin = DemSimulation::from_text(gf::test::small_drum_scene(9.81));
@@ -205,19 +223,37 @@ TEST_CASE("hertz_mindlin: a checkpoint of another law is refused by name", "[con
   gf::CheckpointWriter out;
   gf::save_dem_state(out, lin.world(), lin.scene());
   out.write(dir.path / "lin.gfc");
-  std::string hertz = gf::test::small_drum_scene(9.81);
-  const std::string lsd = "model = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nkr = 1.0e-5\n"
-                          "en = 0.3\net = 0.3\ner = 0.3\nfriction = 0.3\nrolling_friction = 5.0e-5\n";
-  REQUIRE(hertz.find(lsd) != std::string::npos);
-  hertz.replace(hertz.find(lsd), lsd.size(), "model = \"hertz_mindlin\"\nrestitution = 0.5\nfriction = 0.3\n");
-  // Both species (each has this density line) get a soft material that passes the Rayleigh-time check at dt = 1e-5 s.
-  const std::string density = "density = 2500.0\n";
-  for (std::size_t at = hertz.find(density); at != std::string::npos; at = hertz.find(density, at + 1))
-    hertz.insert(at + density.size(), "youngs_modulus = 1.0e6\npoisson_ratio = 0.25\n");
-  DemSimulation hm = DemSimulation::from_text(hertz);
+  DemSimulation hm = DemSimulation::from_text(hertz_drum(9.81));
   const gf::CheckpointReader in(dir.path / "lin.gfc");
   REQUIRE_THROWS_WITH(hm.resume(in), Catch::Contains("contact law 'linear_spring_dashpot'") &&
                                          Catch::Contains("'hertz_mindlin'"));
+}
+
+TEST_CASE("hertz_mindlin: a run resumed from a checkpoint continues bit for bit", "[contact][hertz][checkpoint]") {
+  // The drum poured under 60 m/s^2 while it turns: contacts form, slide and roll, the list is rebuilt
+  // on both sides of the checkpoint, so the law's springs cross it in the file.
+  gf::test::TempDir dir("hertz_resume");
+  const std::string text = hertz_drum(60.0, "max_overlap = 0.3\n");
+  DemSimulation whole = DemSimulation::from_text(text);
+  whole.advance(3000);
+  DemSimulation first = DemSimulation::from_text(text);
+  first.advance(2200);
+  const auto rebuilds = first.world().resources.get<gf::BroadphaseState>().rebuilds;
+  gf::CheckpointWriter out;
+  gf::save_dem_state(out, first.world(), first.scene());
+  out.write(dir.path / "hm.gfc");
+  DemSimulation resumed = DemSimulation::from_text(text);
+  resumed.resume(gf::CheckpointReader(dir.path / "hm.gfc"));
+  resumed.advance(800);
+  REQUIRE(whole.world().resources.get<gf::BroadphaseState>().rebuilds > rebuilds + 3);
+  const auto& h1 = whole.world().resources.get<gf::PairHistory>();
+  const auto& h2 = resumed.world().resources.get<gf::PairHistory>();
+  REQUIRE(h1.size() > 100);
+  REQUIRE(h1.size() == h2.size());
+  REQUIRE(h1.component == "hertz_mindlin.shear");
+  for (std::size_t q = 0; q < h1.width; ++q)
+    CHECK(std::memcmp(h1.value[q].data(), h2.value[q].data(), h1.size() * sizeof(double)) == 0);
+  CHECK(gf::test::state_by_id(whole.grains()) == gf::test::state_by_id(resumed.grains()));
 }
 
 TEST_CASE("hertz_mindlin: a wall material needs both of its keys, named with the scene's line", "[contact][hertz][scene]") {

@@ -13,6 +13,7 @@
 #include <numbers>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <cstdlib>
 #include <system_error>
@@ -108,6 +109,36 @@ inline State state_by_id(const Grains& g) {
     for (int c = 0; c < 9; ++c) out[c] = std::bit_cast<std::uint64_t>(v[c]);
   }
   return s;
+}
+
+// The first point of a 0.5 mm lattice in the box [lo, hi], scanned from the top (largest y) down,
+// whose distance to every grain's surface is more than `clearance` plus r: room to insert a grain
+// of radius r that touches nothing. Throws when there is none.
+inline V3<double> free_spot(const Grains& g, const V3<double>& lo, const V3<double>& hi, double r, double clearance) {
+  const double h = 0.5e-3;
+  for (double y = hi.y; y >= lo.y; y -= h)
+    for (double x = lo.x; x <= hi.x; x += h)
+      for (double z = lo.z; z <= hi.z; z += h) {
+        bool free = true;
+        for (std::size_t i = 0; i < g.n && free; ++i) {
+          const double dx = g.pos.x[i] - x, dy = g.pos.y[i] - y, dz = g.pos.z[i] - z;
+          const double reach = g.radius.r[i] + r + clearance;
+          free = dx * dx + dy * dy + dz * dz > reach * reach;
+        }
+        if (free) return {x, y, z};
+      }
+  throw std::runtime_error("free_spot: no room in the box");
+}
+
+// A grain of species `type` at rest at p, ready for Grains::queue_insert (solid sphere).
+inline GrainRow grain_at(const V3<double>& p, double diameter, double density, std::int32_t type) {
+  GrainRow row;
+  row.x[0] = p.x, row.x[1] = p.y, row.x[2] = p.z;
+  row.radius = 0.5 * diameter;
+  row.mass = density * std::numbers::pi / 6.0 * diameter * diameter * diameter;
+  row.inv_inertia = 1.0 / (0.4 * row.mass * row.radius * row.radius);
+  row.type = type;
+  return row;
 }
 
 inline std::string set_override(const std::string& key, double value) {

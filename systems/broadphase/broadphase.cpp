@@ -12,7 +12,7 @@
 namespace gf {
 
 bool needs_rebuild(const Grains& g, const BroadphaseState& s) {
-  if (!s.valid || s.force_rebuild || s.ref_x.size() != g.n) return true;
+  if (!s.valid || s.force_rebuild || s.ref_x.size() != g.n || !g.pending.empty()) return true;
   const double lim2 = 0.25 * s.skin * s.skin;
   using B = BatchD;
   constexpr std::size_t L = kLanes;
@@ -64,10 +64,29 @@ OldHistory collect_active(const NeighborList& list, const PairHistory& h) {
   return old;
 }
 
+// Applies the table's queued inserts and removals, then renames the old springs' rows to the
+// rows after it; springs of a removed grain are dropped, every other keeps its values.
+void apply_row_changes(Grains& g, OldHistory& old) {
+  const std::vector<std::int64_t> new_row = g.apply_pending();
+  std::size_t e = 0;
+  for (std::size_t f = 0; f < old.i.size(); ++f) {
+    const std::int64_t a = new_row[old.i[f]], b = new_row[old.j[f]];
+    if (a < 0 || b < 0) continue;
+    old.i[e] = static_cast<std::uint32_t>(a);
+    old.j[e] = static_cast<std::uint32_t>(b);
+    for (auto& v : old.values) if (!v.empty()) v[e] = v[f];
+    ++e;
+  }
+  old.i.resize(e);
+  old.j.resize(e);
+  for (auto& v : old.values) if (!v.empty()) v.resize(e);
+}
+
 }  // namespace
 
 void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHistory& history) {
   OldHistory old = collect_active(list, history);
+  if (!g.pending.empty()) apply_row_changes(g, old);
   const std::size_t n = g.n;
 
   // Cells sized for the smallest pair reach: in a mixture of 1 and 3 mm grains, cells sized for

@@ -31,9 +31,12 @@ struct BroadphaseState {
   std::vector<std::uint32_t> new_row;                // per old row: its place after re-sorting
 };
 
-// One full rebuild: sort rows, find pairs within r_i + r_j + skin, carry history over.
+// One full rebuild: apply the table's queued row inserts and removals, sort rows, find pairs within
+// r_i + r_j + skin, carry history over (a removed grain's springs are dropped, new grains start
+// with none).
 void rebuild_neighbors(Grains& g, BroadphaseState& state, NeighborList& list, PairHistory& history);
-// True when some row moved more than skin/2 since the last rebuild (or the list is invalid).
+// True when some row moved more than skin/2 since the last rebuild (or the list is invalid, or
+// rows are queued for insertion or removal).
 bool needs_rebuild(const Grains& g, const BroadphaseState& state);
 
 class Broadphase : public SystemBase<Broadphase> {

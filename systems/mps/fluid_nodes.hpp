@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 #include <tuple>
 
 #include "engine/column.hpp"
@@ -15,7 +16,9 @@ namespace gf {
 
 enum NodeKind : std::int32_t { kFluid = 0, kWall = 1, kDummy = 2 };
 
+// Every row is owned (the liquid does not yet run in several domains: no ghost rows).
 struct FluidNodes {
+  static constexpr std::string_view kName = "fluid_nodes";
   int dim = 2;
   ColumnD x, y, z;     // m
   ColumnD u, v, w;     // m/s
@@ -28,6 +31,13 @@ struct FluidNodes {
 
   auto columns() { return std::tie(x, y, z, u, v, w, p, n, div, ax, ay, az, kind, surface); }
   std::size_t size() const { return x.size(); }
+  std::size_t owned_rows() const { return size(); }
+  std::size_t rows() const { return size(); }
+  std::size_t bytes() {
+    std::size_t b = 0;
+    std::apply([&b](auto&... c) { ((b += c.bytes()), ...); }, columns());
+    return b;
+  }
   void resize(std::size_t rows) {
     std::apply([rows](auto&... c) { (c.resize(rows), ...); }, columns());
   }

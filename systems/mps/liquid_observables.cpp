@@ -19,7 +19,7 @@ double liquid_kinetic_energy(const FluidNodes& f, const LiquidParams& lp) {
 }
 
 std::vector<double> sample_liquid(World& w, const LiquidScene& s) {
-  const FluidNodes& f = w.resources.get<FluidNodes>();
+  const FluidNodes& f = w.tables.get<FluidNodes>();
   const LiquidParams& lp = w.resources.get<LiquidParams>();
   const LiquidDiagnostics& d = w.resources.get<LiquidDiagnostics>();
   const LiquidGeometry& g = s.geometry;

@@ -10,7 +10,7 @@ LiquidSimulation::LiquidSimulation(LiquidScene scene)
     : scene_(std::move(scene)), world_(std::make_unique<World>()), step_(std::make_unique<Schedule>()) {
   World& w = *world_;
   w.clock = Clock{0.0, scene_.dt, 0};
-  FluidNodes& f = w.resources.emplace<FluidNodes>();
+  FluidNodes& f = w.tables.add<FluidNodes>();
   generate_nodes(scene_.geometry, scene_.blocks, scene_.params.k.l0, f);
   w.resources.emplace<LiquidParams>(scene_.params);
   w.resources.emplace<NeighborPairs>();
@@ -29,7 +29,7 @@ LiquidSimulation LiquidSimulation::from_text(std::string_view toml, const std::v
   return LiquidSimulation(load_liquid_scene(SceneDoc::parse(toml, "scene.toml", overrides)));
 }
 
-FluidNodes& LiquidSimulation::nodes() { return world_->resources.get<FluidNodes>(); }
+FluidNodes& LiquidSimulation::nodes() { return world_->tables.get<FluidNodes>(); }
 LiquidParams& LiquidSimulation::params() { return world_->resources.get<LiquidParams>(); }
 const LiquidDiagnostics& LiquidSimulation::diagnostics() { return world_->resources.get<LiquidDiagnostics>(); }
 

@@ -1,4 +1,4 @@
-// A liquid scene made runnable: the world (FluidNodes and the liquid's resources) and the step schedule. The CLI,
+// A liquid scene made runnable: the world (the FluidNodes table and the liquid's resources) and the step schedule. The CLI,
 // the tests and the benchmarks all drive liquid scenes through this one type.
 #pragma once
 

@@ -17,13 +17,14 @@ template <class R>
 R& res(World& w) {
   return w.resources.get<R>();
 }
+FluidNodes& nodes(World& w) { return w.tables.get<FluidNodes>(); }
 
 struct NeighborSearch : SystemBase<NeighborSearch> {
   using Reads = gf::Reads<LiquidParams>;
   using Writes = gf::Writes<FluidNodes, NeighborPairs>;
   std::string_view name() const override { return "neighbour_search"; }
   void run(World& w, const StepContext& step) override {
-    auto& f = res<FluidNodes>(w);
+    auto& f = nodes(w);
     auto& lp = res<LiquidParams>(w);
     NeighborPairs& nb = res<NeighborPairs>(w);
     if (!neighbors_stale(f, nb, lp.skin, step.dt)) return;
@@ -36,14 +37,14 @@ struct NumberDensity : SystemBase<NumberDensity> {
   using Reads = gf::Reads<LiquidParams>;
   using Writes = gf::Writes<FluidNodes, NeighborPairs>;
   std::string_view name() const override { return "number_density"; }
-  void run(World& w, const StepContext&) override { compute_number_density(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w).k.re); }
+  void run(World& w, const StepContext&) override { compute_number_density(nodes(w), res<NeighborPairs>(w), res<LiquidParams>(w).k.re); }
 };
 
 struct ExplicitStep : SystemBase<ExplicitStep> {
   using Reads = gf::Reads<LiquidParams, NeighborPairs>;
   using Writes = gf::Writes<FluidNodes>;
   std::string_view name() const override { return "explicit_step"; }
-  void run(World& w, const StepContext& step) override { predict_velocity(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w), step.dt); }
+  void run(World& w, const StepContext& step) override { predict_velocity(nodes(w), res<NeighborPairs>(w), res<LiquidParams>(w), step.dt); }
 };
 
 struct PredictedDensity : SystemBase<PredictedDensity> {
@@ -51,7 +52,7 @@ struct PredictedDensity : SystemBase<PredictedDensity> {
   using Writes = gf::Writes<FluidNodes, NeighborPairs, LiquidDiagnostics>;
   std::string_view name() const override { return "predicted_density"; }
   void run(World& w, const StepContext& step) override {
-    auto& f = res<FluidNodes>(w);
+    auto& f = nodes(w);
     auto& lp = res<LiquidParams>(w);
     compute_number_density(f, res<NeighborPairs>(w), lp.k.re);
     check_density(f, lp, res<StabilityLimits>(w), step.t + step.dt, res<LiquidDiagnostics>(w));
@@ -63,7 +64,7 @@ struct FreeSurface : SystemBase<FreeSurface> {
   using Writes = gf::Writes<FluidNodes, LiquidDiagnostics>;
   std::string_view name() const override { return "free_surface"; }
   void run(World& w, const StepContext&) override {
-    res<LiquidDiagnostics>(w).surface_nodes = detect_free_surface(res<FluidNodes>(w), res<LiquidParams>(w));
+    res<LiquidDiagnostics>(w).surface_nodes = detect_free_surface(nodes(w), res<LiquidParams>(w));
   }
 };
 
@@ -74,7 +75,7 @@ struct PressureSolve : SystemBase<PressureSolve> {
   void run(World& w, const StepContext& step) override {
     auto& lp = res<LiquidParams>(w);
     auto& d = res<LiquidDiagnostics>(w);
-    d.ppe = solve_pressure(res<FluidNodes>(w), res<NeighborPairs>(w), lp, step.dt, res<PpeWorkspace>(w));
+    d.ppe = solve_pressure(nodes(w), res<NeighborPairs>(w), lp, step.dt, res<PpeWorkspace>(w));
     check_ppe(d.ppe, lp.solver, step.t + step.dt);
   }
 };
@@ -83,14 +84,14 @@ struct DummyPressure : SystemBase<DummyPressure> {
   using Reads = gf::Reads<LiquidParams, NeighborPairs>;
   using Writes = gf::Writes<FluidNodes>;
   std::string_view name() const override { return "dummy_pressure"; }
-  void run(World& w, const StepContext&) override { extrapolate_dummy_pressure(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w)); }
+  void run(World& w, const StepContext&) override { extrapolate_dummy_pressure(nodes(w), res<NeighborPairs>(w), res<LiquidParams>(w)); }
 };
 
 struct PressureCorrect : SystemBase<PressureCorrect> {
   using Reads = gf::Reads<LiquidParams, NeighborPairs>;
   using Writes = gf::Writes<FluidNodes>;
   std::string_view name() const override { return "pressure_correct"; }
-  void run(World& w, const StepContext& step) override { correct_velocity(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w), step.dt); }
+  void run(World& w, const StepContext& step) override { correct_velocity(nodes(w), res<NeighborPairs>(w), res<LiquidParams>(w), step.dt); }
 };
 
 struct Collision : SystemBase<Collision> {
@@ -98,7 +99,7 @@ struct Collision : SystemBase<Collision> {
   using Writes = gf::Writes<FluidNodes>;
   std::string_view name() const override { return "collision"; }
   void run(World& w, const StepContext& step) override {
-    apply_collisions(res<FluidNodes>(w), res<NeighborPairs>(w), res<LiquidParams>(w).collision, step.dt);
+    apply_collisions(nodes(w), res<NeighborPairs>(w), res<LiquidParams>(w).collision, step.dt);
   }
 };
 
@@ -107,7 +108,7 @@ struct MotionCheck : SystemBase<MotionCheck> {
   using Writes = gf::Writes<LiquidDiagnostics>;
   std::string_view name() const override { return "motion_check"; }
   void run(World& w, const StepContext& step) override {
-    check_motion(res<FluidNodes>(w), res<LiquidParams>(w), res<StabilityLimits>(w), step.dt, step.t + step.dt,
+    check_motion(nodes(w), res<LiquidParams>(w), res<StabilityLimits>(w), step.dt, step.t + step.dt,
                  res<LiquidDiagnostics>(w));
   }
 };

@@ -9,7 +9,7 @@
 //   pressure_correct   u = u* - dt/rho grad p, r = r* + dt u'
 //   collision          Koshizuka-Oka collision model (liquid.collision_distance, 0 = off)
 //   motion_check       CFL, escaped or non-finite particles
-// Every system reads and writes whole resources of the world (FluidNodes, NeighborPairs ...), so the graph is the
+// Every system reads and writes the whole FluidNodes table and whole resources (NeighborPairs ...), so the graph is the
 // chain above; each system's own loops run in parallel.
 #pragma once
 

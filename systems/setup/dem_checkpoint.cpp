@@ -1,5 +1,6 @@
 #include "systems/setup/dem_checkpoint.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -56,6 +57,9 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) 
   out.vector("contact.law", std::vector<char>(scene.law.begin(), scene.law.end()));
   out.value("grains.n_owned", static_cast<std::uint64_t>(gr.n_owned));
   out.value("grains.n", static_cast<std::uint64_t>(gr.n));
+  out.value("grains.next_id", gr.next_id);
+  out.vector("grains.pending.insert", gr.pending.insert);
+  out.vector("grains.pending.remove", gr.pending.remove);
   std::size_t k = 0;
   gr.for_each_core_column([&](auto& col) { out.column(g(k++), col); });
   k = 0;
@@ -88,8 +92,8 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
                 ", the scene now uses '" + scene.law + "'",
             "resume with the scene's original [contact] model: a checkpoint carries that law's history");
   Grains& gr = world.grains;
+  // The row count is the checkpoint's: grains may have been added or removed since the fill.
   const auto n_owned = in.value<std::uint64_t>("grains.n_owned");
-  require_equal<std::uint64_t>(in, "grain count", n_owned, gr.n_owned, same_scene);
   auto& bp = world.resources.get<BroadphaseState>();
   require_equal<double>(in, "run.skin", in.value<double>("broadphase.skin"), bp.skin, "resume with the same run.skin");
 
@@ -110,6 +114,15 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
     // Attached columns are sized with the table; the checkpoint must hold exactly that many rows.
     if (!in.has(x(k))) in.fail("attached grain column " + std::to_string(k) + " is missing", same_scene);
     in.copy_raw(x(k++), c.data, c.elem_size, c.size);
+  }
+  if (in.has("grains.next_id")) {
+    gr.next_id = in.value<std::int64_t>("grains.next_id");
+    in.vector("grains.pending.insert", gr.pending.insert);
+    in.vector("grains.pending.remove", gr.pending.remove);
+  } else {  // written before ids were handed out during a run: the next free one
+    gr.next_id = 0;
+    for (std::size_t i = 0; i < gr.n; ++i) gr.next_id = std::max(gr.next_id, gr.pid.id[i] + 1);
+    gr.pending = {};
   }
 
   bp.valid = in.value<bool>("broadphase.valid");

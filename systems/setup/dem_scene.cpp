@@ -469,6 +469,7 @@ void build_dem_world(const DemScene& s, World& world) {
     g.species.type[i] = p.type;
     g.pid.id[i] = static_cast<std::int64_t>(i);
   }
+  g.next_id = static_cast<std::int64_t>(n);
   g.extras.attach<WallHistory>(n).shape(s.walls.size(), n);
 
   world.clock = Clock{0.0, s.dt, 0};
