@@ -31,7 +31,7 @@ void BM_KickDrift(benchmark::State& state) {
   gf::World& w = sim->world();
   gf::Grains& g = w.grains;
   const auto& gravity = w.resources.get<gf::Gravity>();
-  const gf::ForceTerms terms = gf::dem_force_terms();
+  const gf::ForceTerms terms = gf::dem_force_terms(sim->scene());
   double dt = w.clock.dt;
   for (auto _ : state) {
     gf::kick_drift(g, terms, gravity, 0.5 * dt, dt);
@@ -51,7 +51,7 @@ void BM_Kick(benchmark::State& state) {
   gf::World& w = sim->world();
   gf::Grains& g = w.grains;
   const auto& gravity = w.resources.get<gf::Gravity>();
-  const gf::ForceTerms terms = gf::dem_force_terms();
+  const gf::ForceTerms terms = gf::dem_force_terms(sim->scene());
   double h = 0.5 * w.clock.dt;
   for (auto _ : state) {
     gf::kick(g, terms, gravity, h);

@@ -78,10 +78,18 @@ struct RowChanges {
   bool empty() const { return insert.empty() && remove.empty(); }
 };
 
+// The spin components: a table whose grains do not rotate (Grains::spin false) has none of them.
+template <class C>
+inline constexpr bool is_spin_component =
+    std::is_same_v<C, AngularVelocity> || std::is_same_v<C, Torque> || std::is_same_v<C, WallTorque>;
+
 struct Grains {
   static constexpr std::string_view kName = "grains";
   std::size_t n_owned = 0;
   std::size_t n = 0;  // owned + ghosts
+  // Whether any grain rotates. Without rotation the spin components hold no rows at all (set before
+  // the first resize); kernels then take spins as zero and write no torques.
+  bool spin = true;
   // The next id queue_insert hands out; ids are never reused (checkpointed with the table).
   std::int64_t next_id = 0;
   RowChanges pending;
@@ -103,9 +111,13 @@ struct Grains {
     return std::tie(pos, vel, omega, force, torque, wall_force, wall_torque, radius, mass, species, pid);
   }
 
+  // Every column the table holds (without rotation, not the spin components).
   template <class F>
   void for_each_core_column(F&& f) {
-    std::apply([&](auto&... comp) { (for_each_column(comp, f), ...); }, components());
+    auto visit = [&](auto& comp) {
+      if (spin || !is_spin_component<std::decay_t<decltype(comp)>>) for_each_column(comp, f);
+    };
+    std::apply([&](auto&... comp) { (visit(comp), ...); }, components());
   }
 
   void resize(std::size_t rows) {

@@ -25,6 +25,8 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/scene.hpp"
+#include "systems/broadphase/broadphase.hpp"
+#include "systems/contact/pair_contact.hpp"
 #include "systems/setup/dem_scene.hpp"
 #include "systems/setup/dem_simulation.hpp"
 #include "tests/test_support.hpp"
@@ -549,4 +551,39 @@ TEST_CASE("cli: SIGTERM stops a run after the step in flight and keeps its resul
   const std::string pvd = read_file(out / "frames.pvd");
   CHECK_THAT(pvd, Contains("</VTKFile>"));
   CHECK(fs::exists(out / "final_state.csv"));
+}
+
+TEST_CASE("scene: the step holds only what the scene needs", "[scene]") {
+  // Walls and rotation each add systems or columns; a scene without them has neither.
+  const std::string base = gf::test::binary_box_scene(200, 10, 9.81);
+  const std::string no_walls = base.substr(0, base.find("[[wall]]")) + base.substr(base.find("[[fill]]"));
+  std::string still = no_walls;
+  for (std::size_t at = still.find("density = 2500.0\n"); at != std::string::npos;
+       at = still.find("density = 2500.0\n", at + 1))
+    still.insert(at + 17, "rotates = false\n");
+  auto names = [](gf::DemSimulation& s) { return s.step().names(); };
+  auto has = [](const std::vector<std::string>& v, const char* n) { return std::find(v.begin(), v.end(), n) != v.end(); };
+
+  gf::DemSimulation full = gf::DemSimulation::from_text(base);
+  CHECK(has(names(full), "wall_contact"));
+  CHECK(full.grains().omega.x.size() == full.grains().n);
+
+  gf::DemSimulation open = gf::DemSimulation::from_text(no_walls);
+  CHECK_FALSE(has(names(open), "wall_contact"));
+  CHECK(has(names(open), "pair_contact"));
+
+  gf::DemSimulation translating = gf::DemSimulation::from_text(still);
+  CHECK_FALSE(translating.grains().spin);
+  CHECK(translating.grains().omega.x.size() == 0);
+  // 9 columns fewer (angular velocity, torque, wall torque) of 8 bytes per grain.
+  CHECK(open.grains().bytes() - translating.grains().bytes() >= 9 * 8 * translating.grains().n);
+  // Stirred, the grains collide: pair contacts without spin, the list rebuilt as they move.
+  gf::test::stir_by_id(translating.grains(), 3, 0.3);
+  std::size_t contacts = 0;
+  for (int k = 0; k < 300; ++k) {
+    translating.advance(1);
+    contacts = std::max(contacts, translating.world().resources.get<gf::PairForces>().contacts());
+  }
+  CHECK(contacts > 0);
+  CHECK(translating.world().resources.get<gf::BroadphaseState>().rebuilds > 1);
 }

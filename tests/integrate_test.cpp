@@ -11,6 +11,8 @@
 #include <random>
 #include <string>
 
+#include "systems/contact/pair_contact.hpp"
+#include "systems/walls/wall_contact.hpp"
 #include "tests/test_support.hpp"
 
 using gf::DemSimulation;
@@ -192,7 +194,7 @@ TEST_CASE("integrate: a declared force term is summed without touching the integ
     g.wall_force.y[i] = 2.0;
     push.z[i] = 3.0 + static_cast<double>(i);
   }
-  gf::ForceTerms terms = gf::dem_force_terms();
+  gf::ForceTerms terms{{gf::pair_force_term(), gf::wall_force_term()}};
   terms.list.push_back(gf::force_term<Push>("push"));
   const double h = 0.25;
   gf::kick(g, terms, gf::Gravity{0.0, 0.0, -1.0}, h);

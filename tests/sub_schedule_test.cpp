@@ -66,7 +66,7 @@ TEST_CASE("sub-schedule: the DEM step run 4 times per outer step equals 4 separa
 
   constexpr int k = 4;
   auto inner = std::make_unique<gf::Schedule>();
-  gf::schedule_dem_step(*inner, sub.scene().law);
+  gf::schedule_dem_step(*inner, sub.scene());
   gf::Schedule outer;
   outer.emplace<gf::SubSchedule>("dem_substeps", k, std::move(inner));
   gf::World& w = sub.world();

@@ -89,9 +89,11 @@ inline void stir_by_id(Grains& g, std::uint64_t seed, double max_speed = 0.3, do
     g.vel.x[r] = u(rng);
     g.vel.y[r] = u(rng);
     g.vel.z[r] = u(rng);
-    g.omega.x[r] = w(rng);
-    g.omega.y[r] = w(rng);
-    g.omega.z[r] = w(rng);
+    const double wx = w(rng), wy = w(rng), wz = w(rng);  // drawn either way: the same velocities
+    if (!g.spin) continue;
+    g.omega.x[r] = wx;
+    g.omega.y[r] = wy;
+    g.omega.z[r] = wz;
   }
 }
 

@@ -16,6 +16,7 @@
 //    above; the centre then accelerates at g (sin(theta) - f_s cos(theta)) and the spin at f_s N L / I.
 // Slopes are reached by tilting gravity slowly (a quasi-static ramp), as one tilts a plank: a sudden tilt would
 // load the springs dynamically and overshoot the static friction force.
+#include "systems/setup/dem_checkpoint.hpp"
 #include "systems/setup/dem_simulation.hpp"
 
 #include <catch2/catch.hpp>
@@ -54,7 +55,7 @@ V spin(const Grains& g) { return {g.omega.x[0], g.omega.y[0], g.omega.z[0]}; }
 void place(Grains& g, const V& x, const V& v, const V& w) {
   g.pos.x[0] = x.x, g.pos.y[0] = x.y, g.pos.z[0] = x.z;
   g.vel.x[0] = v.x, g.vel.y[0] = v.y, g.vel.z[0] = v.z;
-  g.omega.x[0] = w.x, g.omega.y[0] = w.y, g.omega.z[0] = w.z;
+  if (g.spin) g.omega.x[0] = w.x, g.omega.y[0] = w.y, g.omega.z[0] = w.z;
 }
 
 // Least-squares slope of y(t).
@@ -291,6 +292,56 @@ TEST_CASE("wall: incline without rolling resistance slides and spins up above ta
   // wall torque would reverse the spin-up, a wrong lever arm change its size by the lever's error.
   CHECK(std::abs(a / ref - 1.0) < 0.01);
   CHECK(std::abs(wdot / wref - 1.0) < 0.01);
+}
+
+TEST_CASE("wall: a sphere whose species does not rotate slides to rest at f_s g, and has no spin columns",
+          "[contact][wall][rotation]") {
+  // Launched at v0 = 0.2 m/s along the level plane without spin. Without rotation the contact slides
+  // until it stops: v = v0 - f_s g t, distance v0^2 / (2 f_s g). With rotation the same friction spins
+  // it up and it rolls from t = 2 v0 / (7 f_s g) = 19 ms at 5/7 v0: at 50 ms the two differ by far.
+  const double v0 = 0.2, fs = 0.3;
+  auto launch = [&](bool rotates) {
+    DemSimulation sim = DemSimulation::from_file(kPlane, {std::string("species.0.rotates=") + (rotates ? "true" : "false")});
+    place(sim.grains(), {0, kR - kM * kG / kKn, 0}, {v0, 0, 0}, {0, 0, 0});  // resting on the plane
+    return sim;
+  };
+  DemSimulation slides = launch(false);
+  Grains& g = slides.grains();
+  CHECK_FALSE(g.spin);
+  CHECK(g.omega.x.size() == 0);  // no spin columns at all
+  CHECK(g.torque.x.size() == 0);
+  CHECK(g.wall_torque.x.size() == 0);
+  std::vector<double> t, v;
+  while (slides.world().clock.t < 0.05) {
+    slides.advance(1);
+    if (slides.world().clock.t > 0.005) t.push_back(slides.world().clock.t), v.push_back(vel(g).x);
+  }
+  const double a = slope(t, v);
+  // 1 %: kinetic friction f_s N with N = m g is the only horizontal force while it slides.
+  CHECK(a == Approx(-fs * kG).epsilon(0.01));
+  const double v_slid = vel(g).x;
+  slides.advance(5000);  // 50 ms more: long stopped (stop at 68 ms)
+  CHECK(std::abs(vel(g).x) < 1e-4 * v0);
+  // 1 %: the distance of uniform deceleration; the stick at the end creeps by about f_s m g / k_t = 0.2 um.
+  CHECK(pos(g).x == Approx(v0 * v0 / (2.0 * fs * kG)).epsilon(0.01));
+
+  DemSimulation rolls = launch(true);
+  CHECK(rolls.grains().omega.x.size() == 1);
+  rolls.advance(5000);
+  CHECK(v_slid < 0.3 * v0);            // v0 - f_s g t = 0.26 v0
+  CHECK(vel(rolls.grains()).x > 0.6 * v0);  // rolling at about 5/7 v0, slowed only by rolling friction
+
+  // A checkpoint without spin columns resumes only into a scene whose species do not rotate either.
+  gf::test::TempDir dir("no_rotation");
+  gf::CheckpointWriter out;
+  gf::save_dem_state(out, slides.world(), slides.scene());
+  out.write(dir.path / "slides.gfc");
+  const gf::CheckpointReader in(dir.path / "slides.gfc");
+  DemSimulation again = launch(false);
+  again.resume(in);
+  CHECK(pos(again.grains()).x == pos(g).x);
+  DemSimulation spinning = launch(true);
+  CHECK_THROWS_WITH(spinning.resume(in), Catch::Contains("do not rotate") && Catch::Contains("Fix:"));
 }
 
 TEST_CASE("wall: rolling friction decelerates a rolling sphere at 5 f_r g / (7 r)", "[contact][wall]") {

@@ -16,8 +16,10 @@ Energies kinetic_energy(const Grains& g) {
       [&](const tbb::blocked_range<std::size_t>& r, Energies e) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
           const double v2 = g.vel.x[i] * g.vel.x[i] + g.vel.y[i] * g.vel.y[i] + g.vel.z[i] * g.vel.z[i];
-          const double w2 = g.omega.x[i] * g.omega.x[i] + g.omega.y[i] * g.omega.y[i] + g.omega.z[i] * g.omega.z[i];
           e.translational += 0.5 * g.mass.m[i] * v2;
+          // Grains that do not rotate (no spin columns, or a species with inv_inertia 0) have none.
+          if (!g.spin || g.mass.inv_inertia[i] == 0.0) continue;
+          const double w2 = g.omega.x[i] * g.omega.x[i] + g.omega.y[i] * g.omega.y[i] + g.omega.z[i] * g.omega.z[i];
           e.rotational += 0.5 * w2 / g.mass.inv_inertia[i];
         }
         return e;

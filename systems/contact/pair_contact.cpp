@@ -130,8 +130,8 @@ double evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& 
                     PairForces& out, std::size_t c, const SlabTorques& st, double lim2) {
   const V3<double> d{g.pos.x[j] - g.pos.x[i], g.pos.y[j] - g.pos.y[i], g.pos.z[j] - g.pos.z[i]};
   const double dist = std::sqrt(dot(d, d));
-  const V3<double> wi{g.omega.x[i], g.omega.y[i], g.omega.z[i]};
-  const V3<double> wj{g.omega.x[j], g.omega.y[j], g.omega.z[j]};
+  const V3<double> wi = g.spin ? V3<double>{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : V3<double>{0.0, 0.0, 0.0};
+  const V3<double> wj = g.spin ? V3<double>{g.omega.x[j], g.omega.y[j], g.omega.z[j]} : V3<double>{0.0, 0.0, 0.0};
   const V3<double> vij{g.vel.x[i] - g.vel.x[j], g.vel.y[i] - g.vel.y[j], g.vel.z[i] - g.vel.z[j]};
   const SphereContact<double> sc = sphere_sphere(d, dist, 1.0 / dist, g.radius.r[i], g.radius.r[j], vij, wi, wj);
   const double* k = table.pair(static_cast<std::size_t>(g.species.type[i]), static_cast<std::size_t>(g.species.type[j]));
@@ -211,7 +211,8 @@ struct SlabSums {
       }
     }
     double* cols[6] = {F[0], F[1], F[2], T[0], T[1], T[2]};
-    for (std::size_t k = 0; k < 6; ++k) {
+    const std::size_t ncols = T[0] ? 6 : 3;  // no torque columns when grains do not rotate
+    for (std::size_t k = 0; k < ncols; ++k) {
       double* __restrict col = cols[k];
       for (std::size_t r = a; r < b; ++r) col[r] = acc[(r - a) * kAcc + k];
     }
@@ -249,7 +250,8 @@ double evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, La
   if (out.spill.size() < ns * ns) out.spill.resize(ns * ns);
   out.slab_excess.assign(ns, -std::numeric_limits<double>::infinity());
   const SlabSums sums{{g.force.x.data(), g.force.y.data(), g.force.z.data()},
-                      {g.torque.x.data(), g.torque.y.data(), g.torque.z.data()},
+                      {g.spin ? g.torque.x.data() : nullptr, g.spin ? g.torque.y.data() : nullptr,
+                       g.spin ? g.torque.z.data() : nullptr},
                       out.ci.data(),
                       out.cj.data(),
                       {out.fx.data(), out.fy.data(), out.fz.data()}};
@@ -285,6 +287,7 @@ double evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, La
         Fx[e.j] -= e.fx;
         Fy[e.j] -= e.fy;
         Fz[e.j] -= e.fz;
+        if (!Tx) continue;
         Tx[e.j] += e.tx;
         Ty[e.j] += e.ty;
         Tz[e.j] += e.tz;
@@ -416,6 +419,7 @@ double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, 
     // The overlap check rides along: the largest delta - 2 limit min(r_i, r_j) of the slab.
     B worst(-std::numeric_limits<double>::infinity());
     const B blim2(lim2);
+    const bool spin = g.spin;
     std::size_t c0 = cbeg;
     for (; c0 + L <= cend; c0 += L) {
       // Contacts are in owner order: the owners of a batch are a few adjacent rows, loaded whole
@@ -430,8 +434,12 @@ double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, 
       // The distance correctly rounded (the overlap is its small difference from r_i + r_j), the
       // reciprocal from the estimate (touching pairs are apart by more than 0).
       const B d2 = dot(d, d);
-      const V wi{load_rows(g.omega.x.data(), bi), load_rows(g.omega.y.data(), bi), load_rows(g.omega.z.data(), bi)};
-      const V wj{gather32(g.omega.x.data(), bj), gather32(g.omega.y.data(), bj), gather32(g.omega.z.data(), bj)};
+      const V wi = spin ? V{load_rows(g.omega.x.data(), bi), load_rows(g.omega.y.data(), bi),
+                            load_rows(g.omega.z.data(), bi)}
+                        : V{B(0.0), B(0.0), B(0.0)};
+      const V wj = spin ? V{gather32(g.omega.x.data(), bj), gather32(g.omega.y.data(), bj),
+                            gather32(g.omega.z.data(), bj)}
+                        : V{B(0.0), B(0.0), B(0.0)};
       const V vij{load_rows(g.vel.x.data(), bi) - gather32(g.vel.x.data(), bj),
                   load_rows(g.vel.y.data(), bi) - gather32(g.vel.y.data(), bj),
                   load_rows(g.vel.z.data(), bi) - gather32(g.vel.z.data(), bj)};

@@ -36,7 +36,7 @@ TermColumns resolve(Grains& g, const ForceTerms& terms) {
   TermColumns c;
   for (const ForceTerm& term : terms.list) {
     c.f[c.nf++] = term.force_columns(g);
-    if (term.has_torque) c.t[c.nt++] = term.torque_columns(g);
+    if (term.has_torque && g.spin) c.t[c.nt++] = term.torque_columns(g);
   }
   return c;
 }
@@ -55,7 +55,8 @@ T sum_terms(const Vec3Columns* cols, std::size_t n, const double* Vec3Columns::*
 // not vectorise the plain loop), the last partial batch row by row; padding rows are not touched.
 // Returns whether every value it wrote is finite: x - x is 0 for a finite x and NaN otherwise, and
 // a NaN stays in the running sum (a few additions per batch, on values already in registers).
-template <bool Drift>
+// Spin: the table has spin columns (Grains::spin); without them only translation is integrated.
+template <bool Drift, bool Spin>
 bool kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
   using B = BatchD;
   constexpr std::size_t L = kLanes;
@@ -71,10 +72,13 @@ bool kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h
     g.vel.x[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::x, i, one) + gx;
     g.vel.y[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::y, i, one) + gy;
     g.vel.z[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::z, i, one) + gz;
-    const double b = h * g.mass.inv_inertia[i];
-    g.omega.x[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::x, i, one);
-    g.omega.y[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::y, i, one);
-    g.omega.z[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::z, i, one);
+    if constexpr (Spin) {
+      const double b = h * g.mass.inv_inertia[i];
+      g.omega.x[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::x, i, one);
+      g.omega.y[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::y, i, one);
+      g.omega.z[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::z, i, one);
+      bad += (g.omega.x[i] - g.omega.x[i]) + (g.omega.y[i] - g.omega.y[i]) + (g.omega.z[i] - g.omega.z[i]);
+    }
     if constexpr (Drift) {
       g.pos.x[i] += dt * g.vel.x[i];
       g.pos.y[i] += dt * g.vel.y[i];
@@ -82,7 +86,6 @@ bool kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h
       bad += (g.pos.x[i] - g.pos.x[i]) + (g.pos.y[i] - g.pos.y[i]) + (g.pos.z[i] - g.pos.z[i]);
     }
     bad += (g.vel.x[i] - g.vel.x[i]) + (g.vel.y[i] - g.vel.y[i]) + (g.vel.z[i] - g.vel.z[i]);
-    bad += (g.omega.x[i] - g.omega.x[i]) + (g.omega.y[i] - g.omega.y[i]) + (g.omega.z[i] - g.omega.z[i]);
     return bad == 0.0;
   };
   auto batches = [&](const tbb::blocked_range<std::size_t>& r, bool finite) {
@@ -99,14 +102,17 @@ bool kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h
       vx.store_aligned(&g.vel.x[i]);
       vy.store_aligned(&g.vel.y[i]);
       vz.store_aligned(&g.vel.z[i]);
-      const B b = bh * ld(g.mass.inv_inertia, i);
-      const B wx = ld(g.omega.x, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::x, i, lp);
-      const B wy = ld(g.omega.y, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::y, i, lp);
-      const B wz = ld(g.omega.z, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::z, i, lp);
-      wx.store_aligned(&g.omega.x[i]);
-      wy.store_aligned(&g.omega.y[i]);
-      wz.store_aligned(&g.omega.z[i]);
-      bad += ((vx - vx) + (vy - vy)) + ((vz - vz) + (wx - wx)) + ((wy - wy) + (wz - wz));
+      if constexpr (Spin) {
+        const B b = bh * ld(g.mass.inv_inertia, i);
+        const B wx = ld(g.omega.x, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::x, i, lp);
+        const B wy = ld(g.omega.y, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::y, i, lp);
+        const B wz = ld(g.omega.z, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::z, i, lp);
+        wx.store_aligned(&g.omega.x[i]);
+        wy.store_aligned(&g.omega.y[i]);
+        wz.store_aligned(&g.omega.z[i]);
+        bad += (wx - wx) + ((wy - wy) + (wz - wz));
+      }
+      bad += (vx - vx) + ((vy - vy) + (vz - vz));
       if constexpr (Drift) {
         const B px = ld(g.pos.x, i) + bdt * vx, py = ld(g.pos.y, i) + bdt * vy, pz = ld(g.pos.z, i) + bdt * vz;
         px.store_aligned(&g.pos.x[i]);
@@ -126,11 +132,11 @@ bool kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h
 }  // namespace
 
 bool kick(Grains& g, const ForceTerms& terms, const Gravity& grav, double h) {
-  return kick_rows<false>(g, terms, grav, h, 0.0);
+  return g.spin ? kick_rows<false, true>(g, terms, grav, h, 0.0) : kick_rows<false, false>(g, terms, grav, h, 0.0);
 }
 
 bool kick_drift(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
-  return kick_rows<true>(g, terms, grav, h, dt);
+  return g.spin ? kick_rows<true, true>(g, terms, grav, h, dt) : kick_rows<true, false>(g, terms, grav, h, dt);
 }
 
 Access integrator_access(const ForceTerms& terms, Access writes) {

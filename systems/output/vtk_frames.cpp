@@ -114,7 +114,7 @@ std::string vtp_bytes(const Grains& g, const FrameFields& fields) {
       return std::sqrt(v[0][i] * v[0][i] + v[1][i] * v[1][i] + v[2][i] * v[2][i]);
     });
   }
-  if (fields.angular_velocity) {
+  if (fields.angular_velocity && g.spin) {  // grains that do not rotate have no spin to show
     const double* w[3] = {g.omega.x.data(), g.omega.y.data(), g.omega.z.data()};
     data.add<double>(xml, in, "angular_velocity", 3, n,
                      [&](std::size_t i, std::size_t c) { return w[c][i]; });

@@ -54,7 +54,7 @@ int check_dem_command(const CliOptions& opt) {
   const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
   const DemScene s = load_dem_scene(doc);
   Schedule step;
-  schedule_dem_step(step, s.law);
+  schedule_dem_step(step, s);
   World probe;
   step.build(probe);
   std::size_t n = planned_grain_count(s);
@@ -73,6 +73,15 @@ int check_dem_command(const CliOptions& opt) {
   });
   std::printf("grains: %zu in %zu species; walls: %zu; fills: %zu\n", n, s.species.size(), s.walls.size(),
               s.fills.size());
+  std::size_t rotating = 0;
+  for (const SpeciesSpec& sp : s.species) rotating += sp.rotates;
+  if (rotating == s.species.size())
+    std::printf("rotation: every species rotates (angular velocity and torques integrated)\n");
+  else if (rotating == 0)
+    std::printf("rotation: no species rotates: translation only, the grains have no spin columns\n");
+  else
+    std::printf("rotation: %zu of %zu species rotate (the others have zero inverse inertia)\n", rotating,
+                s.species.size());
   std::printf("systems per step (with the systems each waits for):\n%s", step.describe().c_str());
   std::printf("observers: series_output, frame_output, picture_output\n");
   std::printf("critical step: smallest time-step term %.4g s (%s); dt = %.4g s = %.3f of it (limit %.3f)%s\n",

@@ -58,6 +58,7 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) 
   out.value("grains.n_owned", static_cast<std::uint64_t>(gr.n_owned));
   out.value("grains.n", static_cast<std::uint64_t>(gr.n));
   out.value("grains.next_id", gr.next_id);
+  out.value("grains.spin", gr.spin);
   out.vector("grains.pending.insert", gr.pending.insert);
   out.vector("grains.pending.remove", gr.pending.remove);
   std::size_t k = 0;
@@ -92,6 +93,10 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
                 ", the scene now uses '" + scene.law + "'",
             "resume with the scene's original [contact] model: a checkpoint carries that law's history");
   Grains& gr = world.grains;
+  if (in.has("grains.spin") && in.value<bool>("grains.spin") != gr.spin)
+    in.fail(std::string("it was written for grains that ") + (gr.spin ? "do not rotate" : "rotate") +
+                ", the scene's species now " + (gr.spin ? "rotate" : "do not"),
+            "resume with the species' original 'rotates' keys");
   // The row count is the checkpoint's: grains may have been added or removed since the fill.
   const auto n_owned = in.value<std::uint64_t>("grains.n_owned");
   auto& bp = world.resources.get<BroadphaseState>();

@@ -289,6 +289,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
     const double r = 0.5 * spec.diameter;
     spec.mass = spec.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
     spec.inertia = 0.4 * spec.mass * r * r;
+    spec.rotates = sp.get_bool("rotates", true);
     s.species.push_back(spec);
   }
   if (s.species.empty())
@@ -360,17 +361,22 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   return s;
 }
 
-ForceTerms dem_force_terms() { return {{pair_force_term(), wall_force_term()}}; }
+ForceTerms dem_force_terms(const DemScene& scene) {
+  ForceTerms terms{{pair_force_term()}};
+  if (!scene.walls.empty()) terms.list.push_back(wall_force_term());
+  return terms;
+}
 
-void schedule_dem_step(Schedule& step, std::string_view law) {
-  step.emplace<IntegratePositions>(dem_force_terms());
+void schedule_dem_step(Schedule& step, const DemScene& scene) {
+  const std::string& law = scene.law;
+  step.emplace<IntegratePositions>(dem_force_terms(scene));
   step.emplace<Broadphase>();
   const bool known = with_law(law, [&]<class Law>() {
     step.emplace<PairContact<Law>>();
-    step.emplace<WallContact<Law>>();
+    if (!scene.walls.empty()) step.emplace<WallContact<Law>>();
   });
   if (!known) throw std::invalid_argument("schedule_dem_step: no contact law is named '" + std::string(law) + "'");
-  step.emplace<IntegrateVelocities>(dem_force_terms());
+  step.emplace<IntegrateVelocities>(dem_force_terms(scene));
 }
 
 std::size_t planned_grain_count(const DemScene& scene) {
@@ -383,12 +389,12 @@ std::size_t planned_grain_count(const DemScene& scene) {
 }
 
 std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n) {
-  // Arrays the simulation holds, per grain: 25 double columns, type and id, the skin reference
+  // Arrays the simulation holds, per grain: 25 double columns (16 without rotation), type and id, the skin reference
   // positions, a 64-byte spring record and a flag per wall. A dense pack of the seed drum has about
   // 3.4 list pairs and 1.7 contacts per grain; a list pair keeps rows, 32-bit lanes, type pair, key,
   // flag, two slot maps, the carried index and search scratch (50 bytes), a contact its indices
   // and force (48 bytes) and two generations of the law's history doubles.
-  const std::size_t per_grain = 25 * 8 + 4 + 8 + 3 * 8 + 65 * scene.walls.size();
+  const std::size_t per_grain = (scene.spin() ? 25 : 16) * 8 + 4 + 8 + 3 * 8 + 65 * scene.walls.size();
   std::size_t width = 0;
   with_law(scene.law, [&]<class Law>() { width = Law::kHistory; });
   const std::size_t per_pair = 50, per_contact = 48 + 2 * 8 * width;
@@ -455,6 +461,8 @@ void build_dem_world(const DemScene& s, World& world) {
   }
 
   const std::size_t n = placed.size();
+  // Spin columns only when some species rotates; a species that does not has inv_inertia 0.
+  g.spin = s.spin();
   g.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const PlacedGrain& p = placed[i];
@@ -465,7 +473,7 @@ void build_dem_world(const DemScene& s, World& world) {
     g.radius.r[i] = p.radius;
     g.mass.m[i] = sp.mass;
     g.mass.inv_m[i] = 1.0 / sp.mass;
-    g.mass.inv_inertia[i] = 1.0 / sp.inertia;
+    g.mass.inv_inertia[i] = sp.rotates ? 1.0 / sp.inertia : 0.0;
     g.species.type[i] = p.type;
     g.pid.id[i] = static_cast<std::int64_t>(i);
   }

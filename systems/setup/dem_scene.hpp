@@ -27,6 +27,7 @@ struct SpeciesSpec {
   double density = 0;   // kg/m^3
   double mass = 0;      // kg
   double inertia = 0;   // kg m^2 (solid sphere)
+  bool rotates = true;  // false: the grains only translate (their torques are not integrated)
 };
 
 struct FillSpec {
@@ -81,15 +82,23 @@ struct DemScene {
 
   std::int64_t main_steps() const;
   std::int64_t settle_steps() const;
+  // Whether any species rotates: without rotation the grains have no spin columns at all.
+  bool spin() const {
+    for (const SpeciesSpec& sp : species)
+      if (sp.rotates) return true;
+    return false;
+  }
 };
 
 // Reads and validates everything; throws SceneError naming file, line, key and fix.
 DemScene load_dem_scene(const SceneDoc& doc);
 
 // The DEM systems of one step in phase order, with the drivers of the scene's contact law.
-// The force terms the DEM step's integrator sums: pair contacts, then walls.
-ForceTerms dem_force_terms();
-void schedule_dem_step(Schedule& step, std::string_view law);
+// The force terms the DEM step's integrator sums: pair contacts, then walls (when the scene has any).
+ForceTerms dem_force_terms(const DemScene& scene);
+// The DEM step built from the scene: the integrator's two halves, the broadphase, the pair contacts of
+// the scene's law, and wall contacts only when the scene has walls.
+void schedule_dem_step(Schedule& step, const DemScene& scene);
 
 // Creates the grains of every fill (random placement, state files) and the resources.
 // Random fills that cannot be placed, or a state file that does not match the scene, are errors

@@ -12,7 +12,7 @@ namespace gf {
 DemSimulation::DemSimulation(DemScene scene)
     : scene_(std::move(scene)), world_(std::make_unique<World>()), step_(std::make_unique<Schedule>()) {
   build_dem_world(scene_, *world_);
-  schedule_dem_step(*step_, scene_.law);
+  schedule_dem_step(*step_, scene_);
   step_->build(*world_);
 }
 

@@ -44,7 +44,7 @@ void report_nonfinite(const Grains& g, const StepContext& step, std::string_view
   for (std::size_t i = 0; i < g.n_owned; ++i) {
     const double p[3] = {g.pos.x[i], g.pos.y[i], g.pos.z[i]};
     const double v[3] = {g.vel.x[i], g.vel.y[i], g.vel.z[i]};
-    const double w[3] = {g.omega.x[i], g.omega.y[i], g.omega.z[i]};
+    const double w[3] = {g.spin ? g.omega.x[i] : 0.0, g.spin ? g.omega.y[i] : 0.0, g.spin ? g.omega.z[i] : 0.0};
     const char* name = nullptr;
     for (int k = 0; k < 3 && !name; ++k) {
       if (!std::isfinite(p[k])) name = "position";

@@ -60,7 +60,7 @@ double compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const
         }
         h.active[w][i] = 1;
         worst = std::max(worst, (ri - gap) - lim2 * ri);
-        const Vec3d wi{g.omega.x[i], g.omega.y[i], g.omega.z[i]};
+        const Vec3d wi = g.spin ? Vec3d{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : Vec3d{0.0, 0.0, 0.0};
         const double om = walls.rotation_enabled ? wall.omega : 0.0;
         const SphereContact<double> sc = sphere_wall(p, n, gap, ri, Vec3d{g.vel.x[i], g.vel.y[i], g.vel.z[i]}, wi,
                                                      om * wall.rot_axis, wall.rot_point);
@@ -77,6 +77,7 @@ double compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const
       g.wall_force.x[i] = f.x;
       g.wall_force.y[i] = f.y;
       g.wall_force.z[i] = f.z;
+      if (!g.spin) continue;
       g.wall_torque.x[i] = t.x;
       g.wall_torque.y[i] = t.y;
       g.wall_torque.z[i] = t.z;
@@ -190,15 +191,17 @@ double compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const Contac
   if (in_register)
     for (std::size_t q = 0; q < K; ++q) reg[q] = RegisterTable(cc.col[q], table.types());
   const std::size_t nown = g.n_owned;
+  const bool spin = g.spin;
   const std::size_t nblocks = (nown + kWallBlock - 1) / kWallBlock;
   // The overlap check rides along: per block the largest delta - 2 limit r of its contacts.
   std::vector<double> block_excess(nblocks, kNone);
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
     const std::size_t r0 = blk * kWallBlock, r1 = std::min(nown, r0 + kWallBlock);
     B worst(kNone);
-    for (ColumnD* c : {&g.wall_force.x, &g.wall_force.y, &g.wall_force.z, &g.wall_torque.x, &g.wall_torque.y,
-                       &g.wall_torque.z})
-      std::fill(c->begin() + r0, c->begin() + r1, 0.0);
+    for (ColumnD* c : {&g.wall_force.x, &g.wall_force.y, &g.wall_force.z}) std::fill(c->begin() + r0, c->begin() + r1, 0.0);
+    if (spin)
+      for (ColumnD* c : {&g.wall_torque.x, &g.wall_torque.y, &g.wall_torque.z})
+        std::fill(c->begin() + r0, c->begin() + r1, 0.0);
     // Packed rows of one wall, padded to a whole batch with the last one.
     alignas(64) std::int32_t rows[kWallBlock + kAhead + L];
     for (std::size_t w = 0; w < nw; ++w) {
@@ -227,6 +230,7 @@ double compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const Contac
           __builtin_prefetch(&g.vel.x[a]);
           __builtin_prefetch(&g.vel.y[a]);
           __builtin_prefetch(&g.vel.z[a]);
+          if (!spin) continue;
           __builtin_prefetch(&g.omega.x[a]);
           __builtin_prefetch(&g.omega.y[a]);
           __builtin_prefetch(&g.omega.z[a]);
@@ -241,7 +245,9 @@ double compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const Contac
         for (std::size_t l = 0; l < L; ++l) ty[l] = g.species.type[static_cast<std::size_t>(idx[l])];
         std::array<B, K> c;
         for (std::size_t k = 0; k < K; ++k) c[k] = in_register ? reg[k].lookup(ty) : gather32(cc.col[k], ty);
-        const V wi{gather32(g.omega.x.data(), idx), gather32(g.omega.y.data(), idx), gather32(g.omega.z.data(), idx)};
+        const V wi = spin ? V{gather32(g.omega.x.data(), idx), gather32(g.omega.y.data(), idx),
+                              gather32(g.omega.z.data(), idx)}
+                          : V{B(0.0), B(0.0), B(0.0)};
         const V vi{gather32(g.vel.x.data(), idx), gather32(g.vel.y.data(), idx), gather32(g.vel.z.data(), idx)};
         const SphereContact<B> sc = sphere_wall(p, n, gap, ri, vi, wi, wall_w, wall_o);
         alignas(64) std::int32_t at[L];
@@ -266,10 +272,11 @@ double compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const Contac
           g.wall_force.x[i] += out[H][l];
           g.wall_force.y[i] += out[H + 1][l];
           g.wall_force.z[i] += out[H + 2][l];
+          act[i] = static_cast<std::uint8_t>((now >> l) & 1u);
+          if (!spin) continue;
           g.wall_torque.x[i] += out[H + 3][l];
           g.wall_torque.y[i] += out[H + 4][l];
           g.wall_torque.z[i] += out[H + 5][l];
-          act[i] = static_cast<std::uint8_t>((now >> l) & 1u);
         }
       }
     }
