@@ -44,15 +44,6 @@ inline BatchD gather32(const double* base, const std::int32_t* idx) {
 #endif
 }
 
-// The largest lane (xsimd 8 has no horizontal max). NaN lanes are not propagated.
-inline double lane_max(const BatchD& b) {
-  alignas(64) double v[kLanes];
-  b.store_aligned(v);
-  double m = v[0];
-  for (std::size_t l = 1; l < kLanes; ++l) m = v[l] > m ? v[l] : m;
-  return m;
-}
-
 // Bit l set when lane l of `b` is true.
 inline std::uint32_t lane_bits(const xsimd::batch_bool<double, SimdArch>& b) {
 #if defined(__AVX512F__) && !defined(GRAINFLOW_SIMD_256)

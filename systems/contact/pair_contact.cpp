@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <limits>
 
 #include <utility>
 
@@ -124,10 +123,9 @@ struct SlabTorques {
 };
 
 // Geometry, law and torques for one contact; shared by the scalar tail and the scalar driver.
-// Returns the contact's overlap excess, delta - lim2 min(r_i, r_j) (positive: past the limit).
 template <class Law>
-double evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h, const ContactTable& table, double dt,
-                    PairForces& out, std::size_t c, const SlabTorques& st, double lim2) {
+void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h, const ContactTable& table, double dt,
+                  PairForces& out, std::size_t c, const SlabTorques& st) {
   const V3<double> d{g.pos.x[j] - g.pos.x[i], g.pos.y[j] - g.pos.y[i], g.pos.z[j] - g.pos.z[i]};
   const double dist = std::sqrt(dot(d, d));
   const V3<double> wi = g.spin ? V3<double>{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : V3<double>{0.0, 0.0, 0.0};
@@ -152,7 +150,6 @@ double evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& 
   st.t[3][c - st.c0] = sc.lj * nxf.x + res.torque_j.x;
   st.t[4][c - st.c0] = sc.lj * nxf.y + res.torque_j.y;
   st.t[5][c - st.c0] = sc.lj * nxf.z + res.torque_j.z;
-  return sc.g.delta - lim2 * std::min(g.radius.r[i], g.radius.r[j]);
 }
 
 // Sums into Force and Torque by slabs of owner rows. A slab's contacts are one run of the packed
@@ -241,14 +238,13 @@ void count_blocks(PairForces& out, std::size_t np) {
 }
 
 // Runs law(c0, c1) over each slab's contacts, then that slab's sums, one task per slab; then the
-// shares set aside for later slabs. Returns the largest overlap excess the law reported.
+// shares set aside for later slabs.
 template <class Law>
-double evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&& law) {
+void evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&& law) {
   const std::size_t n = g.n_owned;
   const std::size_t rows = slab_rows(n);
   const std::size_t ns = (n + rows - 1) / rows;
   if (out.spill.size() < ns * ns) out.spill.resize(ns * ns);
-  out.slab_excess.assign(ns, -std::numeric_limits<double>::infinity());
   const SlabSums sums{{g.force.x.data(), g.force.y.data(), g.force.z.data()},
                       {g.spin ? g.torque.x.data() : nullptr, g.spin ? g.torque.y.data() : nullptr,
                        g.spin ? g.torque.z.data() : nullptr},
@@ -264,7 +260,7 @@ double evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, La
     if (scratch.size() < 6 * stride) scratch.resize(6 * stride);
     SlabTorques st{c0, {}};
     for (std::size_t k = 0; k < 6; ++k) st.t[k] = scratch.data() + k * stride;
-    out.slab_excess[s] = law(c0, c1, st);
+    law(c0, c1, st);
     if (out.record_torques) {
       ColumnD* cols[6] = {&out.tix, &out.tiy, &out.tiz, &out.tjx, &out.tjy, &out.tjz};
       for (std::size_t k = 0; k < 6; ++k) std::copy(st.t[k], st.t[k] + (c1 - c0), cols[k]->begin() + c0);
@@ -293,44 +289,45 @@ double evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, La
         Tz[e.j] += e.tz;
       }
   });
-  return *std::max_element(out.slab_excess.begin(), out.slab_excess.end());
 }
 
 }  // namespace
 
 template <class Law>
-double compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table,
-                                  double dt, PairForces& out, double overlap_limit) {
+bool compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table,
+                                double dt, PairForces& out, double overlap_limit) {
   const double lim2 = 2.0 * overlap_limit;
+  bool over = false;
   const std::size_t np = list.pairs();
   out.touching.resize(padded_size(np));
   for (std::size_t k = 0; k < np; ++k) {
     const std::size_t i = list.i[k], j = list.j[k];
     const double dx = g.pos.x[j] - g.pos.x[i], dy = g.pos.y[j] - g.pos.y[i], dz = g.pos.z[j] - g.pos.z[i];
     const double rs = g.radius.r[i] + g.radius.r[j];
-    out.touching[k] = dx * dx + dy * dy + dz * dz < rs * rs;
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    out.touching[k] = d2 < rs * rs;
+    const double deep = rs - lim2 * std::min(g.radius.r[i], g.radius.r[j]);  // closer: past the limit
+    over = over || d2 < deep * deep;
   }
   count_blocks(out, np);
   const std::size_t nc = out.block_start.back();
   if (h.slot.size() != np) h.map_slots(np);
   size_outputs(out, h, np, nc);
   compact_scalar(list, h, out, 0, np, 0);
-  const double excess = evaluate_and_sum(g, list, out, [&](std::size_t c0, std::size_t c1, const SlabTorques& st) {
-    double worst = -std::numeric_limits<double>::infinity();
+  evaluate_and_sum(g, list, out, [&](std::size_t c0, std::size_t c1, const SlabTorques& st) {
     for (std::size_t c = c0; c < c1; ++c) {
       const auto k = static_cast<std::size_t>(out.next.pair[c]);
       carry_history(h, out.cslot[c], out.next, c);
-      worst = std::max(worst, evaluate_one<Law>(g, list.i[k], list.j[k], out.next, table, dt, out, c, st, lim2));
+      evaluate_one<Law>(g, list.i[k], list.j[k], out.next, table, dt, out, c, st);
     }
-    return worst;
   });
   std::swap(h, out.next);
-  return excess;
+  return over;
 }
 
 template <class Law>
-double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table, double dt,
-                           PairForces& out, double overlap_limit) {
+bool compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, const ContactTable& table, double dt,
+                         PairForces& out, double overlap_limit) {
   const double lim2 = 2.0 * overlap_limit;
   using B = BatchD;
   using V = V3<B>;
@@ -341,12 +338,15 @@ double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, 
   // Every column of the table is allocated to this many rows (whole batches).
   const std::size_t rows = g.pos.x.padded();
 
-  // 1. Overlap test per pair; counts per block of pairs.
+  // 1. Overlap test per pair; counts per block of pairs. The stability check rides along: a pair
+  // closer than r_i + r_j - lim2 min(r_i, r_j) overlaps past the limit (a compare on numbers at hand).
   const std::size_t nblocks = (np + kBlock - 1) / kBlock;
   out.block_start.assign(nblocks + 1, 0);
+  out.block_over.assign(nblocks, 0);
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
     const std::size_t k0 = b * kBlock, k1 = std::min(np, k0 + kBlock);
-    std::uint32_t count = 0;
+    std::uint32_t count = 0, over = 0;
+    const B blim2(lim2);
     for (std::size_t k = k0; k < k1; k += L) {
       // Pairs are in owner order: the owners of a batch are a few adjacent rows.
       const RowWindow wi = row_window(&list.i_lane[k], rows);
@@ -354,11 +354,15 @@ double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, 
       const B dx = gather32(g.pos.x.data(), bj) - load_rows(g.pos.x.data(), wi);
       const B dy = gather32(g.pos.y.data(), bj) - load_rows(g.pos.y.data(), wi);
       const B dz = gather32(g.pos.z.data(), bj) - load_rows(g.pos.z.data(), wi);
-      const B rs = gather32(g.radius.r.data(), bj) + load_rows(g.radius.r.data(), wi);
+      const B rj = gather32(g.radius.r.data(), bj), ri = load_rows(g.radius.r.data(), wi);
+      const B rs = rj + ri;
       // Blocks start at multiples of the batch width, so a batch's flags never reach into
       // another block's (past the last pair they fall in the column's padding, and are 0).
-      const std::uint32_t bits =
-          lane_bits(dx * dx + dy * dy + dz * dz < rs * rs) & ((1u << std::min(L, k1 - k)) - 1u);
+      const B d2 = dx * dx + dy * dy + dz * dz;
+      const std::uint32_t valid = (1u << std::min(L, k1 - k)) - 1u;
+      const std::uint32_t bits = lane_bits(d2 < rs * rs) & valid;
+      const B deep = rs - blim2 * xsimd::min(ri, rj);
+      over |= lane_bits(d2 < deep * deep) & bits;
 #if defined(__BMI2__)
       static_assert(kLanes == 8 || kLanes == 4);
       const std::uint64_t bytes = _pdep_u64(bits, 0x0101010101010101ull);
@@ -369,6 +373,7 @@ double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, 
       count += static_cast<std::uint32_t>(__builtin_popcount(bits));
     }
     out.block_start[b + 1] = count;
+    out.block_over[b] = over != 0;
   });
   for (std::size_t b = 0; b < nblocks; ++b) out.block_start[b + 1] += out.block_start[b];
   const std::size_t nc = out.block_start[nblocks];
@@ -416,9 +421,6 @@ double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, 
   };
   // Whole batches of a slab's contacts from its first; the remainder through the scalar path.
   auto law = [&](std::size_t cbeg, std::size_t cend, const SlabTorques& st) {
-    // The overlap check rides along: the largest delta - 2 limit min(r_i, r_j) of the slab.
-    B worst(-std::numeric_limits<double>::infinity());
-    const B blim2(lim2);
     const bool spin = g.spin;
     std::size_t c0 = cbeg;
     for (; c0 + L <= cend; c0 += L) {
@@ -444,7 +446,6 @@ double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, 
                   load_rows(g.vel.y.data(), bi) - gather32(g.vel.y.data(), bj),
                   load_rows(g.vel.z.data(), bi) - gather32(g.vel.z.data(), bj)};
       const SphereContact<B> sc = sphere_sphere(d, xsimd::sqrt(d2), rsqrt_of(d2), ri, rj, vij, wi, wj);
-      worst = xsimd::max(worst, sc.g.delta - blim2 * xsimd::min(ri, rj));
       alignas(64) std::int32_t compact[L];
       static_assert(kMaxSpecies == 64);
       for (std::size_t l = 0; l < L; ++l)
@@ -486,18 +487,16 @@ double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, 
       (sc.lj * nxf.y + res.torque_j.y).store_unaligned(&st.t[4][c0 - st.c0]);
       (sc.lj * nxf.z + res.torque_j.z).store_unaligned(&st.t[5][c0 - st.c0]);
     }
-    double tail = lane_max(worst);
     for (std::size_t c = c0; c < cend; ++c) {
       const std::size_t k = static_cast<std::size_t>(out.next.pair[c]);
       carry_history(h, out.cslot[c], out.next, c);
-      tail = std::max(tail, evaluate_one<Law>(g, list.i[k], list.j[k], out.next, table, dt, out, c, st, lim2));
+      evaluate_one<Law>(g, list.i[k], list.j[k], out.next, table, dt, out, c, st);
     }
-    return tail;
   };
   // 4. The law and the sums, slab by slab.
-  const double excess = evaluate_and_sum(g, list, out, law);
+  evaluate_and_sum(g, list, out, law);
   std::swap(h, out.next);
-  return excess;
+  return std::any_of(out.block_over.begin(), out.block_over.end(), [](std::uint8_t v) { return v != 0; });
 }
 
 // Both drivers for every registered law: the table's external linkage makes the compiler emit them.

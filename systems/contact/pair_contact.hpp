@@ -20,7 +20,6 @@
 #pragma once
 
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #include "engine/system.hpp"
@@ -57,7 +56,7 @@ struct PairForces {
     double fx, fy, fz, tx, ty, tz;
   };
   std::vector<std::vector<Spill>> spill;
-  std::vector<double> slab_excess;  // per slab: the largest overlap excess of its contacts
+  std::vector<std::uint8_t> block_over;  // per prefilter block: some pair overlaps past the limit
 
   std::size_t contacts() const { return ci.size() - 1; }
   // Force on the owner of list pair k at the last evaluation (zero when apart), given the springs
@@ -79,17 +78,16 @@ inline std::size_t slab_rows(std::size_t n) {
 }
 
 // Evaluates every pair of `list` with law L and sums per row into Force and Torque. Instantiated
-// for every law of ContactLaws. Returns the largest overlap excess delta - 2 overlap_limit
-// min(r_i, r_j) over the contacts (positive: some overlap passed overlap_limit of the smaller
-// diameter; -infinity without contacts), found in the same pass.
+// for every law of ContactLaws. Returns whether some pair overlaps by more than overlap_limit of the
+// smaller diameter (run.max_overlap, at most 1), found in the same pass (the overlap test of every
+// list pair).
 template <class L>
-double compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
-                           double dt, PairForces& out,
-                           double overlap_limit = std::numeric_limits<double>::infinity());
+bool compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
+                         double dt, PairForces& out, double overlap_limit = 1.0);
 template <class L>
-double compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
-                                  double dt, PairForces& out,
-                                  double overlap_limit = std::numeric_limits<double>::infinity());
+bool compute_pair_forces_scalar(Grains& g, const NeighborList& list, PairHistory& history, const ContactTable& table,
+                                double dt, PairForces& out,
+                                double overlap_limit = 1.0);
 
 // The integrator's term this system fills.
 inline ForceTerm pair_force_term() { return force_term<Force, Torque>("pair_contact"); }
@@ -104,7 +102,7 @@ class PairContact : public SystemBase<PairContact<L>> {
     const double limit = world.resources.get<OverlapLimit>().ratio;
     PairForces& out = world.resources.get<PairForces>();
     if (compute_pair_forces<L>(world.grains, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(),
-                               world.resources.get<ContactTable>(), step.dt, out, limit) > 0.0)
+                               world.resources.get<ContactTable>(), step.dt, out, limit))
       report_pair_overlap(world.grains, out, limit, step);
   }
 };

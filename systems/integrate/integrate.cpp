@@ -41,12 +41,15 @@ TermColumns resolve(Grains& g, const ForceTerms& terms) {
   return c;
 }
 
-// Sum of one coordinate of every term at row (or batch) i, in declared order.
-template <class T, class Load>
-T sum_terms(const Vec3Columns* cols, std::size_t n, const double* Vec3Columns::*axis, std::size_t i, Load load) {
-  if (n == 0) return T(0.0);
+// Sum of one coordinate of every term at row (or batch) i, in declared order. N >= 0: the count is
+// known at compile time (the loop unrolls; the usual pair + wall step), N < 0: n terms.
+template <class T, int N, class Load>
+[[gnu::always_inline]] inline T sum_terms(const Vec3Columns* cols, std::size_t n, const double* Vec3Columns::*axis,
+                                          std::size_t i, Load load) {
+  const std::size_t count = N >= 0 ? static_cast<std::size_t>(N) : n;
+  if (count == 0) return T(0.0);
   T s = load(cols[0].*axis, i);
-  for (std::size_t k = 1; k < n; ++k) s += load(cols[k].*axis, i);
+  for (std::size_t k = 1; k < count; ++k) s += load(cols[k].*axis, i);
   return s;
 }
 
@@ -56,27 +59,28 @@ T sum_terms(const Vec3Columns* cols, std::size_t n, const double* Vec3Columns::*
 // Returns whether every value it wrote is finite: x - x is 0 for a finite x and NaN otherwise, and
 // a NaN stays in the running sum (a few additions per batch, on values already in registers).
 // Spin: the table has spin columns (Grains::spin); without them only translation is integrated.
-template <bool Drift, bool Spin>
-bool kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
+// NF: the number of force terms when known at compile time (each with a torque when Spin), else -1.
+template <bool Drift, bool Spin, int NF>
+bool kick_rows(Grains& g, const TermColumns& tc, const Gravity& grav, double h, double dt) {
+  constexpr int NT = NF < 0 ? -1 : (Spin ? NF : 0);
   using B = BatchD;
   constexpr std::size_t L = kLanes;
   const std::size_t n = g.n_owned, full = n / L;
   const double gx = h * grav.x, gy = h * grav.y, gz = h * grav.z;
-  const TermColumns tc = resolve(g, terms);
   const Vec3Columns* F = tc.f;
   const Vec3Columns* T = tc.t;
   auto one = [](const double* c, std::size_t i) { return c[i]; };
   auto row = [&](std::size_t i) {
     const double a = h * g.mass.inv_m[i];
     double bad = 0.0;
-    g.vel.x[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::x, i, one) + gx;
-    g.vel.y[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::y, i, one) + gy;
-    g.vel.z[i] += a * sum_terms<double>(F, tc.nf, &Vec3Columns::z, i, one) + gz;
+    g.vel.x[i] += a * sum_terms<double, NF>(F, tc.nf, &Vec3Columns::x, i, one) + gx;
+    g.vel.y[i] += a * sum_terms<double, NF>(F, tc.nf, &Vec3Columns::y, i, one) + gy;
+    g.vel.z[i] += a * sum_terms<double, NF>(F, tc.nf, &Vec3Columns::z, i, one) + gz;
     if constexpr (Spin) {
       const double b = h * g.mass.inv_inertia[i];
-      g.omega.x[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::x, i, one);
-      g.omega.y[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::y, i, one);
-      g.omega.z[i] += b * sum_terms<double>(T, tc.nt, &Vec3Columns::z, i, one);
+      g.omega.x[i] += b * sum_terms<double, NT>(T, tc.nt, &Vec3Columns::x, i, one);
+      g.omega.y[i] += b * sum_terms<double, NT>(T, tc.nt, &Vec3Columns::y, i, one);
+      g.omega.z[i] += b * sum_terms<double, NT>(T, tc.nt, &Vec3Columns::z, i, one);
       bad += (g.omega.x[i] - g.omega.x[i]) + (g.omega.y[i] - g.omega.y[i]) + (g.omega.z[i] - g.omega.z[i]);
     }
     if constexpr (Drift) {
@@ -96,17 +100,17 @@ bool kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h
     for (std::size_t bt = r.begin(); bt != r.end(); ++bt) {
       const std::size_t i = bt * L;
       const B a = bh * ld(g.mass.inv_m, i);
-      const B vx = ld(g.vel.x, i) + (a * sum_terms<B>(F, tc.nf, &Vec3Columns::x, i, lp) + bgx);
-      const B vy = ld(g.vel.y, i) + (a * sum_terms<B>(F, tc.nf, &Vec3Columns::y, i, lp) + bgy);
-      const B vz = ld(g.vel.z, i) + (a * sum_terms<B>(F, tc.nf, &Vec3Columns::z, i, lp) + bgz);
+      const B vx = ld(g.vel.x, i) + (a * sum_terms<B, NF>(F, tc.nf, &Vec3Columns::x, i, lp) + bgx);
+      const B vy = ld(g.vel.y, i) + (a * sum_terms<B, NF>(F, tc.nf, &Vec3Columns::y, i, lp) + bgy);
+      const B vz = ld(g.vel.z, i) + (a * sum_terms<B, NF>(F, tc.nf, &Vec3Columns::z, i, lp) + bgz);
       vx.store_aligned(&g.vel.x[i]);
       vy.store_aligned(&g.vel.y[i]);
       vz.store_aligned(&g.vel.z[i]);
       if constexpr (Spin) {
         const B b = bh * ld(g.mass.inv_inertia, i);
-        const B wx = ld(g.omega.x, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::x, i, lp);
-        const B wy = ld(g.omega.y, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::y, i, lp);
-        const B wz = ld(g.omega.z, i) + b * sum_terms<B>(T, tc.nt, &Vec3Columns::z, i, lp);
+        const B wx = ld(g.omega.x, i) + b * sum_terms<B, NT>(T, tc.nt, &Vec3Columns::x, i, lp);
+        const B wy = ld(g.omega.y, i) + b * sum_terms<B, NT>(T, tc.nt, &Vec3Columns::y, i, lp);
+        const B wz = ld(g.omega.z, i) + b * sum_terms<B, NT>(T, tc.nt, &Vec3Columns::z, i, lp);
         wx.store_aligned(&g.omega.x[i]);
         wy.store_aligned(&g.omega.y[i]);
         wz.store_aligned(&g.omega.z[i]);
@@ -131,12 +135,27 @@ bool kick_rows(Grains& g, const ForceTerms& terms, const Gravity& grav, double h
 
 }  // namespace
 
+namespace {
+
+// The pass for the table's rotation and the terms' count: one or two terms (each with a torque when
+// the grains rotate) are compiled with their count, any other list through the general loop.
+template <bool Drift, bool Spin>
+bool kick_pass(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
+  const TermColumns tc = resolve(g, terms);
+  const std::size_t torques_each = Spin ? 1 : 0;
+  if (tc.nf == 2 && tc.nt == 2 * torques_each) return kick_rows<Drift, Spin, 2>(g, tc, grav, h, dt);
+  if (tc.nf == 1 && tc.nt == torques_each) return kick_rows<Drift, Spin, 1>(g, tc, grav, h, dt);
+  return kick_rows<Drift, Spin, -1>(g, tc, grav, h, dt);
+}
+
+}  // namespace
+
 bool kick(Grains& g, const ForceTerms& terms, const Gravity& grav, double h) {
-  return g.spin ? kick_rows<false, true>(g, terms, grav, h, 0.0) : kick_rows<false, false>(g, terms, grav, h, 0.0);
+  return g.spin ? kick_pass<false, true>(g, terms, grav, h, 0.0) : kick_pass<false, false>(g, terms, grav, h, 0.0);
 }
 
 bool kick_drift(Grains& g, const ForceTerms& terms, const Gravity& grav, double h, double dt) {
-  return g.spin ? kick_rows<true, true>(g, terms, grav, h, dt) : kick_rows<true, false>(g, terms, grav, h, dt);
+  return g.spin ? kick_pass<true, true>(g, terms, grav, h, dt) : kick_pass<true, false>(g, terms, grav, h, dt);
 }
 
 Access integrator_access(const ForceTerms& terms, Access writes) {

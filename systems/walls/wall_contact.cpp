@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "systems/broadphase/neighbor_list.hpp"
@@ -37,8 +38,8 @@ struct CoeffColumns {
 }  // namespace
 
 template <class Law>
-double compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
-                                  double t_contact, double overlap_limit) {
+bool compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
+                                double t_contact, double overlap_limit) {
   prepare(g, walls, h, t_contact);
   const std::size_t nw = walls.list.size();
   constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
@@ -86,7 +87,7 @@ double compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const
   };
   return tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024),
                               -std::numeric_limits<double>::infinity(), rows,
-                              [](double a, double b) { return std::max(a, b); });
+                              [](double a, double b) { return std::max(a, b); }) > 0.0;
 }
 
 // The same arithmetic, wall by wall over fixed blocks of rows: a first pass computes the gap of
@@ -172,10 +173,9 @@ template <class V, class B>
 }  // namespace
 
 template <class Law>
-double compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
-                           double t_contact, double overlap_limit) {
+bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
+                         double t_contact, double overlap_limit) {
   prepare(g, walls, h, t_contact);
-  constexpr double kNone = -std::numeric_limits<double>::infinity();
   const double lim2 = 2.0 * overlap_limit;
   using B = BatchD;
   using V = V3<B>;
@@ -191,98 +191,107 @@ double compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const Contac
   if (in_register)
     for (std::size_t q = 0; q < K; ++q) reg[q] = RegisterTable(cc.col[q], table.types());
   const std::size_t nown = g.n_owned;
-  const bool spin = g.spin;
   const std::size_t nblocks = (nown + kWallBlock - 1) / kWallBlock;
-  // The overlap check rides along: per block the largest delta - 2 limit r of its contacts.
-  std::vector<double> block_excess(nblocks, kNone);
-  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
-    const std::size_t r0 = blk * kWallBlock, r1 = std::min(nown, r0 + kWallBlock);
-    B worst(kNone);
-    for (ColumnD* c : {&g.wall_force.x, &g.wall_force.y, &g.wall_force.z}) std::fill(c->begin() + r0, c->begin() + r1, 0.0);
-    if (spin)
-      for (ColumnD* c : {&g.wall_torque.x, &g.wall_torque.y, &g.wall_torque.z})
+  // Per block: some contact past the overlap limit (checked in the law pass, on values at hand).
+  std::vector<std::uint8_t> block_over(nblocks, 0);
+  // The blocks, compiled for grains with and without spin columns (no branch per batch).
+  auto run_blocks = [&](auto spin_tag) {
+    constexpr bool spin = decltype(spin_tag)::value;
+    tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
+      const std::size_t r0 = blk * kWallBlock, r1 = std::min(nown, r0 + kWallBlock);
+      std::uint32_t over = 0;
+      for (ColumnD* c : {&g.wall_force.x, &g.wall_force.y, &g.wall_force.z})
         std::fill(c->begin() + r0, c->begin() + r1, 0.0);
-    // Packed rows of one wall, padded to a whole batch with the last one.
-    alignas(64) std::int32_t rows[kWallBlock + kAhead + L];
-    for (std::size_t w = 0; w < nw; ++w) {
-      const Wall& wall = walls.list[w];
-      Column<std::uint8_t>& act = h.active[w];
-      std::size_t m = 0;
-      for (std::size_t i = r0; i < r1; i += L) {
-        const std::uint32_t take = reach_bits(wall, g, i) | nonzero_bits(&act[i]);
-        m = append_rows(rows, m, i, take & ((1u << std::min(L, r1 - i)) - 1u));
-      }
-      if (m == 0) continue;
-      for (std::size_t l = m; l < m + kAhead + L; ++l) rows[l] = rows[m - 1];
-      WallSprings* hs = h.springs[w].data();
-      // A spring k of row i is double 8 i + k from the column's start.
-      const double* hbase = hs[0].s;
-      const double om = walls.rotation_enabled ? wall.omega : 0.0;
-      const V wall_w{B(om * wall.rot_axis.x), B(om * wall.rot_axis.y), B(om * wall.rot_axis.z)};
-      const V wall_o{B(wall.rot_point.x), B(wall.rot_point.y), B(wall.rot_point.z)};
-      for (std::size_t q = 0; q < m; q += L) {
-        const std::int32_t* idx = &rows[q];
-        // The springs and velocities of the packed rows are read nowhere else this step, so they
-        // come from far in the cache hierarchy: ask for those of a later batch now.
-        for (std::size_t l = 0; l < L; ++l) {
-          const auto a = static_cast<std::size_t>(rows[q + kAhead + l]);
-          __builtin_prefetch(&hs[a]);
-          __builtin_prefetch(&g.vel.x[a]);
-          __builtin_prefetch(&g.vel.y[a]);
-          __builtin_prefetch(&g.vel.z[a]);
-          if (!spin) continue;
-          __builtin_prefetch(&g.omega.x[a]);
-          __builtin_prefetch(&g.omega.y[a]);
-          __builtin_prefetch(&g.omega.z[a]);
+      if (spin)
+        for (ColumnD* c : {&g.wall_torque.x, &g.wall_torque.y, &g.wall_torque.z})
+          std::fill(c->begin() + r0, c->begin() + r1, 0.0);
+      // Packed rows of one wall, padded to a whole batch with the last one.
+      alignas(64) std::int32_t rows[kWallBlock + kAhead + L];
+      for (std::size_t w = 0; w < nw; ++w) {
+        const Wall& wall = walls.list[w];
+        Column<std::uint8_t>& act = h.active[w];
+        std::size_t m = 0;
+        for (std::size_t i = r0; i < r1; i += L) {
+          const std::uint32_t take = reach_bits(wall, g, i) | nonzero_bits(&act[i]);
+          m = append_rows(rows, m, i, take & ((1u << std::min(L, r1 - i)) - 1u));
         }
-        const V p{gather32(g.pos.x.data(), idx), gather32(g.pos.y.data(), idx), gather32(g.pos.z.data(), idx)};
-        const B ri = gather32(g.radius.r.data(), idx);
-        V n;
-        const B gap = wall_gap_batch<V, B>(wall, p, n);
-        const auto touching = gap < ri;
-        worst = xsimd::max(worst, xsimd::select(touching, (ri - gap) - B(lim2) * ri, B(kNone)));
-        alignas(64) std::int32_t ty[L];
-        for (std::size_t l = 0; l < L; ++l) ty[l] = g.species.type[static_cast<std::size_t>(idx[l])];
-        std::array<B, K> c;
-        for (std::size_t k = 0; k < K; ++k) c[k] = in_register ? reg[k].lookup(ty) : gather32(cc.col[k], ty);
-        const V wi = spin ? V{gather32(g.omega.x.data(), idx), gather32(g.omega.y.data(), idx),
-                              gather32(g.omega.z.data(), idx)}
-                          : V{B(0.0), B(0.0), B(0.0)};
-        const V vi{gather32(g.vel.x.data(), idx), gather32(g.vel.y.data(), idx), gather32(g.vel.z.data(), idx)};
-        const SphereContact<B> sc = sphere_wall(p, n, gap, ri, vi, wi, wall_w, wall_o);
-        alignas(64) std::int32_t at[L];
-        for (std::size_t l = 0; l < L; ++l) at[l] = idx[l] * 8;
-        std::array<B, H> s;
-        for (std::size_t k = 0; k < H; ++k) s[k] = gather32(hbase + k, at);
-        const ContactForce<B> res = Law::evaluate(touching, sc.g, c, B(dt), s);
-        const V t = sc.li * cross(n, res.force_t) + res.torque_i;
-        // Lanes back to their rows (rows are distinct within one wall's list).
-        constexpr std::size_t F = H + 6;
-        alignas(64) double out[F][L];
-        B vals[F];
-        for (std::size_t k = 0; k < H; ++k) vals[k] = s[k];
-        const B sums[6] = {res.force.x, res.force.y, res.force.z, t.x, t.y, t.z};
-        for (std::size_t k = 0; k < 6; ++k) vals[H + k] = sums[k];
-        const std::uint32_t now = lane_bits(touching);
-        for (std::size_t f = 0; f < F; ++f) vals[f].store_aligned(out[f]);
-        const std::size_t valid = std::min(L, m - q);
-        for (std::size_t l = 0; l < valid; ++l) {
-          const auto i = static_cast<std::size_t>(idx[l]);
-          for (std::size_t k = 0; k < H; ++k) hs[i].s[k] = out[k][l];
-          g.wall_force.x[i] += out[H][l];
-          g.wall_force.y[i] += out[H + 1][l];
-          g.wall_force.z[i] += out[H + 2][l];
-          act[i] = static_cast<std::uint8_t>((now >> l) & 1u);
-          if (!spin) continue;
-          g.wall_torque.x[i] += out[H + 3][l];
-          g.wall_torque.y[i] += out[H + 4][l];
-          g.wall_torque.z[i] += out[H + 5][l];
+        if (m == 0) continue;
+        for (std::size_t l = m; l < m + kAhead + L; ++l) rows[l] = rows[m - 1];
+        WallSprings* hs = h.springs[w].data();
+        // A spring k of row i is double 8 i + k from the column's start.
+        const double* hbase = hs[0].s;
+        const double om = walls.rotation_enabled ? wall.omega : 0.0;
+        const V wall_w{B(om * wall.rot_axis.x), B(om * wall.rot_axis.y), B(om * wall.rot_axis.z)};
+        const V wall_o{B(wall.rot_point.x), B(wall.rot_point.y), B(wall.rot_point.z)};
+        for (std::size_t q = 0; q < m; q += L) {
+          const std::int32_t* idx = &rows[q];
+          // The springs and velocities of the packed rows are read nowhere else this step, so they
+          // come from far in the cache hierarchy: ask for those of a later batch now.
+          for (std::size_t l = 0; l < L; ++l) {
+            const auto a = static_cast<std::size_t>(rows[q + kAhead + l]);
+            __builtin_prefetch(&hs[a]);
+            __builtin_prefetch(&g.vel.x[a]);
+            __builtin_prefetch(&g.vel.y[a]);
+            __builtin_prefetch(&g.vel.z[a]);
+            if (!spin) continue;
+            __builtin_prefetch(&g.omega.x[a]);
+            __builtin_prefetch(&g.omega.y[a]);
+            __builtin_prefetch(&g.omega.z[a]);
+          }
+          const V p{gather32(g.pos.x.data(), idx), gather32(g.pos.y.data(), idx), gather32(g.pos.z.data(), idx)};
+          const B ri = gather32(g.radius.r.data(), idx);
+          V n;
+          const B gap = wall_gap_batch<V, B>(wall, p, n);
+          const auto touching = gap < ri;
+          // The stability check: an overlap ri - gap past lim2 ri (the limit is of the diameter).
+          over |= lane_bits(gap < ri - B(lim2) * ri);
+          alignas(64) std::int32_t ty[L];
+          for (std::size_t l = 0; l < L; ++l) ty[l] = g.species.type[static_cast<std::size_t>(idx[l])];
+          std::array<B, K> c;
+          for (std::size_t k = 0; k < K; ++k) c[k] = in_register ? reg[k].lookup(ty) : gather32(cc.col[k], ty);
+          const V wi = spin ? V{gather32(g.omega.x.data(), idx), gather32(g.omega.y.data(), idx),
+                                gather32(g.omega.z.data(), idx)}
+                            : V{B(0.0), B(0.0), B(0.0)};
+          const V vi{gather32(g.vel.x.data(), idx), gather32(g.vel.y.data(), idx), gather32(g.vel.z.data(), idx)};
+          const SphereContact<B> sc = sphere_wall(p, n, gap, ri, vi, wi, wall_w, wall_o);
+          alignas(64) std::int32_t at[L];
+          for (std::size_t l = 0; l < L; ++l) at[l] = idx[l] * 8;
+          std::array<B, H> s;
+          for (std::size_t k = 0; k < H; ++k) s[k] = gather32(hbase + k, at);
+          const ContactForce<B> res = Law::evaluate(touching, sc.g, c, B(dt), s);
+          const V t = sc.li * cross(n, res.force_t) + res.torque_i;
+          // Lanes back to their rows (rows are distinct within one wall's list).
+          constexpr std::size_t F = H + 6;
+          alignas(64) double out[F][L];
+          B vals[F];
+          for (std::size_t k = 0; k < H; ++k) vals[k] = s[k];
+          const B sums[6] = {res.force.x, res.force.y, res.force.z, t.x, t.y, t.z};
+          for (std::size_t k = 0; k < 6; ++k) vals[H + k] = sums[k];
+          const std::uint32_t now = lane_bits(touching);
+          for (std::size_t f = 0; f < F; ++f) vals[f].store_aligned(out[f]);
+          const std::size_t valid = std::min(L, m - q);
+          for (std::size_t l = 0; l < valid; ++l) {
+            const auto i = static_cast<std::size_t>(idx[l]);
+            for (std::size_t k = 0; k < H; ++k) hs[i].s[k] = out[k][l];
+            g.wall_force.x[i] += out[H][l];
+            g.wall_force.y[i] += out[H + 1][l];
+            g.wall_force.z[i] += out[H + 2][l];
+            act[i] = static_cast<std::uint8_t>((now >> l) & 1u);
+            if (!spin) continue;
+            g.wall_torque.x[i] += out[H + 3][l];
+            g.wall_torque.y[i] += out[H + 4][l];
+            g.wall_torque.z[i] += out[H + 5][l];
+          }
         }
       }
-    }
-    block_excess[blk] = lane_max(worst);
-  });
-  return nblocks ? *std::max_element(block_excess.begin(), block_excess.end()) : kNone;
+      block_over[blk] = over != 0;
+    });
+  };
+  if (g.spin)
+    run_blocks(std::true_type{});
+  else
+    run_blocks(std::false_type{});
+  return std::any_of(block_over.begin(), block_over.end(), [](std::uint8_t b) { return b != 0; });
 }
 
 // Both drivers for every registered law: the table's external linkage makes the compiler emit them.

@@ -8,7 +8,6 @@
 // Writes: WallForce, WallTorque, WallHistory, Walls (the current, rotated geometry).
 #pragma once
 
-#include <limits>
 
 #include "engine/system.hpp"
 #include "systems/contact/contact_table.hpp"
@@ -20,14 +19,14 @@ namespace gf {
 
 // Sums every wall's force and torque on each owned row into WallForce/WallTorque; the walls are
 // placed at time t_contact (the time the positions refer to). Instantiated for every law of
-// ContactLaws. Returns the largest overlap excess delta - 2 overlap_limit r over the wall contacts
-// (positive: an overlap passed overlap_limit of the diameter; -infinity without contacts).
+// ContactLaws. Returns whether some wall overlap passed overlap_limit of the grain's diameter
+// (run.max_overlap, at most 1; found in the same pass).
 template <class L>
-double compute_wall_forces(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
-                           double t_contact, double overlap_limit = std::numeric_limits<double>::infinity());
+bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
+                         double t_contact, double overlap_limit = 1.0);
 template <class L>
-double compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
-                                  double t_contact, double overlap_limit = std::numeric_limits<double>::infinity());
+bool compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& history, const ContactTable& table, double dt,
+                                double t_contact, double overlap_limit = 1.0);
 
 // The integrator's term this system fills.
 inline ForceTerm wall_force_term() { return force_term<WallForce, WallTorque>("wall_contact"); }
@@ -44,7 +43,7 @@ class WallContact : public SystemBase<WallContact<L>> {
     const double limit = world.resources.get<OverlapLimit>().ratio;
     Walls& walls = world.resources.get<Walls>();
     if (compute_wall_forces<L>(world.grains, walls, world.grains.extras.get<WallHistory>(),
-                               world.resources.get<ContactTable>(), step.dt, t, limit) > 0.0)
+                               world.resources.get<ContactTable>(), step.dt, t, limit))
       report_wall_overlap(world.grains, walls, limit, step);
   }
 };
