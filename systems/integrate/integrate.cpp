@@ -56,8 +56,10 @@ template <class T, int N, class Load>
 // One pass over the owned rows: v += h a, w += h alpha and, with Drift, x += dt v. Whole batches
 // with vector loads (the columns are separate arrays, which the compiler cannot prove, so it would
 // not vectorise the plain loop), the last partial batch row by row; padding rows are not touched.
-// Returns whether every value it wrote is finite: x - x is 0 for a finite x and NaN otherwise, and
-// a NaN stays in the running sum (a few additions per batch, on values already in registers).
+// Returns whether what it wrote is finite: with Drift the positions (a non-finite velocity makes a
+// non-finite position), else the velocities and spins, so each step checks all three once. s - s is
+// 0 for a finite sum s of them and NaN otherwise, and a NaN stays in the running sum (a few
+// additions per batch, on values already in registers).
 // Spin: the table has spin columns (Grains::spin); without them only translation is integrated.
 // NF: the number of force terms when known at compile time (each with a torque when Spin), else -1.
 template <bool Drift, bool Spin, int NF>
@@ -81,15 +83,19 @@ bool kick_rows(Grains& g, const TermColumns& tc, const Gravity& grav, double h, 
       g.omega.x[i] += b * sum_terms<double, NT>(T, tc.nt, &Vec3Columns::x, i, one);
       g.omega.y[i] += b * sum_terms<double, NT>(T, tc.nt, &Vec3Columns::y, i, one);
       g.omega.z[i] += b * sum_terms<double, NT>(T, tc.nt, &Vec3Columns::z, i, one);
-      bad += (g.omega.x[i] - g.omega.x[i]) + (g.omega.y[i] - g.omega.y[i]) + (g.omega.z[i] - g.omega.z[i]);
+      const double s = g.omega.x[i] + g.omega.y[i] + g.omega.z[i];
+      if constexpr (!Drift) bad += s - s;
     }
     if constexpr (Drift) {
       g.pos.x[i] += dt * g.vel.x[i];
       g.pos.y[i] += dt * g.vel.y[i];
       g.pos.z[i] += dt * g.vel.z[i];
-      bad += (g.pos.x[i] - g.pos.x[i]) + (g.pos.y[i] - g.pos.y[i]) + (g.pos.z[i] - g.pos.z[i]);
+      const double s = g.pos.x[i] + g.pos.y[i] + g.pos.z[i];
+      bad += s - s;
+    } else {
+      const double s = g.vel.x[i] + g.vel.y[i] + g.vel.z[i];
+      bad += s - s;
     }
-    bad += (g.vel.x[i] - g.vel.x[i]) + (g.vel.y[i] - g.vel.y[i]) + (g.vel.z[i] - g.vel.z[i]);
     return bad == 0.0;
   };
   auto batches = [&](const tbb::blocked_range<std::size_t>& r, bool finite) {
@@ -114,15 +120,22 @@ bool kick_rows(Grains& g, const TermColumns& tc, const Gravity& grav, double h, 
         wx.store_aligned(&g.omega.x[i]);
         wy.store_aligned(&g.omega.y[i]);
         wz.store_aligned(&g.omega.z[i]);
-        bad += (wx - wx) + ((wy - wy) + (wz - wz));
+        if constexpr (!Drift) {
+          const B s = (wx + wy) + wz;
+          bad += s - s;
+        }
       }
-      bad += (vx - vx) + ((vy - vy) + (vz - vz));
+      if constexpr (!Drift) {
+        const B s = (vx + vy) + vz;
+        bad += s - s;
+      }
       if constexpr (Drift) {
         const B px = ld(g.pos.x, i) + bdt * vx, py = ld(g.pos.y, i) + bdt * vy, pz = ld(g.pos.z, i) + bdt * vz;
         px.store_aligned(&g.pos.x[i]);
         py.store_aligned(&g.pos.y[i]);
         pz.store_aligned(&g.pos.z[i]);
-        bad += (px - px) + (py - py) + (pz - pz);
+        const B s = (px + py) + pz;
+        bad += s - s;
       }
     }
     return finite && xsimd::all(bad == B(0.0));
