@@ -39,16 +39,21 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
   if (world.clock.step == 0) world.clock.t0 = world.clock.t;
   const double stage_t0 = world.clock.t0;
   const std::int64_t step_start = world.clock.step;
-  if (opt.observe) opt.observe->run_step(next_step(world.clock));
+  auto context = [&] {
+    StepContext c = next_step(world.clock);
+    c.stage = opt.label;
+    return c;
+  };
+  if (opt.observe) opt.observe->run_step(context());
   for (std::int64_t k = 0; k < opt.steps; ++k) {
     if (stop_requested()) {
       rep.interrupted = true;
       break;
     }
-    step.run_step(next_step(world.clock));
+    step.run_step(context());
     world.clock.step = step_start + k + 1;
     world.clock.t = stage_t0 + static_cast<double>(step_start + k + 1) * world.clock.dt;
-    if (opt.observe) opt.observe->run_step(next_step(world.clock));
+    if (opt.observe) opt.observe->run_step(context());
     ++rep.steps;
     if (opt.progress_seconds > 0) {
       const auto now = clock::now();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 
 namespace gf {
 
@@ -13,6 +14,7 @@ struct StepContext {
   int substep = 0;         // 0 .. substeps-1 inside a sub-schedule, else 0
   int substeps = 1;
   bool prime = false;      // forces of the current state only: nothing moves and no time passes
+  std::string_view stage = "run";  // the stage being run ("settle", "run"), for messages
 };
 
 }  // namespace gf

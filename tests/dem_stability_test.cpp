@@ -2,8 +2,9 @@
 // allow_unstable_dt, the run itself detects the blow-up: it stops with exit status 3, a message
 // naming what broke and the fix, and summary.json "failed", keeping what it wrote. The boundary
 // for this drum (seed-000 contact parameters, 1 and 3 mm grains, smallest collision period
-// 1.19e-4 s): 3e-5 s still runs, 4e-5 s trips the overlap limit, 8e-5 s goes non-finite. The
-// checks run in every step, inside the kernels, and name the step and the grains.
+// 1.19e-4 s): 3e-5 s still runs, 4e-5 s trips the overlap limit while the drum turns, 8e-5 s while
+// it settles. The checks run in every step, inside the kernels, and name the step and the grains;
+// a non-finite value is put in by hand (a step that large trips the overlap limit first).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -90,7 +91,7 @@ TEST_CASE("stability: an overlap past the limit stops the step that made it, wit
   gf::World& w = sim.world();
   const auto cs = gf::contact_stats(sim.grains(), w.resources.get<gf::NeighborList>(), w.resources.get<gf::Walls>());
   CHECK(cs.max_overlap_ratio > limit);  // the state the kernel saw is past the limit
-  CHECK_THAT(message, Contains("in step " + std::to_string(steps + 1) + " of the stage") &&
+  CHECK_THAT(message, Contains("in step " + std::to_string(steps + 1) + " of the run stage") &&
                           Contains("grain id ") && Contains("run.max_overlap = 0.1") && Contains("Fix: reduce run.dt"));
 }
 
@@ -107,7 +108,7 @@ TEST_CASE("stability: a non-finite value stops the step that made it and names t
   } catch (const gf::StabilityError& e) {
     const std::string m = e.what();
     INFO(m);
-    CHECK_THAT(m, Contains("grain id 42 ") && Contains("became non-finite in step 11 of the stage") &&
+    CHECK_THAT(m, Contains("grain id 42 ") && Contains("became non-finite in step 11 of the run stage") &&
                       Contains("Fix: reduce run.dt"));
   }
 }

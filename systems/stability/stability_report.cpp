@@ -17,8 +17,9 @@ std::string when(const StepContext& s) {
   if (s.prime)
     std::snprintf(buf, sizeof buf, "in the initial state (t = %.9g s)", s.t);
   else
-    std::snprintf(buf, sizeof buf, "in step %lld of the stage (t = %.9g s to %.9g s)",
-                  static_cast<long long>(s.step + 1), s.t, s.t + s.dt);
+    std::snprintf(buf, sizeof buf, "in step %lld of the %.*s stage (t = %.9g s to %.9g s)",
+                  static_cast<long long>(s.step + 1), static_cast<int>(s.stage.size()), s.stage.data(), s.t,
+                  s.t + s.dt);
   return buf;
 }
 
