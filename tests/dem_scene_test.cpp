@@ -210,6 +210,15 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
     CHECK_THAT(e, Contains(at(f, line_of(text, "radius = -0.003")) + " key 'fill[0].region.radius'"));
     CHECK_THAT(e, Contains("out of range"));
   }
+  SECTION("a duration of more steps than a run can count") {
+    // 1e14 s at 1e-5 s is 1e19 steps, past the 64-bit step count (it used to wrap to a negative count
+    // and 'complete' after 0 steps); a time step of 1e-320 s gives infinitely many.
+    const fs::path f = dir.write("long.toml", kScene);
+    CHECK_THAT(scene_error(f, {"run.duration=1e14"}),
+               Contains("key 'run.duration'") && Contains("steps") && Contains("Fix: at most 1e15 steps"));
+    CHECK_THAT(scene_error(f, {"run.dt=1e-320", "run.allow_unstable_dt=true"}),
+               Contains("key 'run.duration'") && Contains("inf steps"));
+  }
   SECTION("a value given on the command line is located there") {
     const fs::path f = dir.write("ok.toml", kScene);
     CHECK_THAT(scene_error(f, {"run.skin=-1"}),
