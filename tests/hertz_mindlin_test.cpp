@@ -201,19 +201,9 @@ TEST_CASE("hertz_mindlin: Chung-Ooi T4, oblique impact in gross sliding follows 
   }
 }
 
-// The small drum of test_support with Hertz-Mindlin instead of the linear law: both species get a soft
-// material (E = 1 MPa) that passes the Rayleigh-time check at dt = 1e-5 s, with rolling resistance.
+// The small drum of test_support with Hertz-Mindlin instead of the linear law.
 std::string hertz_drum(double gravity, const std::string& extra_run = "") {
-  std::string hertz = gf::test::small_drum_scene(gravity, extra_run);
-  const std::string lsd = "model = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nkr = 1.0e-5\n"
-                          "en = 0.3\net = 0.3\ner = 0.3\nfriction = 0.3\nrolling_friction = 5.0e-5\n";
-  REQUIRE(hertz.find(lsd) != std::string::npos);
-  hertz.replace(hertz.find(lsd), lsd.size(),
-                "model = \"hertz_mindlin\"\nrestitution = 0.5\nfriction = 0.3\nrolling_friction = 0.05\n");
-  const std::string density = "density = 2500.0\n";
-  for (std::size_t at = hertz.find(density); at != std::string::npos; at = hertz.find(density, at + 1))
-    hertz.insert(at + density.size(), "youngs_modulus = 1.0e6\npoisson_ratio = 0.25\n");
-  return hertz;
+  return gf::test::with_hertz_mindlin(gf::test::small_drum_scene(gravity, extra_run));
 }
 
 TEST_CASE("hertz_mindlin: a checkpoint of another law is refused by name", "[contact][hertz][checkpoint]") {

@@ -178,6 +178,23 @@ inline std::string binary_box_scene(int small, int large, double gravity = 9.81)
   return s.str();
 }
 
+// A scene of this file with Hertz-Mindlin instead of the seed-000 linear law (the [contact] block the
+// scenes above write): every species (each has a "density = 2500.0" line) gets a soft material,
+// E = 1 MPa and nu = 0.25, that passes the Rayleigh-time check at dt = 1e-5 s; e = 0.5, mu = 0.3,
+// mu_r = 0.05.
+inline std::string with_hertz_mindlin(std::string scene) {
+  const std::string lsd = "model = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nkr = 1.0e-5\n"
+                          "en = 0.3\net = 0.3\ner = 0.3\nfriction = 0.3\nrolling_friction = 5.0e-5\n";
+  const std::size_t at = scene.find(lsd);
+  if (at == std::string::npos) throw std::logic_error("with_hertz_mindlin: the scene has no seed-000 [contact] block");
+  scene.replace(at, lsd.size(),
+                "model = \"hertz_mindlin\"\nrestitution = 0.5\nfriction = 0.3\nrolling_friction = 0.05\n");
+  const std::string density = "density = 2500.0\n";
+  for (std::size_t d = scene.find(density); d != std::string::npos; d = scene.find(density, d + 1))
+    scene.insert(d + density.size(), "youngs_modulus = 1.0e6\npoisson_ratio = 0.25\n");
+  return scene;
+}
+
 // A small rotating drum (24 mm across, 6 mm deep, 3 rad/s about z) of 400 grains of 1 mm and 20 of
 // 3 mm with seed 000's contact parameters (Table 4), poured at random: the scene the checkpoint and
 // stability tests run. `extra_run` is appended to [run] (e.g. "max_overlap = 0.3\n"); a positive
