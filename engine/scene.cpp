@@ -25,6 +25,12 @@ std::string short_number(double v) {
   return os.str();
 }
 
+void check_step_count(const SceneNode& node, std::string_view key, double seconds, double dt) {
+  if (seconds / dt > 1e15)
+    node.fail(key, "gives " + short_number(seconds / dt) + " steps of run.dt = " + short_number(dt) + " s",
+              "at most 1e15 steps: shorten it or lengthen run.dt");
+}
+
 namespace detail {
 
 // Where a value that came from --set stands. toml++ gives such nodes the source position of the tiny document we

@@ -108,6 +108,11 @@ class SceneNode {
   std::string path_;
 };
 
+// Step counts are 64-bit integers; more than 1e15 steps of dt (weeks even at a billion steps per
+// second) is a typo, not a run, and would overflow the count near 9e18. Refuses `seconds` of
+// simulated time at `key` of `node` past that, naming the key and the fix.
+void check_step_count(const SceneNode& node, std::string_view key, double seconds, double dt);
+
 // A parsed scene file plus the --set overrides applied to it, and the record of which keys were read.
 // Copies share that record (they are the same document); moving is a pointer move.
 class SceneDoc {

@@ -128,6 +128,12 @@ TEST_CASE("bad liquid scene input is a SceneError naming the file, line, key and
   // No liquid placed.
   t = base.substr(0, base.find("[[fluid]]"));
   REQUIRE_THROWS_WITH(load(t), Catch::Contains("places no liquid"));
+  // A time step so short that the duration is more steps than a run can count (it wrapped the count).
+  const std::string dt = "dt = ";
+  t = base;
+  t.insert(t.find(dt) + dt.size(), "1e-300 # ");
+  t.replace(t.find("[run]\n"), 6, "[run]\nallow_unstable_dt = true\n");
+  REQUIRE_THROWS_WITH(load(t), Catch::Contains("run.duration") && Catch::Contains("at most 1e15 steps"));
 }
 
 TEST_CASE("a run that blows up exits with code 3, a failed summary and the broken limit on stderr") {

@@ -131,6 +131,7 @@ LiquidScene load_liquid_scene(const SceneDoc& doc) {
   const SceneNode run = root.table("run");
   s.dt = run.get_double("dt", Range::positive());
   s.duration = run.get_double("duration", Range::non_negative());
+  check_step_count(run, "duration", s.duration, s.dt);
   p.gravity = run.get_vec3("gravity", {0, 0, 0});
   p.body_force = run.get_vec3("body_force", {0, 0, 0});
   if (dim == 2 && (p.gravity[2] != 0 || p.body_force[2] != 0))

@@ -334,16 +334,8 @@ DemScene load_dem_scene(const SceneDoc& doc) {
                "give duration (s) instead, or a wall with omega != 0");
     s.duration = *s.end_angle / omega;
   }
-  // Step counts are 64-bit integers; more than 1e15 steps (weeks even at a billion steps per second)
-  // is a typo, not a run, and would overflow the count near 9e18: refused before anything runs.
-  constexpr double kMaxSteps = 1e15;
-  const auto check_steps = [&](const SceneNode& node, const char* key, double seconds) {
-    if (seconds / s.dt > kMaxSteps)
-      node.fail(key, "gives " + short_number(seconds / s.dt) + " steps of run.dt = " + short_number(s.dt) + " s",
-                "at most 1e15 steps: shorten it or lengthen run.dt");
-  };
-  check_steps(run, has_duration ? "duration" : "end_angle", s.duration);
-  if (auto settle = root.maybe_table("settle")) check_steps(*settle, "time", s.settle_time);
+  check_step_count(run, has_duration ? "duration" : "end_angle", s.duration, s.dt);
+  if (auto settle = root.maybe_table("settle")) check_step_count(*settle, "time", s.settle_time, s.dt);
 
   if (auto out = root.maybe_table("output")) {
     s.output.series_interval = out->get_double("series_interval", 0.0, Range::non_negative());
