@@ -344,9 +344,31 @@ TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill
     CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:"));
     CHECK_THAT(e, Contains(csv.string() + ":3: diameter 0.003 m does not match species 'glass' (0.002 m)"));
 
+    dir.write("grains.csv", "id,type,diameter,x,y,z\n");  // the header alone: no grains
+    e = scene_error(f, {}, true);
+    CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:") && Contains("holds no grains") && Contains("Fix:"));
+    // `check` builds the fills as `run` does, so it refuses the same file (exit status 1).
+    const Exit c = run_cli(dir, "check " + quote(f.string()));
+    CHECK(c.code == 1);
+    CHECK_THAT(c.err, Contains("holds no grains"));
+
     fs::remove(csv);
     e = scene_error(f, {}, true);
     CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:") && Contains("grains.csv"));
+  }
+  SECTION("more grains than the machine's memory holds") {
+    // Ten fills of 1e8 grains (the most one count may give) need about 800 GiB of arrays: refused,
+    // by check too, before anything is allocated, at the fill asking for the most (the last of ties).
+    const std::string fill = kScene.substr(kScene.find("[[fill]]"), kScene.find("[output]") - kScene.find("[[fill]]"));
+    std::string fills;
+    for (int k = 0; k < 10; ++k) fills += with(fill, "count = { glass = 50 }", "count = { glass = 100000000 }");
+    const std::string text = kScene.substr(0, kScene.find("[[fill]]")) + fills + kScene.substr(kScene.find("[output]"));
+    const fs::path f = dir.write("huge.toml", text);
+    const std::string e = scene_error(f, {}, true);
+    CHECK_THAT(e, Contains(" fill[9]:") && Contains("1000000000 grains") && Contains("GiB") && Contains("Fix:"));
+    const Exit c = run_cli(dir, "check " + quote(f.string()));
+    CHECK(c.code == 1);
+    CHECK_THAT(c.err, Contains("GiB"));
   }
 }
 

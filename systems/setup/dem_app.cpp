@@ -55,13 +55,12 @@ int check_dem_command(const CliOptions& opt) {
   const DemScene s = load_dem_scene(doc);
   Schedule step;
   schedule_dem_step(step, s);
+  // The fills are built as `run` builds them, so check refuses what run would (a state file's bad
+  // row, a region through a wall, an empty world, more grains than the memory holds).
   World probe;
+  build_dem_world(s, probe);
   step.build(probe);
-  std::size_t n = planned_grain_count(s);
-  std::string note = n ? "" : " (from state files: counted when loaded)";
-  if (!n)
-    for (const FillSpec& f : s.fills)
-      if (f.kind == FillSpec::Kind::File) n += read_state_csv(f.path).size();
+  const std::size_t n = probe.grains.n;
   std::printf("scene %s: valid\n", s.file.string().c_str());
   with_law(s.law, [&]<class Law>() {
     const HistoryLayout h = Law::history();

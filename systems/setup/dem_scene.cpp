@@ -6,6 +6,8 @@
 #include <numbers>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "systems/analysis/metrics.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
@@ -390,6 +392,25 @@ std::size_t planned_grain_count(const DemScene& scene) {
   return n;
 }
 
+void require_memory(const DemScene& scene, std::size_t n) {
+  const double need = static_cast<double>(estimate_memory_bytes(scene, n));
+  const double have = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  if (!(have > 0) || need <= 0.8 * have) return;
+  // Named at the fill asking for the most grains.
+  const FillSpec* big = nullptr;
+  std::size_t most = 0;
+  for (const FillSpec& f : scene.fills) {
+    std::size_t c = 0;
+    for (auto& [sp, k] : f.counts) c += k;
+    if (c >= most) most = c, big = &f;
+  }
+  throw SceneError(scene.file.string() + ":" + std::to_string(big ? big->line : 0) + ": " +
+                   (big ? big->where + ": " : std::string()) + "the fills ask for " + std::to_string(n) +
+                   " grains, about " + short_number(need / 1073741824.0) + " GiB of arrays, more than 80 % of this "
+                   "machine's " + short_number(have / 1073741824.0) + " GiB. Fix: lower the fills' counts or volume "
+                   "fractions");
+}
+
 std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n) {
   // Arrays the simulation holds, per grain: 25 double columns (16 without rotation), type and id, the skin reference
   // positions, a 64-byte spring record and a flag per wall. A dense pack of the seed drum has about
@@ -412,6 +433,7 @@ namespace {
 }  // namespace
 
 void build_dem_world(const DemScene& s, World& world) {
+  require_memory(s, planned_grain_count(s));
   Grains& g = world.grains;
   std::vector<PlacedGrain> placed;
   for (const FillSpec& f : s.fills) {
@@ -443,6 +465,8 @@ void build_dem_world(const DemScene& s, World& world) {
       } catch (const StateCsvError& e) {
         fill_error(s, f, e.what());
       }
+      if (rows.empty())
+        fill_error(s, f, f.path.string() + ": the state file holds no grains. Fix: give a file with rows, or remove the fill");
       for (const StateRow& r : rows) {
         std::int32_t sp = -1;
         for (auto& [t, idx] : f.type_map)
@@ -463,6 +487,9 @@ void build_dem_world(const DemScene& s, World& world) {
   }
 
   const std::size_t n = placed.size();
+  if (n == 0)
+    throw SceneError(s.file.string() + ": the scene's fills place no grains. Fix: give a [[fill]] a count or a "
+                     "volume fraction above 0, or a state file with rows");
   // Spin columns only when some species rotates; a species that does not has inv_inertia 0.
   g.spin = s.spin();
   g.resize(n);

@@ -108,5 +108,7 @@ void build_dem_world(const DemScene& scene, World& world);
 // Estimated bytes for n grains (columns, neighbour list and history at a typical coordination).
 std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n);
 std::size_t planned_grain_count(const DemScene& scene);
+// Refuses (SceneError) n grains whose arrays would need more than 80 % of this machine's memory.
+void require_memory(const DemScene& scene, std::size_t n);
 
 }  // namespace gf
