@@ -11,8 +11,11 @@
 
 namespace gf {
 
+// More threads than this is a typo (the default is every core).
+inline constexpr int kMaxThreads = 1024;
+
 struct CliOptions {
-  std::string command;  // "run" or "check"
+  std::string command;  // "run", "check", or "help" / "version" (print and exit 0)
   std::filesystem::path scene;
   std::optional<std::filesystem::path> out;  // default: runs/<scene name>
   int threads = 0;                           // 0: all cores

@@ -17,6 +17,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "grainflow: %s\n%s", e.what(), gf::usage().c_str());
     return 2;
   }
+  if (opt.command == "help") {
+    std::printf("%s", gf::usage().c_str());
+    return 0;
+  }
+  if (opt.command == "version") {
+    std::printf("grainflow %s\n", GRAINFLOW_VERSION);
+    return 0;
+  }
   const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   gf::install_stop_handlers();

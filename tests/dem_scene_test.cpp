@@ -489,6 +489,24 @@ TEST_CASE("cli: a bad scene and a bad flag fail cleanly", "[dem_scene][cli]") {
     CHECK(e.code == 2);
     CHECK_THAT(e.err, Contains("--threads") && Contains("usage:"));
   }
+  SECTION("a thread count past the bound: exit 2 naming the bound") {
+    const fs::path scene = dir.write("tiny.toml", kScene);
+    const Exit e = run_cli(dir, "run " + quote(scene.string()) + " --threads 100000");
+    REQUIRE(e.exited);
+    CHECK(e.code == 2);
+    CHECK_THAT(e.err, Contains("--threads needs an integer from 1 to 1024, got '100000'"));
+  }
+  SECTION("--help and --version: exit 0 on stdout") {
+    for (const char* args : {"--help", "-h", "run --help", "check x.toml --help"}) {
+      const Exit e = run_cli(dir, args);
+      INFO(args);
+      CHECK(e.code == 0);
+      CHECK_THAT(e.out, Contains("usage:") && Contains("grainflow run SCENE"));
+    }
+    const Exit v = run_cli(dir, "--version");
+    CHECK(v.code == 0);
+    CHECK_THAT(v.out, Contains("grainflow 0."));
+  }
   SECTION("no arguments: exit 2 with usage") {
     const Exit e = run_cli(dir, "");
     REQUIRE(e.exited);
