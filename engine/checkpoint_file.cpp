@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "engine/atomic_file.hpp"
+#include "engine/read_file.hpp"
 
 namespace gf {
 
@@ -59,11 +60,9 @@ void CheckpointReader::fail(const std::string& problem, const std::string& fix) 
 }
 
 CheckpointReader::CheckpointReader(const std::filesystem::path& file) : file_(file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail("cannot open the checkpoint", "give the path of a checkpoint a run wrote (checkpoints/*.gfc)");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  data_ = std::move(ss).str();
+  FileProblem why;
+  if (!read_regular_file(file, half_of_memory(), data_, why))
+    fail("cannot read the checkpoint: " + why.problem, "give the path of a checkpoint a run wrote (checkpoints/*.gfc)");
   const std::string_view all(data_);
   if (all.substr(0, kMagic.size()) != kMagic)
     fail("not a grainflow checkpoint (or one of another format version)",

@@ -16,6 +16,8 @@
 #include <unordered_set>
 #include <utility>
 
+#include "engine/read_file.hpp"
+
 namespace gf {
 
 std::string short_number(double v) {
@@ -817,18 +819,16 @@ SceneDoc& SceneDoc::operator=(const SceneDoc& other) {
 }
 
 SceneDoc SceneDoc::load(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec))
-    throw SceneError(file.string() + ": this is a folder, not a scene file. Fix: name a .toml scene file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
+  // A scene is a text of a few kB: 64 MB is far past any, and keeps a wrong path from filling memory.
+  std::string text;
+  FileProblem why;
+  if (!read_regular_file(file, std::size_t(64) << 20, text, why)) {
+    std::error_code ec;
     const auto cwd = std::filesystem::current_path(ec);
-    throw SceneError(file.string() + ": cannot open the scene file. Fix: check the path" +
+    throw SceneError(file.string() + ": cannot read the scene file: " + why.problem + ". Fix: " + why.fix +
                      (file.is_relative() && !ec ? " (relative paths start from " + cwd.string() + ")" : ""));
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse(text.str(), file, overrides);
+  return parse(text, file, overrides);
 }
 
 SceneDoc SceneDoc::parse(std::string_view text, const std::filesystem::path& name,

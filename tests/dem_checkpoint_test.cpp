@@ -263,5 +263,5 @@ TEST_CASE("checkpoint: damaged or mismatched checkpoints are refused with the fi
   const fs::path scene = dir.write("drum.toml", kDrum);
   auto e = run_cli(dir, scene_args(scene, dir.path / "o", "--resume " + quote((dir.path / "missing.gfc").string())));
   CHECK(e.code == 1);
-  CHECK_THAT(e.err, Contains("missing.gfc") && Contains("cannot open"));
+  CHECK_THAT(e.err, Contains("missing.gfc") && Contains("the file does not exist"));
 }

@@ -473,7 +473,7 @@ TEST_CASE("cli: a bad scene and a bad flag fail cleanly", "[dem_scene][cli]") {
     const Exit e = run_cli(dir, "check " + quote((dir.path / "nope.toml").string()));
     REQUIRE(e.exited);
     CHECK(e.code == 1);
-    CHECK_THAT(e.err, Contains("nope.toml") && Contains("cannot open"));
+    CHECK_THAT(e.err, Contains("nope.toml") && Contains("does not exist"));
   }
   SECTION("unknown flag: exit 2 with usage") {
     const fs::path scene = dir.write("tiny.toml", kScene);

@@ -263,7 +263,11 @@ TEST_CASE("scene: a TOML syntax error gives file:line:column", "[scene]") {
   CHECK_THAT(msg, Contains("bad.toml:2:"));
   CHECK_THAT(msg, Contains("TOML syntax error"));
   CHECK_THAT(msg, Contains("Fix: "));
-  CHECK_THROWS_WITH(SceneDoc::load("/nonexistent/scene.toml"), Contains("cannot open the scene file"));
+  CHECK_THROWS_WITH(SceneDoc::load("/nonexistent/scene.toml"),
+                    Contains("cannot read the scene file: the file does not exist"));
+  // Only regular files are read: a device would never end, a pipe could block forever.
+  CHECK_THROWS_WITH(SceneDoc::load("/dev/zero"), Contains("/dev/zero") && Contains("not a regular file"));
+  CHECK_THROWS_WITH(SceneDoc::load("/tmp"), Contains("a folder"));
 }
 
 TEST_CASE("scene: fail(), tables() misuse, resolve() and document sharing", "[scene]") {

@@ -7,6 +7,9 @@
 #include <limits>
 #include <string>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "systems/fill/state_csv.hpp"
 #include "tests/test_support.hpp"
 
@@ -113,9 +116,27 @@ TEST_CASE("bad state files name the file, the line and the problem", "[fill]") {
     } catch (const StateCsvError& e) {
       const std::string m = e.what();
       CHECK(contains(m, p.string()));
-      CHECK(contains(m, "cannot open"));
+      CHECK(contains(m, "does not exist"));
       CHECK(contains(m, "Fix:"));
     }
+  }
+  SECTION("a device, a pipe or a folder is not read") {
+    // /dev/zero never ends and a FIFO blocks until a writer comes: both used to be read.
+    const fs::path fifo = fs::temp_directory_path() / ("grainflow_state_fifo_" + std::to_string(::getpid()));
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    for (const fs::path& p : {fs::path("/dev/zero"), fifo, fs::temp_directory_path()}) {
+      INFO(p);
+      try {
+        gf::read_state_csv(p);
+        FAIL("expected StateCsvError");
+      } catch (const StateCsvError& e) {
+        const std::string m = e.what();
+        CHECK(contains(m, p.string()));
+        CHECK((contains(m, "not a regular file") || contains(m, "a folder")));
+        CHECK(contains(m, "Fix:"));
+      }
+    }
+    fs::remove(fifo);
   }
   SECTION("wrong header") {
     const TempFile f("id,type,radius,x,y,z\n1,1,0.001,0,0,0\n");

@@ -12,6 +12,8 @@
 #include <system_error>
 #include <utility>
 
+#include "engine/read_file.hpp"
+
 namespace gf {
 namespace {
 
@@ -52,18 +54,9 @@ std::string_view strip_plus(std::string_view s) {
 }
 
 std::string read_all(const std::filesystem::path& file) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
-  if (!f) {
-    fail(file, 0, std::string("cannot open the state file (") + std::strerror(errno) + ")",
-         "check the path and that the file exists and is readable");
-  }
   std::string data;
-  char buf[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) data.append(buf, n);
-  if (std::ferror(f.get())) {
-    fail(file, 0, "read error", "check that the file is a readable regular file");
-  }
+  FileProblem why;
+  if (!read_regular_file(file, half_of_memory(), data, why)) fail(file, 0, "state file: " + why.problem, why.fix);
   return data;
 }
 
