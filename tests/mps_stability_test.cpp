@@ -13,6 +13,7 @@
 
 #include "engine/scene.hpp"
 #include "mps_support.hpp"
+#include "systems/mps/liquid_simulation.hpp"
 #include "systems/mps/stability.hpp"
 #include "test_support.hpp"
 
@@ -134,6 +135,18 @@ TEST_CASE("bad liquid scene input is a SceneError naming the file, line, key and
   t.insert(t.find(dt) + dt.size(), "1e-300 # ");
   t.replace(t.find("[run]\n"), 6, "[run]\nallow_unstable_dt = true\n");
   REQUIRE_THROWS_WITH(load(t), Catch::Contains("run.duration") && Catch::Contains("at most 1e15 steps"));
+  // A geometry of 1e5 m (1e10, 1e30: the same) where 0.584 m was meant: refused before any node is
+  // made (it allocated > 5 GB, spun, or overflowed to 0 nodes and 'completed').
+  for (const char* far : {"1e5", "1e10", "1e30"}) {
+    t = base;
+    t.replace(t.find("hi = [0.584"), 11, std::string("hi = [") + far);
+    REQUIRE_THROWS_WITH(load(t), Catch::Contains("geometry.hi") && Catch::Contains("half this machine's memory"));
+  }
+  // A block thinner than one spacing places no node: refused when the nodes are made (check makes them).
+  t = base;
+  const std::size_t hi = t.find("hi = [", t.find("[[fluid]]"));
+  t.replace(hi, t.find(']', hi) - hi + 1, "hi = [0.146, 0.0001, 0.0]");
+  REQUIRE_THROWS_WITH(LiquidSimulation(load(t)), Catch::Contains("hold no lattice node") && Catch::Contains("Fix:"));
 }
 
 TEST_CASE("a run that blows up exits with code 3, a failed summary and the broken limit on stderr") {

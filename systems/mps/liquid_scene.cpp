@@ -1,7 +1,10 @@
 #include "systems/mps/liquid_scene.hpp"
 
+#include <array>
 #include <cmath>
 #include <sstream>
+
+#include "engine/read_file.hpp"
 
 namespace gf {
 
@@ -57,6 +60,19 @@ void read_geometry(LiquidScene& s, const SceneNode& root) {
              "lengthen the periodic axis");
   }
   s.params.periodic = geo.periodicity();
+  // The lattice of candidate nodes, counted in doubles before anything is made: a wrong extent (1e5 m
+  // where 0.5 m was meant) would allocate without bound, and 1e30 m would overflow the indices. About
+  // 1 kB per node with its neighbour pairs and solver rows; at most half the machine's memory.
+  std::array<double, 3> blo, bhi;
+  geo.bounds(l0, blo, bhi);
+  double cells = 1.0;
+  for (int a = 0; a < geo.dim; ++a) cells *= (bhi[a] - blo[a]) / l0 + 2.0;
+  const double most = static_cast<double>(half_of_memory()) / 1024.0;
+  if (!(cells <= most))
+    g.fail(geo.kind == LiquidGeometry::Kind::Pipe ? "length" : "hi",
+           "the geometry's lattice has about " + short_number(cells) + " nodes of spacing l0 = " + short_number(l0) +
+               " m, more than half this machine's memory holds (about " + short_number(most) + ")",
+           "check the extent (m), or raise liquid.l0");
 }
 
 void read_fluid(LiquidScene& s, const SceneNode& root) {
