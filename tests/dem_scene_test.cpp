@@ -194,12 +194,18 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
     CHECK_THAT(e, Contains(at(f, line_of(text, "[[species]]")) + " key 'species[0].diameter'"));
     CHECK_THAT(e, Contains("missing required key 'diameter'"));
   }
+  SECTION("a density past any material") {
+    // 1e308 kg/m^3 made masses and time-step terms infinite ("critical period inf s").
+    const fs::path f = dir.write("dense.toml", kScene);
+    CHECK_THAT(scene_error(f, {"species.0.density=1e308"}),
+               Contains("key 'species[0].density'") && Contains("out of range") && Contains("1e6"));
+  }
   SECTION("a negative diameter") {
     const std::string text = with(kScene, "diameter = 2.0e-3", "diameter = -2.0e-3");
     const fs::path f = dir.write("negative_diameter.toml", text);
     const std::string e = scene_error(f);
     CHECK_THAT(e, Contains(at(f, line_of(text, "diameter = -2.0e-3")) + " key 'species[0].diameter'"));
-    CHECK_THAT(e, Contains("-0.002 is out of range") && Contains("> 0"));
+    CHECK_THAT(e, Contains("-0.002 is out of range") && Contains("(0, 100]"));
   }
   SECTION("a negative radius") {
     const std::string text =
@@ -343,6 +349,19 @@ TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill
     e = scene_error(f, {}, true);
     CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:"));
     CHECK_THAT(e, Contains(csv.string() + ":3: diameter 0.003 m does not match species 'glass' (0.002 m)"));
+
+    // A centre behind a wall: outside the domain (it was reported as an instability once running).
+    dir.write("grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,1,0.002,0.006,0.003,100\n");
+    e = scene_error(f, {}, true);
+    CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:") &&
+                      Contains(csv.string() + ":3: the grain's centre (0.006, 0.003, 100) m is outside wall 'box+z'"));
+
+    // The same file in two fills: every grain twice, one on the other.
+    dir.write("grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,1,0.002,0.006,0.003,0.003\n");
+    const std::string twice = kScene.substr(0, kScene.find("[[fill]]")) + file_fill + file_fill +
+                              kScene.substr(kScene.find("[output]"));
+    e = scene_error(dir.write("twice.toml", twice), {}, true);
+    CHECK_THAT(e, Contains("grains 0 and 2 of the fills") && Contains("one on the other") && Contains("Fix:"));
 
     dir.write("grains.csv", "id,type,diameter,x,y,z\n");  // the header alone: no grains
     e = scene_error(f, {}, true);

@@ -286,8 +286,10 @@ DemScene load_dem_scene(const SceneDoc& doc) {
     spec.name = sp.get_string("name");
     for (auto& other : s.species)
       if (other.name == spec.name) sp.fail("name", "species '" + spec.name + "' is defined twice", "rename one");
-    spec.diameter = sp.get_double("diameter", Range::positive());
-    spec.density = sp.get_double("density", Range::positive());
+    // Bounds far past any granular material (osmium is 22,600 kg/m^3; a coarse-grained parcel a few cm)
+    // that keep the masses, inertias and time-step terms finite: 1e308 kg/m^3 made them infinite.
+    spec.diameter = sp.get_double("diameter", Range::open_closed(0, 100));
+    spec.density = sp.get_double("density", Range::open_closed(0, 1e6));
     const double r = 0.5 * spec.diameter;
     spec.mass = spec.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
     spec.inertia = 0.4 * spec.mass * r * r;
@@ -430,6 +432,26 @@ namespace {
   throw SceneError(s.file.string() + ":" + std::to_string(f.line) + ": " + f.where + ": " + what);
 }
 
+// Two grains at one place (the same state file given twice, say) would push apart with forces past any
+// limit in the first step: refused, naming both. Sorted by position, coincident grains are neighbours.
+void require_apart(const DemScene& s, const std::vector<PlacedGrain>& placed) {
+  std::vector<std::size_t> order(placed.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return placed[a].x < placed[b].x; });
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    const PlacedGrain& a = placed[order[k - 1]];
+    const PlacedGrain& b = placed[order[k]];
+    const double r = std::min(a.radius, b.radius);
+    if (std::abs(a.x[0] - b.x[0]) < 1e-6 * r && std::abs(a.x[1] - b.x[1]) < 1e-6 * r &&
+        std::abs(a.x[2] - b.x[2]) < 1e-6 * r)
+      throw SceneError(s.file.string() + ": grains " + std::to_string(std::min(order[k - 1], order[k])) + " and " +
+                       std::to_string(std::max(order[k - 1], order[k])) + " of the fills (counted in fill order) sit at (" +
+                       short_number(a.x[0]) + ", " + short_number(a.x[1]) + ", " + short_number(a.x[2]) +
+                       ") m, one on the other. Fix: a state file listed twice, or two fills that repeat grains: "
+                       "give each grain once");
+  }
+}
+
 }  // namespace
 
 void build_dem_world(const DemScene& s, World& world) {
@@ -481,11 +503,22 @@ void build_dem_world(const DemScene& s, World& world) {
                      f.path.string() + ":" + std::to_string(r.line) + ": diameter " + short_number(r.diameter) +
                          " m does not match species '" + s.species[sp].name + "' (" + short_number(d) +
                          " m). Fix: map the type to a species of that diameter");
+        // A centre outside a wall is a grain outside the domain (a settled grain may touch a wall,
+        // but not sit behind it): the run would start with an overlap past any limit.
+        for (const Wall& w : s.walls) {
+          Vec3d n;
+          if (wall_gap(w, to_v(r.x), n) <= 0.0)
+            fill_error(s, f,
+                       f.path.string() + ":" + std::to_string(r.line) + ": the grain's centre (" + short_number(r.x[0]) +
+                           ", " + short_number(r.x[1]) + ", " + short_number(r.x[2]) + ") m is outside wall '" +
+                           w.name + "'. Fix: move the grain inside the walls, or correct the walls");
+        }
         placed.push_back({r.x, sp, 0.5 * r.diameter});
       }
     }
   }
 
+  require_apart(s, placed);
   const std::size_t n = placed.size();
   if (n == 0)
     throw SceneError(s.file.string() + ": the scene's fills place no grains. Fix: give a [[fill]] a count or a "
