@@ -142,6 +142,13 @@ TEST_CASE("bad liquid scene input is a SceneError naming the file, line, key and
     t.replace(t.find("hi = [0.584"), 11, std::string("hi = [") + far);
     REQUIRE_THROWS_WITH(load(t), Catch::Contains("geometry.hi") && Catch::Contains("half this machine's memory"));
   }
+  // A spacing larger than the geometry (1e308 m used to fail with no fix at all).
+  t = base;
+  {
+    const std::size_t at = t.find("l0 = ");
+    t.replace(at, t.find('\n', at) - at, "l0 = 1e308");
+    REQUIRE_THROWS_WITH(load(t), Catch::Contains("liquid.l0") && Catch::Contains("not smaller than the geometry"));
+  }
   // A block thinner than one spacing places no node: refused when the nodes are made (check makes them).
   t = base;
   const std::size_t hi = t.find("hi = [", t.find("[[fluid]]"));

@@ -1,7 +1,9 @@
 #include "systems/mps/liquid_scene.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "engine/read_file.hpp"
@@ -63,6 +65,15 @@ void read_geometry(LiquidScene& s, const SceneNode& root) {
   // The lattice of candidate nodes, counted in doubles before anything is made: a wrong extent (1e5 m
   // where 0.5 m was meant) would allocate without bound, and 1e30 m would overflow the indices. About
   // 1 kB per node with its neighbour pairs and solver rows; at most half the machine's memory.
+  const double extent = geo.kind == LiquidGeometry::Kind::Pipe ? 2.0 * geo.radius : [&] {
+    double e = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < geo.dim; ++a) e = std::min(e, geo.hi[a] - geo.lo[a]);
+    return e;
+  }();
+  if (!(l0 < extent))
+    root.table("liquid").fail("l0", "the particle spacing " + short_number(l0) + " m is not smaller than the "
+                                    "geometry (" + short_number(extent) + " m across at its narrowest)",
+                              "give l0 a fraction of the geometry, e.g. 1/20 of its height");
   std::array<double, 3> blo, bhi;
   geo.bounds(l0, blo, bhi);
   double cells = 1.0;
