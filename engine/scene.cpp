@@ -33,6 +33,21 @@ void check_step_count(const SceneNode& node, std::string_view key, double second
               "at most 1e15 steps: shorten it or lengthen run.dt");
 }
 
+std::string clipped(std::string_view s, std::size_t max) {
+  std::string out(s.substr(0, max));
+  if (s.size() > max) out += "...";
+  return out;
+}
+
+std::string quoted(std::string_view s, std::size_t max) {
+  // Built by appends: GCC 12 warns (-Wrestrict, a known false positive) on "'" + std::string.
+  std::string out;
+  out += '\'';
+  out += clipped(s, max);
+  out += '\'';
+  return out;
+}
+
 namespace detail {
 
 // Where a value that came from --set stands. toml++ gives such nodes the source position of the tiny document we
@@ -232,7 +247,7 @@ struct detail::SceneAccess {
 
   static std::string location(const SceneState& st, const toml::node* n) {
     if (n) {
-      if (auto it = st.cli.find(n); it != st.cli.end()) return "command line (--set " + it->second.set_text + ")";
+      if (auto it = st.cli.find(n); it != st.cli.end()) return "command line (--set " + clipped(it->second.set_text, 120) + ")";
       if (const auto line = n->source().begin.line; line > 0) return st.label + ":" + std::to_string(line);
     }
     return st.label;
@@ -241,9 +256,9 @@ struct detail::SceneAccess {
   [[noreturn]] static void fail_at(const SceneState& st, const toml::node* n, std::string_view path,
                                    std::string_view problem, std::string_view fix) {
     std::string msg = location(st, n);
-    msg += ": key '";
-    msg += path;
-    msg += "': ";
+    msg += ": key ";
+    msg += gf::quoted(path, 120);
+    msg += ": ";
     msg += problem;
     msg += ". Fix: ";
     msg += fix;
@@ -470,7 +485,7 @@ std::string SceneNode::get_choice(std::string_view key, std::vector<std::string>
   std::string fix = "use one of " + quoted_list(choices);
   if (auto near = closest(v, choices); !near.empty()) fix += " (did you mean '" + near + "'?)";
   SceneAccess::fail_node(*this, *SceneAccess::tbl(*this).get(key), path(key),
-                         "'" + v + "' is not an accepted value", fix);
+                         gf::quoted(v) + " is not an accepted value", fix);
 }
 
 std::string SceneNode::get_choice(std::string_view key, std::vector<std::string> choices,
@@ -605,8 +620,8 @@ struct PathSegment {
 
 [[noreturn]] void override_error(const std::string& set_text, const std::string& path, std::string_view problem,
                                  std::string_view fix) {
-  throw SceneError("command line (--set " + set_text + "): key '" + path + "': " + std::string(problem) +
-                   ". Fix: " + std::string(fix));
+  throw SceneError("command line (--set " + clipped(set_text, 120) + "): key " + gf::quoted(path, 120) + ": " +
+                   std::string(problem) + ". Fix: " + std::string(fix));
 }
 
 std::vector<PathSegment> split_override_path(const std::string& set_text, const std::string& path) {
@@ -873,7 +888,7 @@ void SceneDoc::check_all_used() const {
   if (auto near = closest(u.key, accepted); !near.empty()) fix += " (did you mean '" + near + "'?)";
   fix += accepted.empty() ? "; nothing in " + table_label(u.parent_path) + " is read by this scene's systems"
                           : "; " + table_label(u.parent_path) + " accepts " + quoted_list(accepted);
-  SceneAccess::fail_at(*st_, u.node, u.path, "unknown key '" + u.key + "'", fix);
+  SceneAccess::fail_at(*st_, u.node, u.path, "unknown key " + gf::quoted(u.key), fix);
 }
 
 }  // namespace gf

@@ -225,6 +225,21 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
     CHECK_THAT(scene_error(f, {"run.dt=1e-320", "run.allow_unstable_dt=true"}),
                Contains("key 'run.duration'") && Contains("inf steps"));
   }
+  SECTION("long text from the user is shown cut") {
+    // A 100 kB value, key or --set argument once made a 100 kB message.
+    const std::string huge(100000, 'q');
+    const fs::path f = dir.write("long.toml", with(kScene, "model = \"linear_spring_dashpot\"",
+                                                   "model = \"" + huge + "\""));
+    std::string e = scene_error(f);
+    CHECK(e.size() < 1000);
+    CHECK_THAT(e, Contains("key 'contact.model'") && Contains("...' is not an accepted value"));
+    e = scene_error(dir.write("long_key.toml", with(kScene, "skin = 1.0e-4\n", "skin = 1.0e-4\n" + huge + " = 3\n")));
+    CHECK(e.size() < 1000);
+    CHECK_THAT(e, Contains("unknown key 'qqq") && Contains("...'"));
+    e = scene_error(dir.write("ok_long.toml", kScene), {"run." + huge + "=1"});
+    CHECK(e.size() < 1000);
+    CHECK_THAT(e, Contains("command line (--set run.qqq") && Contains("Fix:"));
+  }
   SECTION("a value given on the command line is located there") {
     const fs::path f = dir.write("ok.toml", kScene);
     CHECK_THAT(scene_error(f, {"run.skin=-1"}),

@@ -142,12 +142,18 @@ TEST_CASE("bad state files name the file, the line and the problem", "[fill]") {
     const TempFile f("id,type,radius,x,y,z\n1,1,0.001,0,0,0\n");
     const std::string m = error_for(f);
     CHECK(contains(m, f.path.string() + ":1:"));
-    CHECK(contains(m, "header"));
-    CHECK(contains(m, "expected 'id,type,diameter,x,y,z'"));
+    CHECK(contains(m, "the first line is not the header 'id,type,diameter,x,y,z'"));
+    CHECK_FALSE(contains(m, "radius"));  // the file's own line is not echoed (it may be any file)
   }
   SECTION("extra column in the header") {
     const TempFile f("id,type,diameter,x,y,z,vx\n");
-    CHECK(contains(error_for(f), ":1: header"));
+    CHECK(contains(error_for(f), ":1: the first line is not the header"));
+  }
+  SECTION("a long field is shown cut") {
+    const TempFile f("id,type,diameter,x,y,z\n1,1,0.002," + std::string(100000, '9') + "x,0,0\n");
+    const std::string m = error_for(f);
+    CHECK(m.size() < 600);
+    CHECK(contains(m, "...'"));
   }
   SECTION("empty file") {
     const TempFile f("");

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "engine/read_file.hpp"
+#include "engine/scene.hpp"
 
 namespace gf {
 namespace {
@@ -35,17 +36,6 @@ std::string_view trim(std::string_view s) {
 }
 
 // Quoted for messages; a runaway field (a whole binary line) is cut short.
-std::string quoted(std::string_view s) {
-  constexpr std::size_t kMax = 40;
-  // Built by appends: GCC 12 warns (-Wrestrict, a known false positive) on "'" + std::string.
-  std::string out;
-  out.reserve(std::min(s.size(), kMax) + 5);
-  out += '\'';
-  out.append(s.substr(0, kMax));
-  if (s.size() > kMax) out += "...";
-  out += '\'';
-  return out;
-}
 
 // from_chars rejects a leading '+', which other writers (and people) do produce.
 std::string_view strip_plus(std::string_view s) {
@@ -71,12 +61,12 @@ struct LineParser {
     const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (ec == std::errc::result_out_of_range) {
       fail(file, line,
-           "column '" + std::string(kColumns[column]) + "' is " + quoted(field) + ", out of range",
+           "column '" + std::string(kColumns[column]) + "' is " + gf::quoted(field) + ", out of range",
            "use a smaller whole number");
     }
     if (ec != std::errc() || end != s.data() + s.size()) {
       fail(file, line,
-           "column '" + std::string(kColumns[column]) + "' is " + quoted(field) +
+           "column '" + std::string(kColumns[column]) + "' is " + gf::quoted(field) +
                ", not a whole number",
            "write the " + std::string(kColumns[column]) + " as an integer such as 12");
     }
@@ -89,13 +79,13 @@ struct LineParser {
     const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (ec == std::errc::result_out_of_range) {
       fail(file, line,
-           "column '" + std::string(kColumns[column]) + "' is " + quoted(field) +
+           "column '" + std::string(kColumns[column]) + "' is " + gf::quoted(field) +
                ", out of the range of a double",
            "give the value in SI units (m)");
     }
     if (ec != std::errc() || end != s.data() + s.size()) {
       fail(file, line,
-           "column '" + std::string(kColumns[column]) + "' is " + quoted(field) + ", not a number",
+           "column '" + std::string(kColumns[column]) + "' is " + gf::quoted(field) + ", not a number",
            "write a decimal number such as 0.0015 or 1.5e-3 (SI units, m)");
     }
     return v;
@@ -141,7 +131,8 @@ std::vector<StateRow> read_state_csv(const std::filesystem::path& file) {
         h.remove_prefix(c + 1);
       }
       if (normalised != kHeader) {
-        fail(file, line, "header is " + quoted(text) + ", expected '" + std::string(kHeader) + "'",
+        // The line itself is not shown: a wrong path may name any file, and its first line is not ours to echo.
+        fail(file, line, "the first line is not the header '" + std::string(kHeader) + "'",
              "make the first line exactly " + std::string(kHeader) +
                  " (SI units: diameter and positions in m)");
       }
