@@ -484,6 +484,22 @@ TEST_CASE("cli: check prints the systems and the critical step", "[dem_scene][cl
   CHECK(e.err.empty());
 }
 
+TEST_CASE("cli: the README's default scene is valid, and a run names the picture it ends with", "[dem_scene][cli]") {
+  TempDir dir("cli_default");
+  const std::string scene = std::string(GRAINFLOW_SOURCE_DIR) + "/scenes/drum_quick.toml";
+  CHECK(run_cli(dir, "check " + quote(scene)).code == 0);
+  // Cut short (a few settling steps, 20 turning steps): the picture at 0 rad is the last one drawn.
+  const fs::path out = dir.path / "out";
+  const Exit e = run_cli(dir, "run " + quote(scene) + " --out " + quote(out.string()) +
+                                  " --steps 20 --quiet --set settle.time=0.003");
+  INFO(e.err);
+  REQUIRE(e.code == 0);
+  const auto lines = gf::test::lines_of(e.err);
+  REQUIRE_FALSE(lines.empty());
+  CHECK(lines.back() == "grainflow: picture of the drum: " + (out / "pictures" / "angle_00.00.png").string());
+  CHECK(fs::exists(out / "pictures" / "angle_00.00.png"));
+}
+
 TEST_CASE("cli: a bad scene and a bad flag fail cleanly", "[dem_scene][cli]") {
   TempDir dir("cli_bad");
   SECTION("bad scene: exit 1, file:line on stderr") {

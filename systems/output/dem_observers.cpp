@@ -197,7 +197,8 @@ void PictureOutput::run(World& world, const StepContext& now) {
                             : "colour: species, " + s_.legend;
   // Every target reached by this step gets its file (more than one only if targets are closer than omega dt).
   for (double target = next_target(); target <= angle; target = next_target()) {
-    write_png(s_.dir / picture_name(target), img, {{"Title", title}, {"Comment", comment}, {"Software", "grainflow"}});
+    last_ = s_.dir / picture_name(target);
+    write_png(last_, img, {{"Title", title}, {"Comment", comment}, {"Software", "grainflow"}});
     ++written_;
     if (next_angle_ < s_.angles.size() && s_.angles[next_angle_] == target) ++next_angle_;
     if (s_.interval > 0 && static_cast<double>(next_multiple_) * s_.interval == target) ++next_multiple_;

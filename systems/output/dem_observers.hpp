@@ -112,6 +112,8 @@ class PictureOutput : public SystemBase<PictureOutput>, public Checkpointable {
   std::string_view name() const override { return "picture_output"; }
   void run(World& world, const StepContext& now) override;
   std::size_t pictures() const { return written_; }
+  // The file this run drew last (empty if it drew none).
+  const std::filesystem::path& last_picture() const { return last_; }
   void save(CheckpointWriter& out) const override;
   void restore(const CheckpointReader& in) override;
 
@@ -121,6 +123,7 @@ class PictureOutput : public SystemBase<PictureOutput>, public Checkpointable {
   std::size_t next_angle_ = 0;
   std::int64_t next_multiple_ = 0;
   std::size_t written_ = 0;
+  std::filesystem::path last_;
   std::vector<double> speed_;
 };
 

@@ -280,6 +280,8 @@ int run_dem_command(const CliOptions& opt) {
   std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g particle-steps/s\n",
                status.c_str(), static_cast<long long>(main.steps), world.clock.t, main.wall_seconds, psps);
   if (!failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", failure.c_str());
+  else if (pictures && !pictures->last_picture().empty())
+    std::fprintf(stderr, "grainflow: picture of the drum: %s\n", pictures->last_picture().string().c_str());
   return rc;
 }
 
