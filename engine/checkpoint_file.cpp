@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "engine/atomic_file.hpp"
+#include "engine/machine_memory.hpp"
 #include "engine/read_file.hpp"
 
 namespace gf {

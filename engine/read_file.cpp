@@ -6,8 +6,6 @@
 #include <memory>
 #include <system_error>
 
-#include <unistd.h>
-
 namespace gf {
 
 namespace {
@@ -62,12 +60,6 @@ bool read_regular_file(const std::filesystem::path& file, std::size_t max_bytes,
     return false;
   }
   return true;
-}
-
-std::size_t half_of_memory() {
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0) return std::size_t(1) << 32;
-  return static_cast<std::size_t>(pages) / 2 * static_cast<std::size_t>(page);
 }
 
 }  // namespace gf

@@ -16,7 +16,4 @@ struct FileProblem {
 // unreadable, not a regular file, or larger than max_bytes.
 bool read_regular_file(const std::filesystem::path& file, std::size_t max_bytes, std::string& out, FileProblem& why);
 
-// Half of this machine's memory: the bound for files whose contents become arrays (states, checkpoints).
-std::size_t half_of_memory();
-
 }  // namespace gf

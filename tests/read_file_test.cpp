@@ -4,25 +4,20 @@
 #include <filesystem>
 #include <string>
 
+#include "engine/machine_memory.hpp"
 #include "engine/read_file.hpp"
 #include "tests/test_support.hpp"
 
 using Catch::Matchers::Contains;
 
-TEST_CASE("read_file: a regular file within the bound is read whole", "[read_file]") {
+TEST_CASE("read_file: a regular file within the bound is read whole, and what is not read says why", "[read_file]") {
   gf::test::TempDir dir("read_file");
   const auto p = dir.write("a.txt", std::string(100, 'x'));
+  const auto big = dir.write("big.txt", std::string(101, 'x'));
   std::string out;
   gf::FileProblem why;
   REQUIRE(gf::read_regular_file(p, 100, out, why));
   CHECK(out == std::string(100, 'x'));
-}
-
-TEST_CASE("read_file: what is not read, and why", "[read_file]") {
-  gf::test::TempDir dir("read_file_no");
-  const auto big = dir.write("big.txt", std::string(101, 'x'));
-  std::string out;
-  gf::FileProblem why;
   CHECK_FALSE(gf::read_regular_file(big, 100, out, why));
   CHECK_THAT(why.problem, Contains("above the"));
   CHECK_FALSE(gf::read_regular_file("", 100, out, why));

@@ -12,6 +12,7 @@
 #include <system_error>
 #include <utility>
 
+#include "engine/machine_memory.hpp"
 #include "engine/read_file.hpp"
 #include "engine/scene.hpp"
 

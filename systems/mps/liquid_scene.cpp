@@ -6,7 +6,7 @@
 #include <limits>
 #include <sstream>
 
-#include "engine/read_file.hpp"
+#include "engine/machine_memory.hpp"
 
 namespace gf {
 

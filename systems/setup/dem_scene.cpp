@@ -6,8 +6,7 @@
 #include <numbers>
 #include <sstream>
 
-#include <unistd.h>
-
+#include "engine/machine_memory.hpp"
 #include "systems/analysis/metrics.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
@@ -396,7 +395,7 @@ std::size_t planned_grain_count(const DemScene& scene) {
 
 void require_memory(const DemScene& scene, std::size_t n) {
   const double need = static_cast<double>(estimate_memory_bytes(scene, n));
-  const double have = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double have = static_cast<double>(machine_memory());
   if (!(have > 0) || need <= 0.8 * have) return;
   // Named at the fill asking for the most grains.
   const FillSpec* big = nullptr;
