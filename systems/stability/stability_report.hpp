@@ -1,7 +1,8 @@
 // Stability checks of every step. The kernels find the trouble in the pass that produces it (the
-// integrator's passes sum x - x over what they write, the contact kernels track the largest
-// overlap excess), at a few operations per row or contact; only when one trips is the state
-// searched again, here, to name the step, the grains and what to change.
+// integrator's passes sum s - s over a sum s of what they write, the contact kernels compare each
+// pair's squared distance or each wall gap against the overlap limit), at a few operations per row
+// or pair; only when one trips is the state searched again, here, to name the step, the grains and
+// what to change.
 #pragma once
 
 #include <string_view>
