@@ -14,7 +14,7 @@ namespace {
 // std::system_category().message gives strerror's text without strerror's shared buffer,
 // which matters once several output systems write from different threads.
 [[noreturn]] void fail(const std::string& what, const std::filesystem::path& target, int err) {
-  throw std::runtime_error("cannot write '" + target.string() + "': " + what + ": " +
+  throw WriteError("cannot write '" + target.string() + "': " + what + ": " +
                            std::system_category().message(err));
 }
 
@@ -116,13 +116,13 @@ void write_file_atomic(const std::filesystem::path& path, std::span<const std::s
 }
 
 void ensure_directory(const std::filesystem::path& dir) {
-  if (dir.empty()) throw std::runtime_error("cannot create output folder: the path is empty");
+  if (dir.empty()) throw WriteError("cannot create output folder: the path is empty");
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec)
-    throw std::runtime_error("cannot create output folder '" + dir.string() + "': " + ec.message());
+    throw WriteError("cannot create output folder '" + dir.string() + "': " + ec.message());
   if (!std::filesystem::is_directory(dir, ec))
-    throw std::runtime_error("output folder '" + dir.string() +
+    throw WriteError("output folder '" + dir.string() +
                              "' exists but is not a folder; remove it or choose another --out");
 }
 

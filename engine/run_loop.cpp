@@ -26,6 +26,9 @@ std::string human_seconds(double s) {
 void install_stop_handlers() {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
+  // Past a file-size limit the default is to kill the process mid-write; ignored, the write fails
+  // with EFBIG and the run stops with a message, its files whole.
+  std::signal(SIGXFSZ, SIG_IGN);
 }
 bool stop_requested() { return g_stop.load(); }
 

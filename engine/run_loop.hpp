@@ -36,7 +36,8 @@ struct StageOptions {
 StageReport run_stage(World& world, Schedule& step, const StageOptions& opt);
 
 // SIGINT/SIGTERM stop the stage after the step in flight, so a killed run still closes its files
-// and writes its summary. Installed once by the CLI.
+// and writes its summary; SIGXFSZ is ignored, so a file-size limit fails a write (WriteError)
+// instead of killing the process. Installed once by the CLI.
 void install_stop_handlers();
 bool stop_requested();
 

@@ -12,6 +12,7 @@
 #include <system_error>
 #include <utility>
 
+#include "engine/atomic_file.hpp"
 #include "engine/machine_memory.hpp"
 #include "engine/read_file.hpp"
 #include "engine/scene.hpp"
@@ -238,29 +239,8 @@ void write_state_csv(const std::filesystem::path& file, std::span<const StateRow
     put(r.x[2], '\n');
   }
 
-  std::filesystem::path tmp = file;
-  tmp += ".tmp";
-  {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(tmp.c_str(), "wb"), &std::fclose);
-    if (!f) {
-      fail(file, 0, std::string("cannot write the state file (") + std::strerror(errno) + ")",
-           "check that the folder exists and is writable");
-    }
-    const bool ok = std::fwrite(out.data(), 1, out.size(), f.get()) == out.size();
-    const bool closed = std::fclose(f.release()) == 0;
-    if (!ok || !closed) {
-      std::error_code ignored;
-      std::filesystem::remove(tmp, ignored);
-      fail(file, 0, "writing the state file failed", "check free disk space and permissions");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, file, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    fail(file, 0, "cannot replace the state file (" + ec.message() + ")",
-         "check that the folder is writable");
-  }
+  // Atomically: a full disk leaves the previous file (and WriteError naming this one).
+  write_file_atomic(file, out);
 }
 
 }  // namespace gf

@@ -157,6 +157,11 @@ int run_liquid_command(const CliOptions& opt) {
                      sps * static_cast<double>(n_fluid), static_cast<double>(steps - k - 1) / sps);
       }
     }
+  } catch (const WriteError& e) {
+    status = "failed";
+    failure = std::string(e.what()) + ". Every file written before is complete. Fix: free space on the disk that "
+              "holds '" + out.string() + "' (or write less: output.frame_interval, output.series_interval), then run again";
+    rc = 3;
   } catch (const std::exception& e) {
     status = "failed";
     failure = e.what();
@@ -185,7 +190,14 @@ int run_liquid_command(const CliOptions& opt) {
     per.push_back({{"system", t.name}, {"seconds", t.seconds}, {"calls", t.calls},
                    {"fraction", total > 0 ? t.seconds / total : 0.0}});
   summary["time_per_system"] = per;
-  write_summary_json(out / "summary.json", summary);
+  try {
+    write_summary_json(out / "summary.json", summary);
+  } catch (const WriteError& e) {
+    // The earlier summary.json (status "running") stays as it was.
+    failure += (failure.empty() ? "" : "; then ") + std::string(e.what());
+    status = "failed";
+    rc = 3;
+  }
   std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g particle-steps/s\n",
                status.c_str(), static_cast<long long>(done), world.clock.t, wall,
                wall > 0 ? static_cast<double>(done) * n_fluid / wall : 0.0);

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <system_error>
 
+#include <unistd.h>
+
 #include "engine/atomic_file.hpp"
 
 namespace gf {
@@ -34,8 +36,8 @@ SeriesCsv::SeriesCsv(std::filesystem::path file, std::vector<std::string> column
   check_columns();
   out_.reset(std::fopen(file_.c_str(), "w"));
   if (!out_)
-    throw std::runtime_error("cannot open time series '" + file_.string() +
-                             "' for writing: " + std::system_category().message(errno));
+    throw WriteError("cannot open time series '" + file_.string() +
+                     "' for writing: " + std::system_category().message(errno));
   put(header());
 }
 
@@ -64,11 +66,13 @@ SeriesCsv::SeriesCsv(Resume, std::filesystem::path file, std::vector<std::string
   write_file_atomic(file_, kept);
   out_.reset(std::fopen(file_.c_str(), "a"));
   if (!out_)
-    throw std::runtime_error("cannot open time series '" + file_.string() +
-                             "' for appending: " + std::system_category().message(errno));
+    throw WriteError("cannot open time series '" + file_.string() +
+                     "' for appending: " + std::system_category().message(errno));
+  complete_bytes_ = kept.size();
 }
 
 void SeriesCsv::append(std::span<const double> values) {
+  if (!out_) throw WriteError("time series '" + file_.string() + "' was closed by an earlier write failure");
   if (values.size() != columns_.size())
     throw std::invalid_argument("time series '" + file_.string() + "': got " +
                                 std::to_string(values.size()) + " values for " +
@@ -93,9 +97,16 @@ void SeriesCsv::put(const std::string& line) {
   if (std::fwrite(line.data(), 1, line.size(), out_.get()) != line.size() ||
       std::fflush(out_.get()) != 0) {
     const int err = errno;
-    throw std::runtime_error("cannot write time series '" + file_.string() +
-                             "': " + (err ? std::system_category().message(err) : "write failed"));
+    // A full disk may have taken part of the row: cut the file back to its last whole row, so what
+    // was written stays a valid CSV. The stream is closed: nothing more goes to this file.
+    const int fd = ::fileno(out_.get());
+    const bool cut = ::ftruncate(fd, static_cast<off_t>(complete_bytes_)) == 0;
+    out_.reset();
+    throw WriteError("cannot write time series '" + file_.string() +
+                     "': " + (err ? std::system_category().message(err) : "write failed") +
+                     (cut ? " (the file keeps its complete rows)" : ""));
   }
+  complete_bytes_ += line.size();
 }
 
 }  // namespace gf

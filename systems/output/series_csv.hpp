@@ -15,7 +15,7 @@ class SeriesCsv {
  public:
   // Creates (truncating) `file` and writes the header line. Column names may not contain a
   // comma, quote or line break, since they would need CSV quoting that plotting tools
-  // handle unevenly: std::invalid_argument. std::runtime_error naming the file if it
+  // handle unevenly: std::invalid_argument. WriteError naming the file if it
   // cannot be opened or written.
   SeriesCsv(std::filesystem::path file, std::vector<std::string> columns);
 
@@ -27,7 +27,8 @@ class SeriesCsv {
   static SeriesCsv resume(std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows);
 
   // Writes one row in the columns' order, in the shortest form that reads back as the same
-  // double, then flushes. std::invalid_argument if values.size() != columns().size().
+  // double, then flushes. std::invalid_argument if values.size() != columns().size(). A failed
+  // write (full disk) throws WriteError after cutting the file back to its last complete row.
   void append(std::span<const double> values);
 
   const std::vector<std::string>& columns() const { return columns_; }
@@ -47,6 +48,7 @@ class SeriesCsv {
   std::vector<std::string> columns_;
   std::unique_ptr<std::FILE, Closer> out_;
   std::string line_;  // reused, so a sample allocates nothing once warm
+  std::size_t complete_bytes_ = 0;  // file size up to the end of the last complete row
 };
 
 }  // namespace gf

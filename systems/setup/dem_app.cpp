@@ -48,6 +48,15 @@ void write_final_state(const std::filesystem::path& file, const Grains& g, const
   write_state_csv(file, rows);
 }
 
+// The fix for a run stopped by an output it could not write (a full disk, a file-size limit).
+std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path& out, bool have_checkpoint) {
+  const std::string again = "grainflow run " + opt.scene.string() + " --out " + out.string();
+  return ". Every file written before is complete. Fix: free space on the disk that holds '" + out.string() +
+         "' (or write less: output.frame_interval, output.series_interval), then " +
+         (have_checkpoint ? "resume: " + again + " --resume " + (out / "checkpoints" / "checkpoint.gfc").string()
+                          : "run again (no checkpoint was written yet; output.checkpoint_interval sets how often one is)");
+}
+
 }  // namespace
 
 int check_dem_command(const CliOptions& opt) {
@@ -206,9 +215,18 @@ int run_dem_command(const CliOptions& opt) {
   std::string failure;
   int rc = 0;
   const auto run0 = std::chrono::steady_clock::now();
+  const auto fail_write = [&](const WriteError& e) {
+    status = "failed";
+    failure = e.what() + write_failure_fix(opt, out, ckpt || checkpoints.written() > 0);
+    rc = 3;
+  };
   try {
     main = run_stage(world, step, so);
     if (main.interrupted) status = "interrupted";
+  } catch (const WriteError& e) {
+    fail_write(e);
+    main.steps = world.clock.step - (ckpt ? ckpt->value<std::int64_t>("clock.step") : 0);
+    main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
   } catch (const std::exception& e) {
     status = "failed";
     failure = e.what();
@@ -220,6 +238,8 @@ int run_dem_command(const CliOptions& opt) {
   if (status != "failed" && s.output.checkpoint_at_end) {
     try {
       checkpoint_file = checkpoints.write(world).string();
+    } catch (const WriteError& e) {
+      fail_write(e);
     } catch (const std::exception& e) {
       status = "failed";
       failure = e.what();
@@ -230,6 +250,8 @@ int run_dem_command(const CliOptions& opt) {
     try {
       series.finish(world);
       if (frames) frames->finish(world);
+    } catch (const WriteError& e) {
+      fail_write(e);
     } catch (const std::exception& e) {
       status = "failed";
       failure = e.what();
@@ -275,8 +297,15 @@ int run_dem_command(const CliOptions& opt) {
   nlohmann::json per = timings_json(step, step_total);
   for (auto& j : timings_json(observe, step_total)) per.push_back(j);
   summary["time_per_system"] = per;
-  write_final_state(out / "final_state.csv", world.grains, s);
-  write_summary_json(out / "summary.json", summary);
+  try {
+    write_final_state(out / "final_state.csv", world.grains, s);
+    write_summary_json(out / "summary.json", summary);
+  } catch (const WriteError& e) {
+    // The earlier summary.json (status "running") and final state stay as they were.
+    if (failure.empty()) fail_write(e);
+    else failure += std::string("; then ") + e.what();
+    status = "failed";
+  }
   std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g particle-steps/s\n",
                status.c_str(), static_cast<long long>(main.steps), world.clock.t, main.wall_seconds, psps);
   if (!failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", failure.c_str());
