@@ -34,7 +34,20 @@ void check_step_count(const SceneNode& node, std::string_view key, double second
 }
 
 std::string clipped(std::string_view s, std::size_t max) {
-  std::string out(s.substr(0, max));
+  // Control characters are shown as \xNN: a NUL would end the printed message, an escape
+  // sequence would reach the terminal.
+  std::string out;
+  for (const char c : s.substr(0, max)) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f) {
+      out += c;
+      continue;
+    }
+    static const char hex[] = "0123456789abcdef";
+    out += "\\x";
+    out += hex[u >> 4];
+    out += hex[u & 15];
+  }
   if (s.size() > max) out += "...";
   return out;
 }
@@ -468,6 +481,10 @@ std::string SceneNode::get_string(std::string_view key) const {
   SceneAccess::mark(*this, n);
   const auto* s = n->as_string();
   if (!s) SceneAccess::wrong_type(*this, *n, path(key), key, "a string", "\"...\"");
+  // No name, path or choice holds a NUL; a path would be cut short at it and name another file.
+  if (s->get().find('\0') != std::string::npos)
+    SceneAccess::fail_node(*this, *n, path(key), "the text contains a NUL character (\\u0000)",
+                           "remove the \\u0000 from the text");
   return s->get();
 }
 

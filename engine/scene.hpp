@@ -40,7 +40,8 @@ class SceneError : public std::runtime_error {
 // A number for a message: four significant digits ("0.0001", "2.5e+04").
 std::string short_number(double v);
 // Text from the user for a message, at most `max` characters ("..." marks the cut): a 100 kB value
-// must not become a 100 kB line. clipped() as is, quoted() in single quotes.
+// must not become a 100 kB line; control characters are written \xNN. clipped() as is, quoted() in
+// single quotes.
 std::string clipped(std::string_view s, std::size_t max = 60);
 std::string quoted(std::string_view s, std::size_t max = 60);
 

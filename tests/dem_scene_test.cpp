@@ -389,6 +389,15 @@ TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill
     fs::remove(csv);
     e = scene_error(f, {}, true);
     CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:") && Contains("grains.csv"));
+
+    // A NUL in the path once cut it short there, so "grains.csv\u0000x" read grains.csv: refused.
+    dir.write("grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n");
+    const fs::path nul = dir.write("nul.toml", with(text, "path = \"grains.csv\"", "path = \"grains.csv\\u0000x\""));
+    e = scene_error(nul, {}, true);
+    CHECK_THAT(e, Contains(at(nul, fill_line + 2) + " key 'fill[0].path'") && Contains("NUL") && Contains("Fix:"));
+    // Control characters in an echoed value are written \xNN, so the message is printed whole.
+    e = scene_error(f, {"contact.model=\"a\\u0007b\\u001b[31m\""});
+    CHECK_THAT(e, Contains("'a\\x07b\\x1b[31m' is not an accepted value"));
   }
   SECTION("more grains than the machine's memory holds") {
     // Ten fills of 1e8 grains (the most one count may give) need about 800 GiB of arrays: refused,
