@@ -2,14 +2,18 @@
 // allow_unstable_dt, the run itself detects the blow-up: it stops with exit status 3, a message
 // naming what broke and the fix, and summary.json "failed", keeping what it wrote. The boundary
 // for this drum (seed-000 contact parameters, 1 and 3 mm grains, smallest collision period
-// 1.19e-4 s): 3e-5 s still runs, 4e-5 s trips the overlap limit while the drum turns, 8e-5 s while
-// it settles. The checks run in every step, inside the kernels, and name the step and the grains;
-// a non-finite value is put in by hand (a step that large trips the overlap limit first).
+// 1.19e-4 s), through the command line with its 0.1 s of settling: 3e-5 s still runs; 4e-5 s trips
+// the wall-overlap check (a grain into the drum's cylinder) while it settles; 8e-5 s trips the
+// pair-overlap check (two grains) a few steps into settling. Stepped directly, without the settling
+// stage, 4e-5 s trips while the drum turns. The checks run in every step, inside the kernels, and
+// name the step and the grains; a non-finite value is put in by hand (a step that large trips the
+// overlap limit first).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -52,15 +56,39 @@ TEST_CASE("stability: the run detects a blow-up and says what to change", "[stab
   const auto ok = run_at(dir, "3e-5", "ok");
   INFO(ok.err);
   CHECK(ok.code == 0);
-  for (const std::string dt : {"4e-5", "8e-5"}) {
-    const auto e = run_at(dir, dt, "dt" + dt);
-    INFO(dt << ": " << e.err);
+  // Which detector fires, by the words of its message (stability_report.cpp): a wall overlap is
+  // "overlaps wall '<name>' by ... of its diameter", a pair overlap "grain id ... and grain id ...
+  // overlap by ... of the smaller diameter", a non-finite value "became non-finite". Both runs are
+  // deterministic (the same step with 1 or 2 threads), so the detector and the stage are fixed.
+  struct Case {
+    std::string dt;
+    std::vector<std::string> fired;      // the detector's words
+    std::vector<std::string> not_fired;  // the other detectors' words
+  };
+  const Case cases[] = {
+      {"4e-5",
+       {"overlaps wall 'drum' by ", " of its diameter in step ", " of the settle stage", "past run.max_overlap = 0.1"},
+       {" of the smaller diameter", "non-finite"}},
+      {"8e-5",
+       {") and grain id ", " of the smaller diameter in step ", " of the settle stage", "past run.max_overlap = 0.1"},
+       {"overlaps wall", "non-finite"}},
+  };
+  for (const Case& c : cases) {
+    const auto e = run_at(dir, c.dt, "dt" + c.dt);
+    INFO(c.dt << ": " << e.err);
     CHECK(e.exited);
     CHECK(e.code == 3);
+    CHECK_THAT(e.err, Contains("failed while settling"));
     CHECK_THAT(e.err, Contains("Fix: reduce"));
-    const auto summary = nlohmann::json::parse(read_file(dir.path / ("dt" + dt) / "summary.json"));
+    const auto summary = nlohmann::json::parse(read_file(dir.path / ("dt" + c.dt) / "summary.json"));
     CHECK(summary.at("status") == "failed");
-    CHECK_THAT(summary.at("failure").get<std::string>(), Contains("Fix:"));
+    const std::string failure = summary.at("failure").get<std::string>();
+    CHECK_THAT(failure, Contains("Fix:"));
+    for (const std::string& words : c.fired) {
+      CHECK_THAT(e.err, Contains(words));
+      CHECK_THAT(failure, Contains(words));
+    }
+    for (const std::string& words : c.not_fired) CHECK_THAT(e.err, !Contains(words));
   }
 }
 
@@ -93,6 +121,9 @@ TEST_CASE("stability: an overlap past the limit stops the step that made it, wit
   CHECK(cs.max_overlap_ratio > limit);  // the state the kernel saw is past the limit
   CHECK_THAT(message, Contains("in step " + std::to_string(steps + 1) + " of the run stage") &&
                           Contains("grain id ") && Contains("run.max_overlap = 0.1") && Contains("Fix: reduce run.dt"));
+  // The wall-overlap check fires here (a grain into the turning drum's cylinder), not the pair check.
+  CHECK_THAT(message, Contains("overlaps wall 'drum' by ") && Contains(" of its diameter"));
+  CHECK_THAT(message, !Contains(" of the smaller diameter"));
 }
 
 TEST_CASE("stability: a non-finite value stops the step that made it and names the grain", "[stability]") {
