@@ -1,6 +1,7 @@
-// Particle-particle contact throughput: compute_pair_forces (phase 1, the linear spring-dashpot
-// law over every pair of the Verlet list; phase 2, the fixed-order per-row sums) on the standard
-// benchmark state (scenes/drum_seed000_settled.toml, 47,108 grains), at 1 and 2 TBB threads.
+// Particle-particle contact throughput: the pair driver with the linear spring-dashpot law (the
+// overlap prefilter over every pair of the Verlet list, the law over the packed contacts, the sums
+// per fixed slab of owner rows; pair_contact.hpp) on the standard benchmark state
+// (scenes/drum_seed000_settled.toml, 47,108 grains), at 1 and 2 TBB threads.
 // items_per_second counts list pairs (touching or not); contacts/s counts the pairs in contact,
 // which are the ones that evaluate the law.
 //
@@ -11,7 +12,9 @@
 // one iteration to the next. That changes values, not the amount of work (the law is branch-free:
 // its selections compute both sides), which is acceptable for a throughput figure.
 //
-// The driver is scalar today; when an xsimd driver joins it, benchmark both here (STYLE item 12).
+// Both drivers are benchmarked: BM_PairForces/simd is compute_pair_forces, the xsimd driver the
+// program runs; BM_PairForces/scalar is compute_pair_forces_scalar, its scalar twin (same slab sums),
+// the reference the tests compare it with.
 //
 // Run:  ./build/bench/pair_contact_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <cstddef>

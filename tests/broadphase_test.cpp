@@ -1,7 +1,10 @@
 // Broadphase: the Verlet list built from the cell grid holds exactly the pairs a brute-force search
-// finds, rows come out re-sorted by (cell, id) with every column moved along, the transposed incidence
-// matches the pair list, the list is rebuilt exactly when some row moved more than skin/2, and
-// contact history (tangential spring, rolling angle) survives rebuilds and the re-sorting of rows.
+// finds, rows come out re-sorted by (cell, id) with every column moved along and cells ordered
+// fastest along the shortest extent, a non-finite position is an error naming the row, the list is
+// rebuilt exactly when some row moved more than skin/2 and holds every touching pair in between,
+// contact history (tangential spring, rolling angle) survives rebuilds and the re-sorting of rows,
+// and grains queued for insertion or removal join or leave at the next rebuild with every other
+// spring kept.
 #include <catch2/catch.hpp>
 
 #include <algorithm>

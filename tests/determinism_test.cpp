@@ -1,7 +1,9 @@
-// Determinism: the order of rows in the Grains table changes nothing, and two runs with the same
-// thread count give the same bits. Both follow from the design: rows are re-sorted by (cell, id) at
-// every neighbour-list rebuild, and forces are summed per grain in a fixed incidence order rather than
-// by atomics, so neither the input order nor the thread schedule can reach the arithmetic.
+// Determinism: the order of rows in the Grains table changes nothing, and runs with the same thread
+// count, or with 1 and 2 threads, give the same bits. Both follow from the design: rows are re-sorted
+// by (cell, id) at every neighbour-list rebuild, and pair forces are summed without atomics in an
+// order set by the row count alone (contact order within fixed slabs of owner rows, the shares that
+// fall in a later slab added there in slab order; pair_contact.hpp), so neither the input order nor
+// the thread schedule can reach the arithmetic.
 #include <catch2/catch.hpp>
 
 #include <algorithm>

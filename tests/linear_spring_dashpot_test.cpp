@@ -329,12 +329,15 @@ TEST_CASE("lsd: the xsimd batch twin matches the scalar law lane by lane", "[con
   double worst_all = 0.0;
   for (const Worst& wst : worst) {
     INFO(wst.what << ": worst relative difference " << wst.rel << " in contact " << wst.lane);
-    // 1e-12 relative: the batch runs the very same operations in the same order, and sqrt and division are
-    // correctly rounded in both paths. Differences come only from the compiler fusing a*b+c into an FMA in one
-    // path and not in the other (-march=native), 1 ulp (1.1e-16) per fused operation over a few dozen
-    // operations, amplified by the cancellation in v - (v.n) n by at most ~1e2 for these random contacts:
-    // ~1e-13 at worst. 1e-12 keeps that margin yet catches any real divergence (a wrong selection or lane mix-up
-    // is an O(1) error).
+    // 1e-12 relative: the batch runs the same operations in the same order, but not with the same
+    // roundings. Its reciprocal square roots (rsqrt_of in vec3.hpp: turning the spring, the slider
+    // caps) are, on AVX-512, the 14-bit hardware estimate refined by two Newton steps, within a few ulp
+    // of the scalar path's correctly rounded 1 / sqrt (without AVX-512 a correctly rounded sqrt and a
+    // division, as in the scalar path); its square roots are correctly rounded in both paths; and the
+    // compiler may fuse a*b+c into an FMA in one path and not in the other (-march=native). A few ulp
+    // (1.1e-16 each) over a few dozen operations, amplified by the cancellation in v - (v.n) n by at
+    // most ~1e2 for these random contacts: ~1e-13 at worst. 1e-12 keeps that margin yet catches any
+    // real divergence (a wrong selection or lane mix-up is an O(1) error).
     CHECK(wst.rel <= 1e-12);
     // Apart lanes (and zero springs) must be exact zeros in the batch too: they come from selections, not sums.
     CHECK(wst.zero_mismatch == 0);
