@@ -6,6 +6,7 @@
 #include "engine/atomic_file.hpp"
 #include "engine/machine_memory.hpp"
 #include "engine/read_file.hpp"
+#include "engine/user_text.hpp"
 
 namespace gf {
 
@@ -57,7 +58,7 @@ void CheckpointWriter::write(const std::filesystem::path& file) const {
 }
 
 void CheckpointReader::fail(const std::string& problem, const std::string& fix) const {
-  throw CheckpointError(file_.string() + ": " + problem + ". Fix: " + fix);
+  throw CheckpointError(printable(file_.string() + ": " + problem + ". Fix: " + fix));
 }
 
 CheckpointReader::CheckpointReader(const std::filesystem::path& file) : file_(file) {
@@ -88,7 +89,7 @@ CheckpointReader::CheckpointReader(const std::filesystem::path& file) : file_(fi
     std::uint64_t elem = 0, count = 0;
     std::memcpy(&elem, all.data() + take(8), 8);
     std::memcpy(&count, all.data() + take(8), 8);
-    if (elem != 0 && count > (end - p) / elem) fail("section '" + name + "' runs past the end of the file",
+    if (elem != 0 && count > (end - p) / elem) fail("section " + gf::quoted(name) + " runs past the end of the file",
                                                     "resume from an earlier checkpoint");
     sections_[name] = {elem, count, take(elem * count)};
   }
@@ -97,10 +98,10 @@ CheckpointReader::CheckpointReader(const std::filesystem::path& file) : file_(fi
 std::span<const char> CheckpointReader::need(const std::string& name, std::size_t elem, long long count) const {
   auto it = sections_.find(name);
   if (it == sections_.end())
-    fail("section '" + name + "' is missing", "resume with the scene and grainflow version that wrote it");
+    fail("section " + gf::quoted(name) + " is missing", "resume with the scene and grainflow version that wrote it");
   const Section& s = it->second;
   if (s.elem != elem || (count >= 0 && s.count != static_cast<std::size_t>(count)))
-    fail("section '" + name + "' has " + std::to_string(s.count) + " elements of " + std::to_string(s.elem) +
+    fail("section " + gf::quoted(name) + " has " + std::to_string(s.count) + " elements of " + std::to_string(s.elem) +
              " bytes, expected " + (count >= 0 ? std::to_string(count) : std::string("some")) + " of " +
              std::to_string(elem),
          "resume with the scene and grainflow version that wrote it");

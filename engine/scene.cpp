@@ -33,34 +33,6 @@ void check_step_count(const SceneNode& node, std::string_view key, double second
               "at most 1e15 steps: shorten it or lengthen run.dt");
 }
 
-std::string clipped(std::string_view s, std::size_t max) {
-  // Control characters are shown as \xNN: a NUL would end the printed message, an escape
-  // sequence would reach the terminal.
-  std::string out;
-  for (const char c : s.substr(0, max)) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u >= 0x20 && u != 0x7f) {
-      out += c;
-      continue;
-    }
-    static const char hex[] = "0123456789abcdef";
-    out += "\\x";
-    out += hex[u >> 4];
-    out += hex[u & 15];
-  }
-  if (s.size() > max) out += "...";
-  return out;
-}
-
-std::string quoted(std::string_view s, std::size_t max) {
-  // Built by appends: GCC 12 warns (-Wrestrict, a known false positive) on "'" + std::string.
-  std::string out;
-  out += '\'';
-  out += clipped(s, max);
-  out += '\'';
-  return out;
-}
-
 namespace detail {
 
 // Where a value that came from --set stands. toml++ gives such nodes the source position of the tiny document we
@@ -142,9 +114,7 @@ std::string type_name(const toml::node& n) {
 // The value itself, for "got a string ("1e-5")". Only scalars: a whole table in a message is noise.
 std::string show_value(const toml::node& n) {
   if (auto* s = n.as_string()) {
-    std::string t = s->get();
-    if (t.size() > 40) t = t.substr(0, 37) + "...";
-    return " (\"" + t + "\")";
+    return " (\"" + clipped(s->get(), 37) + "\")";
   }
   if (auto* i = n.as_integer()) return " (" + fmt_int(i->get()) + ")";
   if (auto* f = n.as_floating_point()) return " (" + fmt_num(f->get()) + ")";
@@ -316,7 +286,7 @@ struct detail::SceneAccess {
       try {
         auto probe = toml::parse("v = " + s->get(), std::string_view{"probe"});
         if (auto* v = probe.get("v"); v && probe.size() == 1 && !v->is_string() && !v->is_table())
-          fix = "remove the quotes: `" + key_text(key) + " = " + s->get() + "`";
+          fix = "remove the quotes: `" + key_text(key) + " = " + clipped(s->get()) + "`";
       } catch (const toml::parse_error&) {
       }
     }
@@ -378,7 +348,7 @@ struct detail::SceneAccess {
 using detail::SceneAccess;
 
 // ---------------------------------------------------------------------------------------------------------------------
-SceneError::SceneError(std::string msg) : std::runtime_error(std::move(msg)) {}
+SceneError::SceneError(std::string msg) : std::runtime_error(printable(msg)) {}
 
 // ---------------------------------------------------------------------------------------------------------------------
 namespace {

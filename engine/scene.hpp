@@ -22,6 +22,8 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/user_text.hpp"
+
 namespace gf {
 
 namespace detail {
@@ -39,11 +41,7 @@ class SceneError : public std::runtime_error {
 
 // A number for a message: four significant digits ("0.0001", "2.5e+04").
 std::string short_number(double v);
-// Text from the user for a message, at most `max` characters ("..." marks the cut): a 100 kB value
-// must not become a 100 kB line; control characters are written \xNN. clipped() as is, quoted() in
-// single quotes.
-std::string clipped(std::string_view s, std::size_t max = 60);
-std::string quoted(std::string_view s, std::size_t max = 60);
+
 
 
 // Allowed interval for a number. Infinite bounds are open by default, so Range::any() also rejects inf and nan:
