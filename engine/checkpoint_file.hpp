@@ -99,6 +99,7 @@ class CheckpointReader {
     if (!b.empty()) std::memcpy(data, b.data(), b.size());
   }
   const std::filesystem::path& file() const { return file_; }
+  std::size_t bytes() const { return data_.size(); }  // the file's size
   // Throws CheckpointError "<file>: <problem>. Fix: <fix>".
   [[noreturn]] void fail(const std::string& problem, const std::string& fix) const;
 

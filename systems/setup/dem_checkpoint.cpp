@@ -1,6 +1,7 @@
 #include "systems/setup/dem_checkpoint.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -34,6 +35,54 @@ void list_sections(Io& io, List& list, History& h, State& bp) {
   io.column("broadphase.ref_x", bp.ref_x);
   io.column("broadphase.ref_y", bp.ref_y);
   io.column("broadphase.ref_z", bp.ref_z);
+}
+
+// A checkpoint is raw arrays of the same build, sealed by a checksum; one corrupted and sealed again
+// must still not index past an array. These checks cover every value used as an index or a count.
+void require(const CheckpointReader& in, bool ok, const std::string& what) {
+  if (!ok)
+    in.fail("it is inconsistent (" + what + ")",
+            "resume from an earlier checkpoint, or from final_state.csv with a file fill");
+}
+
+template <class T>
+bool all_below(const T& v, std::size_t n) {
+  return std::all_of(v.begin(), v.end(), [n](auto x) { return x >= 0 && static_cast<std::size_t>(x) < n; });
+}
+
+void check_grains(const CheckpointReader& in, const Grains& g, std::size_t species) {
+  for (std::size_t i = 0; i < g.n; ++i) {
+    require(in, g.species.type[i] >= 0 && static_cast<std::size_t>(g.species.type[i]) < species,
+            "a grain's species is out of range");
+    require(in, std::isfinite(g.pos.x[i]) && std::isfinite(g.pos.y[i]) && std::isfinite(g.pos.z[i]),
+            "a grain's position is not finite");
+    require(in, g.radius.r[i] > 0 && std::isfinite(g.radius.r[i]) && g.mass.m[i] > 0 && std::isfinite(g.mass.m[i]),
+            "a grain's radius or mass is not a positive number");
+  }
+  for (const GrainRow& r : g.pending.insert)
+    require(in, r.type >= 0 && static_cast<std::size_t>(r.type) < species, "a queued grain's species is out of range");
+}
+
+void check_list(const CheckpointReader& in, const NeighborList& l, const PairHistory& h, const BroadphaseState& bp,
+                const Grains& g) {
+  const std::size_t pairs = l.pairs();
+  require(in, l.offsets.empty() || (l.offsets.size() == g.n_owned + 1 && l.offsets.front() == 0 &&
+                                    l.offsets.back() == pairs && std::is_sorted(l.offsets.begin(), l.offsets.end())),
+          "neighbour list offsets");
+  require(in, l.i.size() == pairs && l.key.size() == pairs && l.type_pair.size() >= pairs &&
+                  l.i_lane.size() >= pairs && l.j_lane.size() >= pairs,
+          "neighbour list lengths");
+  require(in, all_below(l.i, g.n_owned) && all_below(l.j, g.n) && all_below(l.i_lane, g.n) &&
+                  all_below(l.j_lane, g.n) && all_below(l.type_pair, static_cast<std::size_t>(kMaxSpecies * kMaxSpecies)),
+          "neighbour list rows");
+  require(in, all_below(h.pair, pairs) && std::is_sorted(h.pair.begin(), h.pair.end()), "contact history pairs");
+  for (std::size_t q = 0; q < h.width; ++q) require(in, h.value[q].size() == h.size(), "contact history lengths");
+  require(in, std::all_of(h.slot.begin(), h.slot.end(),
+                          [&](std::int32_t s) { return s >= -1 && s < static_cast<std::int64_t>(h.size()); }),
+          "contact history slots");
+  require(in, bp.ref_x.size() == bp.ref_y.size() && bp.ref_y.size() == bp.ref_z.size() &&
+                  (bp.ref_x.empty() || bp.ref_x.size() == g.n),
+          "skin reference positions");
 }
 
 template <class T>
@@ -106,7 +155,10 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
   world.clock.dt = in.value<double>("clock.dt");
   world.clock.step = in.value<std::int64_t>("clock.step");
   world.clock.t0 = in.value<double>("clock.t0");
-  gr.resize(in.value<std::uint64_t>("grains.n"));
+  const auto n = in.value<std::uint64_t>("grains.n");
+  // Every row takes at least 8 bytes per column: a larger count is corrupt, not a reason to allocate.
+  require(in, n_owned <= n && n <= in.bytes() / 8, "grain counts");
+  gr.resize(n);
   gr.n_owned = n_owned;
   std::size_t k = 0;
   gr.for_each_core_column([&](auto& col) {
@@ -138,6 +190,8 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
   walls.rotation_enabled = in.value<bool>("walls.rotation_enabled");
   walls.place(world.clock.t);
   list_sections(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp);
+  check_grains(in, gr, scene.species.size());
+  check_list(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, gr);
 }
 
 }  // namespace gf
