@@ -97,12 +97,12 @@ int line_of(const std::string& text, const std::string& needle) {
 // "<file>:<line>:" as the messages start.
 std::string at(const fs::path& file, int line) { return file.string() + ":" + std::to_string(line) + ":"; }
 
-// The SceneError message of loading (and, with build = true, building the world of) a scene file;
+// The SceneError message of loading (and, with build = true, building the world of and priming) a scene file;
 // "" if it loads. Any other exception escapes and fails the test.
 std::string scene_error(const fs::path& file, const std::vector<std::string>& overrides = {}, bool build = false) {
   try {
     gf::DemScene s = gf::load_dem_scene(gf::SceneDoc::load(file, overrides));
-    if (build) gf::DemSimulation sim(std::move(s));
+    if (build) gf::DemSimulation(std::move(s)).prime();
   } catch (const gf::SceneError& e) {
     return e.what();
   }
@@ -377,6 +377,16 @@ TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill
                               kScene.substr(kScene.find("[output]"));
     e = scene_error(dir.write("twice.toml", twice), {}, true);
     CHECK_THAT(e, Contains("grains 0 and 2 of the fills") && Contains("one on the other") && Contains("Fix:"));
+
+    // Two grains half a diameter into each other: no step has been taken, so the input is at fault
+    // (it was reported as an instability with "reduce run.dt"); check refuses it as run does.
+    dir.write("grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,1,0.002,0.004,0.003,0.003\n");
+    e = scene_error(f, {}, true);
+    CHECK_THAT(e, Contains(at(f, fill_line) + " the fills' initial state: grain id ") &&
+                      Contains("in the initial state") && Contains("Fix: place the grains apart"));
+    const Exit overlapping = run_cli(dir, "check " + quote(f.string()));
+    CHECK(overlapping.code == 1);
+    CHECK_THAT(overlapping.err, Contains("the fills' initial state"));
 
     dir.write("grains.csv", "id,type,diameter,x,y,z\n");  // the header alone: no grains
     e = scene_error(f, {}, true);

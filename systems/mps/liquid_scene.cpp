@@ -90,6 +90,7 @@ void read_fluid(LiquidScene& s, const SceneNode& root) {
   const auto blocks = root.tables("fluid");
   if (blocks.empty())
     root.fail("fluid", "the scene places no liquid", "add a [[fluid]] table with lo and hi (m) of a block to fill");
+  s.fluid_line = blocks.front().line();
   for (const SceneNode& b : blocks) {
     FluidBlock fb;
     fb.lo = b.get_vec3("lo");

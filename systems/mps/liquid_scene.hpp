@@ -24,6 +24,7 @@ struct LiquidScene {
   LiquidParams params;
   LiquidGeometry geometry;
   std::vector<FluidBlock> blocks;
+  int fluid_line = 0;         // line of the first [[fluid]] table, for messages about the blocks
   double dt = 0;              // s
   double duration = 0;        // s
   double velocity_scale = 0;  // m/s, expected max speed, for the CFL check at load

@@ -13,7 +13,7 @@ LiquidSimulation::LiquidSimulation(LiquidScene scene)
   FluidNodes& f = w.tables.add<FluidNodes>();
   generate_nodes(scene_.geometry, scene_.blocks, scene_.params.k.l0, f);
   if (f.count(kFluid) == 0)
-    throw SceneError(scene_.file.string() + ": the [[fluid]] blocks hold no lattice node (each is thinner than "
+    throw SceneError(scene_.file.string() + ":" + std::to_string(scene_.fluid_line) + ": the [[fluid]] blocks hold no lattice node (each is thinner than "
                      "the spacing l0 = " + short_number(scene_.params.k.l0) + " m somewhere, or lies outside the "
                      "geometry). Fix: give each block at least one spacing along every axis, inside the geometry");
   w.resources.emplace<LiquidParams>(scene_.params);

@@ -62,14 +62,13 @@ std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path
 int check_dem_command(const CliOptions& opt) {
   const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
   const DemScene s = load_dem_scene(doc);
-  Schedule step;
-  schedule_dem_step(step, s);
-  // The fills are built as `run` builds them, so check refuses what run would (a state file's bad
-  // row, a region through a wall, an empty world, more grains than the memory holds).
-  World probe;
-  build_dem_world(s, probe);
-  step.build(probe);
-  const std::size_t n = probe.grains.n;
+  // The fills are built and the initial forces computed as `run` does, so check refuses what run
+  // would (a state file's bad row, a region through a wall, an empty world, more grains than the
+  // memory holds, grains that start overlapping past the limit).
+  DemSimulation sim(s);
+  sim.prime();
+  const Schedule& step = sim.step();
+  const std::size_t n = sim.grains().n;
   std::printf("scene %s: valid\n", s.file.string().c_str());
   with_law(s.law, [&]<class Law>() {
     const HistoryLayout h = Law::history();

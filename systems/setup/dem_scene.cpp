@@ -433,7 +433,9 @@ namespace {
 
 // Two grains at one place (the same state file given twice, say) would push apart with forces past any
 // limit in the first step: refused, naming both. Sorted by position, coincident grains are neighbours.
-void require_apart(const DemScene& s, const std::vector<PlacedGrain>& placed) {
+// `first[k]` is the index of fill k's first grain in `placed`; the message is placed at the fill of the
+// later grain.
+void require_apart(const DemScene& s, const std::vector<PlacedGrain>& placed, const std::vector<std::size_t>& first) {
   std::vector<std::size_t> order(placed.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return placed[a].x < placed[b].x; });
@@ -442,12 +444,16 @@ void require_apart(const DemScene& s, const std::vector<PlacedGrain>& placed) {
     const PlacedGrain& b = placed[order[k]];
     const double r = std::min(a.radius, b.radius);
     if (std::abs(a.x[0] - b.x[0]) < 1e-6 * r && std::abs(a.x[1] - b.x[1]) < 1e-6 * r &&
-        std::abs(a.x[2] - b.x[2]) < 1e-6 * r)
-      throw SceneError(s.file.string() + ": grains " + std::to_string(std::min(order[k - 1], order[k])) + " and " +
-                       std::to_string(std::max(order[k - 1], order[k])) + " of the fills (counted in fill order) sit at (" +
-                       short_number(a.x[0]) + ", " + short_number(a.x[1]) + ", " + short_number(a.x[2]) +
-                       ") m, one on the other. Fix: a state file listed twice, or two fills that repeat grains: "
-                       "give each grain once");
+        std::abs(a.x[2] - b.x[2]) < 1e-6 * r) {
+      const std::size_t later = std::max(order[k - 1], order[k]);
+      const auto fill = std::upper_bound(first.begin(), first.end(), later) - first.begin() - 1;
+      fill_error(s, s.fills[static_cast<std::size_t>(fill)],
+                 "grains " + std::to_string(std::min(order[k - 1], order[k])) + " and " + std::to_string(later) +
+                     " of the fills (counted in fill order) sit at (" + short_number(a.x[0]) + ", " +
+                     short_number(a.x[1]) + ", " + short_number(a.x[2]) +
+                     ") m, one on the other. Fix: a state file listed twice, or two fills that repeat grains: "
+                     "give each grain once");
+    }
   }
 }
 
@@ -457,7 +463,9 @@ void build_dem_world(const DemScene& s, World& world) {
   require_memory(s, planned_grain_count(s));
   Grains& g = world.grains;
   std::vector<PlacedGrain> placed;
+  std::vector<std::size_t> first;
   for (const FillSpec& f : s.fills) {
+    first.push_back(placed.size());
     if (f.kind == FillSpec::Kind::Random) {
       std::vector<FillSpecies> req;
       for (auto& [sp, c] : f.counts) req.push_back({sp, 0.5 * s.species[sp].diameter, c});
@@ -517,7 +525,7 @@ void build_dem_world(const DemScene& s, World& world) {
     }
   }
 
-  require_apart(s, placed);
+  require_apart(s, placed, first);
   const std::size_t n = placed.size();
   if (n == 0)
     throw SceneError(s.file.string() + ": the scene's fills place no grains. Fix: give a [[fill]] a count or a "

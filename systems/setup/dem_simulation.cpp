@@ -27,7 +27,13 @@ DemSimulation DemSimulation::from_text(std::string_view toml, const std::vector<
 void DemSimulation::prime() {
   StepContext now = next_step(world_->clock);
   now.prime = true;
-  step_->run_step(now);
+  try {
+    step_->run_step(now);
+  } catch (const StabilityError& e) {
+    // Nothing has moved yet: the fills placed the grains past the overlap limit, a scene error.
+    const int line = scene_.fills.empty() ? 0 : scene_.fills.front().line;
+    throw SceneError(scene_.file.string() + ":" + std::to_string(line) + ": the fills' initial state: " + e.what());
+  }
   primed_ = true;
   // The law advanced every spring by v_t dt while evaluating; no time has passed, and the springs
   // of a new state start from zero, so that increment is undone.

@@ -19,7 +19,8 @@ class DemSimulation {
   static DemSimulation from_text(std::string_view toml, const std::vector<std::string>& overrides = {});
 
   // Computes the forces of the initial state without moving anything (once, before stepping), so
-  // the first half-kick uses a(0); contact springs stay at zero, as a new state starts.
+  // the first half-kick uses a(0); contact springs stay at zero, as a new state starts. Grains that
+  // start past the overlap limit are a SceneError at the first [[fill]] (`check` primes too).
   void prime();
   // Runs the scene's settling stage (walls not rotating), then resets the clock to 0.
   StageReport settle(double progress_seconds = 0.0);

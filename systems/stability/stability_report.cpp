@@ -37,6 +37,12 @@ const char* const kFixStep =
     "Fix: reduce run.dt (`grainflow check` prints the critical step and its smallest term), or raise the "
     "stiffness";
 
+// In the initial state no step has been taken: the input placed the grains so.
+std::string fix(const StepContext& step) {
+  return step.prime ? "Fix: place the grains apart (the state file's positions, or the fill's region and walls)"
+                    : kFixStep;
+}
+
 }  // namespace
 
 void report_nonfinite(const Grains& g, const StepContext& step, std::string_view pass) {
@@ -78,7 +84,7 @@ void report_pair_overlap(const Grains& g, const PairForces& c, double limit, con
   const auto i = static_cast<std::size_t>(c.ci[at]), j = static_cast<std::size_t>(c.cj[at]);
   throw StabilityError(grain(g, i) + " and " + grain(g, j) + " overlap by " + number(worst) +
                        " of the smaller diameter " + when(step) + ", past run.max_overlap = " + number(limit) + " (" +
-                       std::to_string(past) + " contacts past it). " + kFixStep +
+                       std::to_string(past) + " contacts past it). " + fix(step) +
                        ", or raise run.max_overlap if such overlaps are intended");
 }
 
@@ -96,7 +102,7 @@ void report_wall_overlap(const Grains& g, const Walls& walls, double limit, cons
   const std::string name = walls.list.empty() ? std::string("a wall") : "wall '" + walls.list[wall].name + "'";
   throw StabilityError(grain(g, at) + " overlaps " + name + " by " + number(worst) + " of its diameter " + when(step) +
                        ", past run.max_overlap = " + number(limit) + " (" + std::to_string(past) +
-                       " wall contacts past it). " + kFixStep +
+                       " wall contacts past it). " + fix(step) +
                        ", or raise run.max_overlap if such overlaps are intended");
 }
 
