@@ -166,6 +166,16 @@ TEST_CASE("cell grid: degenerate inputs", "[cell_grid]") {
     check_grid(g, p, 0.01, std::size_t(1) << 24);
     CHECK(g.cells() == 1);
   }
+  SECTION("one point flung 1e73 m away (a blow-up, or a corrupt state)") {
+    // The cell count was once an integer product of the extents: it overflowed (undefined
+    // behaviour, caught by UBSan) instead of growing the cells.
+    Points p = random_points(9, 50, 0.0, 0.1);
+    p.add(1e73, -1e73, 1e73);
+    CellGrid g;
+    build(g, p, 0.01, std::size_t(1) << 16);
+    check_grid(g, p, 0.01, std::size_t(1) << 16);
+    CHECK(g.cells() <= (std::size_t(1) << 16));
+  }
   SECTION("a flat layer: one cell thick") {
     Points p = random_points(8, 500, 0.0, 0.1);
     std::fill(p.z.begin(), p.z.end(), 0.5);

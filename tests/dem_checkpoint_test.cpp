@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -248,6 +249,23 @@ TEST_CASE("checkpoint: damaged or mismatched checkpoints are refused with the fi
   refused(bytes.substr(0, bytes.size() - 1000), "checksum");
   refused("hello\n", "not a grainflow checkpoint");
   refused("", "not a grainflow checkpoint");
+
+  // Arrays that a correct checksum cannot vouch for (a checkpoint corrupted and sealed again, found by
+  // the input fuzzer): each value used as an index or as a place is checked before the run uses it
+  // (a far grain once overflowed the cell count and crashed the pattern classifier).
+  auto sealed = [&](auto&& corrupt, const std::string& expect) {
+    auto bad = gf::DemSimulation::from_text(kDrum);
+    bad.advance(50);
+    corrupt(bad.grains());
+    gf::CheckpointWriter wb;
+    gf::save_dem_state(wb, bad.world(), bad.scene());
+    wb.write(dir.path / "sealed.gfc");
+    refused(read_file(dir.path / "sealed.gfc"), expect);
+  };
+  sealed([](gf::Grains& g) { g.pos.x[7] = 1e73; }, "a grain's centre is outside wall");
+  sealed([](gf::Grains& g) { g.species.type[3] = 99; }, "a grain's species is out of range");
+  sealed([](gf::Grains& g) { g.radius.r[5] = -1.0; }, "a grain's radius or mass is not a positive number");
+  sealed([](gf::Grains& g) { g.pos.y[2] = std::nan(""); }, "a grain's position is not finite");
 
   // The same state against a scene with another step is refused; against another fill count it is
   // accepted, and the rows are the checkpoint's (grains are fed and drained during runs).

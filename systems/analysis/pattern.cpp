@@ -68,10 +68,13 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
     const double vol = g.r[i] * g.r[i] * g.r[i];
     v_all += vol;
     if (g.type[i] == s.large_type) v_large += vol;
-    const int rb = std::min(kRadialBins - 1, static_cast<int>(std::sqrt(u * u + v * v) / R * kRadialBins));
+    // Bins are found in double and clamped before the conversion: a grain far outside the drum (a
+    // corrupt state) must land in the last bin, not overflow the int.
+    const int rb = static_cast<int>(std::min<double>(kRadialBins - 1, std::sqrt(u * u + v * v) / R * kRadialBins));
     radial[rb] += vol;
-    const int c = static_cast<int>(std::floor((u + R) / col_w));
-    if (c < 0 || c >= n_cols) continue;
+    const double column = std::floor((u + R) / col_w);
+    if (!(column >= 0 && column < n_cols)) continue;
+    const int c = static_cast<int>(column);
     auto& t = tops[c];
     const double top = v + g.r[i];
     ++col_count[c];
@@ -104,7 +107,7 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
     const double u = drum.u(g.x[i], g.y[i], g.z[i]), v = drum.v(g.x[i], g.y[i], g.z[i]);
     if (u * u + v * v < r_in2) continue;
     const double th = std::atan2(v, u) + std::numbers::pi;  // [0, 2 pi]
-    const int b = std::min(nb - 1, static_cast<int>(th / (2 * std::numbers::pi) * nb));
+    const int b = static_cast<int>(std::min<double>(nb - 1, th / (2 * std::numbers::pi) * nb));
     const double vol = g.r[i] * g.r[i] * g.r[i];
     total[b] += vol;
     if (g.type[i] == s.large_type) large[b] += vol, ++large_count[b], ++large_in_band;

@@ -67,14 +67,15 @@ void CellGrid::build(std::span<const double> x, std::span<const double> y, std::
   } else {
     cell = min_cell;
     for (;;) {
-      std::size_t total = 1;
-      for (int d = 0; d < 3; ++d) {
-        dims[d] = static_cast<std::int64_t>(std::floor((box.hi[axis[d]] - box.lo[axis[d]]) / cell)) + 1;
-        total *= static_cast<std::size_t>(dims[d]);
-      }
-      if (total <= max_cells) break;
+      // Counted in double: a row flung far away (a blow-up the stability checks catch after this
+      // pass) must grow the cells, not overflow the integer count.
+      double total = 1;
+      for (int d = 0; d < 3; ++d) total *= std::floor((box.hi[axis[d]] - box.lo[axis[d]]) / cell) + 1;
+      if (total <= static_cast<double>(max_cells)) break;
       cell *= 1.26;  // doubles the cell volume every three growths
     }
+    for (int d = 0; d < 3; ++d)
+      dims[d] = static_cast<std::int64_t>(std::floor((box.hi[axis[d]] - box.lo[axis[d]]) / cell)) + 1;
     for (int d = 0; d < 3; ++d) origin[d] = box.lo[axis[d]];
   }
   const std::size_t ncell = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);

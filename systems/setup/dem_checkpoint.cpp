@@ -50,8 +50,14 @@ bool all_below(const T& v, std::size_t n) {
   return std::all_of(v.begin(), v.end(), [n](auto x) { return x >= 0 && static_cast<std::size_t>(x) < n; });
 }
 
-void check_grains(const CheckpointReader& in, const Grains& g, std::size_t species) {
+void check_grains(const CheckpointReader& in, const Grains& g, std::size_t species, const Walls& walls) {
   for (std::size_t i = 0; i < g.n; ++i) {
+    // As for a state file's grain: a centre behind a wall is outside the domain.
+    for (const Wall& w : walls.list) {
+      Vec3d n;
+      require(in, !(wall_gap(w, {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, n) <= 0.0),
+              "a grain's centre is outside wall '" + w.name + "'");
+    }
     require(in, g.species.type[i] >= 0 && static_cast<std::size_t>(g.species.type[i]) < species,
             "a grain's species is out of range");
     require(in, std::isfinite(g.pos.x[i]) && std::isfinite(g.pos.y[i]) && std::isfinite(g.pos.z[i]),
@@ -190,7 +196,7 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
   walls.rotation_enabled = in.value<bool>("walls.rotation_enabled");
   walls.place(world.clock.t);
   list_sections(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp);
-  check_grains(in, gr, scene.species.size());
+  check_grains(in, gr, scene.species.size(), walls);
   check_list(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, gr);
 }
 
