@@ -11,7 +11,6 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -91,16 +90,12 @@ Impact run_impact(DemSimulation& sim, Overlap overlap, Force force, std::int64_t
   return r;
 }
 
-// A row of the results file, when GRAINFLOW_RESULTS names a folder.
+// A row of chung_ooi.csv, when GRAINFLOW_RESULTS names a folder.
 void record(const std::string& test, const std::string& quantity, double reference, double ours) {
-  const char* dir = std::getenv("GRAINFLOW_RESULTS");
-  if (!dir) return;
-  const std::string file = std::string(dir) + "/chung_ooi.csv";
-  const bool fresh = !std::ifstream(file).good();
-  std::ofstream out(file, std::ios::app);
-  if (fresh) out << "test,quantity,reference,grainflow,relative_error\n";
-  out.precision(8);
-  out << test << "," << quantity << "," << reference << "," << ours << "," << (ours - reference) / reference << "\n";
+  using gf::test::csv_field, gf::test::csv_number;
+  gf::test::record_result("chung_ooi.csv", "test,quantity,reference,grainflow,relative_error",
+                          csv_field(test) + "," + csv_field(quantity) + "," + csv_number(reference) + "," +
+                              csv_number(ours) + "," + csv_number((ours - reference) / reference));
 }
 
 // An impact against Chung & Ooi's published peak force (N), largest overlap (m) and duration (s), within 1 %.

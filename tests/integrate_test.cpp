@@ -17,7 +17,9 @@
 
 using gf::DemSimulation;
 using gf::Grains;
+using gf::test::ErrorKind;
 using gf::test::norm;
+using gf::test::record_analytic;
 using V = gf::V3<double>;
 
 namespace {
@@ -103,6 +105,10 @@ TEST_CASE("integrate: elastic spheres in a box conserve energy over 1e5 steps", 
   // steps per glass-glass contact) this run stays near 1e-4; at dt = 1e-5 (42 steps) the same 1e5 steps
   // accumulate 1.3e-3 over 1 s, so dt was halved rather than the tolerance widened. Any dissipation leak (a
   // dashpot with e = 1, a spurious tangential coupling) or a wrong half-kick is a systematic drift that breaks it.
+  record_analytic({.case_name = std::to_string(g.n_owned) + " spheres in a box, e = 1, no friction, " +
+                                std::to_string(steps) + " steps",
+                   .quantity = "total energy, largest drift", .closed_form = "conserved", .error = worst,
+                   .kind = ErrorKind::relative, .tolerance = 1e-3});
   CHECK(worst < 1e-3);
   // Spins are untouched: no tangential spring, no friction, no rolling torque.
   CHECK(std::abs(e1.rotational / e0.rotational - 1.0) < 1e-14);
@@ -165,6 +171,12 @@ count = { glass = 1 }
   const double tol_x = 2.0 * steps * eps * (max_x + steps * dt * max_v), tol_v = 2.0 * steps * eps * max_v;
   WARN("free flight over " << steps << " steps: position error " << worst_x << " m (bound " << tol_x
                            << "), velocity error " << worst_v << " m/s (bound " << tol_v << ")");
+  const std::string flight = "free flight under gravity, " + std::to_string(steps) + " steps";
+  record_analytic({.case_name = flight, .quantity = "position (m), largest error (tolerance: the round-off bound)",
+                   .closed_form = "x0 + v0 t + g t²/2", .error = worst_x, .kind = ErrorKind::absolute,
+                   .tolerance = tol_x});
+  record_analytic({.case_name = flight, .quantity = "velocity (m/s), largest error (tolerance: the round-off bound)",
+                   .closed_form = "v0 + g t", .error = worst_v, .kind = ErrorKind::absolute, .tolerance = tol_v});
   CHECK(worst_x <= tol_x);
   CHECK(worst_v <= tol_v);
   // No contact, no torque: the spin is untouched, bit for bit.

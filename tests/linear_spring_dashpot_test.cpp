@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "tests/test_support.hpp"
@@ -28,7 +29,9 @@ using gf::LsdCoeffs;
 using gf::LsdResult;
 using gf::LsdState;
 using gf::V3;
+using gf::test::ErrorKind;
 using gf::test::norm;
+using gf::test::record_analytic;
 using V = V3<double>;
 
 namespace {
@@ -338,6 +341,10 @@ TEST_CASE("lsd: the xsimd batch twin matches the scalar law lane by lane", "[con
     // (1.1e-16 each) over a few dozen operations, amplified by the cancellation in v - (v.n) n by at
     // most ~1e2 for these random contacts: ~1e-13 at worst. 1e-12 keeps that margin yet catches any
     // real divergence (a wrong selection or lane mix-up is an O(1) error).
+    record_analytic({.case_name = "xsimd law vs scalar law, " + std::to_string(count) + " random contacts, " +
+                                  std::to_string(kLanes) + " lanes",
+                     .quantity = std::string(wst.what) + ": largest difference / its size", .closed_form = "identical",
+                     .error = wst.rel, .kind = ErrorKind::relative, .tolerance = 1e-12});
     CHECK(wst.rel <= 1e-12);
     // Apart lanes (and zero springs) must be exact zeros in the batch too: they come from selections, not sums.
     CHECK(wst.zero_mismatch == 0);

@@ -1,5 +1,6 @@
 // Helpers shared by the test programs: a temporary folder, reading files back, stirring grains by id,
-// and small closed forms and formatters that several tests restate.
+// small closed forms and formatters that several tests restate, and the results files that the
+// README's tables are made from.
 #pragma once
 
 #include <atomic>
@@ -10,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -75,6 +77,68 @@ inline std::vector<std::string> lines_of(const std::string& text) {
 
 // The lines of a file; none if it cannot be opened.
 inline std::vector<std::string> read_lines(const std::filesystem::path& p) { return lines_of(read_file(p)); }
+
+// One CSV field: as it is, or in double quotes (quotes inside doubled) when it holds a comma, a quote
+// or a line break.
+inline std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (const char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// A number for a results file, with `digits` significant digits (the stream's default notation); ""
+// for NaN, which stands for "not applicable".
+inline std::string csv_number(double v, int digits = 8) {
+  if (std::isnan(v)) return "";
+  std::ostringstream os;
+  os.precision(digits);
+  os << v;
+  return os.str();
+}
+
+// Appends `row` (one CSV line, without its line break) to the file `file` in the folder that the
+// environment variable GRAINFLOW_RESULTS names, writing the line `header` first when the file does not
+// exist yet. Does nothing when GRAINFLOW_RESULTS is unset or empty. Tests that check a figure against a
+// published or closed-form value call it where they assert, so that the README's result tables are made
+// from what the tests measured (tools/readme/tables.py).
+inline void record_result(const std::string& file, const std::string& header, const std::string& row) {
+  const char* dir = std::getenv("GRAINFLOW_RESULTS");
+  if (dir == nullptr || *dir == '\0') return;
+  const std::filesystem::path p = std::filesystem::path(dir) / file;
+  const bool fresh = !std::filesystem::exists(p);
+  std::ofstream out(p, std::ios::app);
+  if (!out) throw std::runtime_error("record_result: cannot append to " + p.string());
+  if (fresh) out << header << "\n";
+  out << row << "\n";
+}
+
+// How a row of analytic.csv states its error and tolerance: relative to the reference in percent,
+// relative as a plain ratio, or absolute in the quantity's unit.
+enum class ErrorKind { percent, relative, absolute };
+
+// One figure a contact or integrator test checks against a closed form (docs/contact/analytic.csv,
+// the README's table "Contact physics against analytic values"). `closed_form` is the reference as
+// the README writes it (or "conserved", "identical"); `reference` its value and `measured` the
+// engine's, NaN where the check is on an error alone (a drift, a difference); `error` is the number
+// the test compares with `tolerance`, both in the unit `kind` names.
+struct AnalyticCheck {
+  std::string case_name, quantity, closed_form;
+  double reference = std::numeric_limits<double>::quiet_NaN();
+  double measured = std::numeric_limits<double>::quiet_NaN();
+  double error = 0.0;
+  ErrorKind kind = ErrorKind::percent;
+  double tolerance = 0.0;
+};
+
+// Appends `c` to analytic.csv when GRAINFLOW_RESULTS names a folder.
+inline void record_analytic(const AnalyticCheck& c) {
+  const char* kind = c.kind == ErrorKind::percent ? "relative %" : c.kind == ErrorKind::relative ? "relative" : "absolute";
+  record_result("analytic.csv", "case,quantity,closed_form,reference,measured,error,error_kind,tolerance",
+                csv_field(c.case_name) + "," + csv_field(c.quantity) + "," + csv_field(c.closed_form) + "," +
+                    csv_number(c.reference, 10) + "," + csv_number(c.measured, 10) + "," + csv_number(c.error, 4) +
+                    "," + kind + "," + csv_number(c.tolerance, 4));
+}
 
 // Random velocities (each component uniform in [-max_speed, max_speed]) and spins (uniform in
 // [-max_spin, max_spin]) drawn in id order, so that what a grain gets does not depend on its row.

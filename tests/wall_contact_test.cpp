@@ -35,6 +35,8 @@
 using gf::DemSimulation;
 using gf::Grains;
 using gf::test::contact_time;
+using gf::test::ErrorKind;
+using gf::test::record_analytic;
 using gf::test::set_override;
 using V = gf::V3<double>;
 
@@ -109,8 +111,16 @@ TEST_CASE("wall: sphere-plane restitution and contact time use the sphere's own 
                               << " %");
     // Tolerances of the task; the effective mass of a pair (m/2 for equal spheres) instead of m_i would be off by
     // 29 % in t_c.
-    CHECK(std::abs(de) < 0.005);
-    CHECK(std::abs(dtc) < 0.01);
+    const double tol_e = 0.005, tol_tc = 0.01;
+    const std::string case_name = "sphere–plane, e = " + gf::test::csv_number(e, 3);
+    record_analytic({.case_name = case_name, .quantity = "restitution", .closed_form = "e", .reference = e,
+                     .measured = e_meas, .error = 100 * de, .kind = ErrorKind::percent, .tolerance = 100 * tol_e});
+    record_analytic({.case_name = case_name, .quantity = "contact time (s)",
+                     .closed_form = "√(m/k_n)·√(π² + ln²e), m = m_i", .reference = tc,
+                     .measured = static_cast<double>(in_contact) * dt, .error = 100 * dtc, .kind = ErrorKind::percent,
+                     .tolerance = 100 * tol_tc});
+    CHECK(std::abs(de) < tol_e);
+    CHECK(std::abs(dtc) < tol_tc);
     // A head-on bounce stays head-on: no tangential force, no spin.
     CHECK(std::abs(vel(g).x) + std::abs(vel(g).z) == 0.0);
   }
@@ -130,6 +140,8 @@ TEST_CASE("wall: resting overlap on a plane is m g / k_n", "[contact][wall]") {
   const double ref = kM * kG / kKn;
   const double err = delta / ref - 1.0;
   WARN("resting overlap on a plane: " << delta << " m vs m g/k_n = " << ref << " m, relative error " << err);
+  record_analytic({.case_name = "sphere resting on a plane", .quantity = "overlap (m)", .closed_form = "m g / k_n",
+                   .reference = ref, .measured = delta, .error = err, .kind = ErrorKind::relative, .tolerance = 1e-6});
   CHECK(std::abs(err) < 1e-6);
   CHECK(std::abs(vel(g).y) < 1e-9);  // at rest: the settling is complete
 }
@@ -144,6 +156,9 @@ TEST_CASE("wall: resting overlap on the inner wall of a cylinder is m g / k_n", 
   const double err = delta / ref - 1.0;
   WARN("resting overlap on a cylinder wall: " << delta << " m vs m g/k_n = " << ref << " m, relative error " << err);
   // Same reasoning as on the plane; r - (R - rho) cancels more digits (R = 75 mm): ~1e-10 relative.
+  record_analytic({.case_name = "sphere resting on a drum's inner wall (still)", .quantity = "overlap (m)",
+                   .closed_form = "m g / k_n", .reference = ref, .measured = delta, .error = err,
+                   .kind = ErrorKind::relative, .tolerance = 1e-6});
   CHECK(std::abs(err) < 1e-6);
   CHECK(std::abs(p.x) < 1e-12);  // at the bottom, not dragged anywhere
   CHECK(std::abs(p.z) == 0.0);   // no end-wall contact
@@ -206,6 +221,7 @@ InclineRun tail(const InclineRun& r, double t0) {
 
 // Elastic creep of a stuck sphere: F_t = m g sin(theta) stretches the tangential spring by F_t/k_t and the torque
 // L F_t turns the rolling spring by L F_t/k_r, which rolls the centre by a further L^2 F_t/k_r.
+const char* const kCreep = "elastic creep m g sin θ (1/k_t + L²/k_r)";
 double creep(double tan_theta, double lever) {
   const double s = std::sin(std::atan(tan_theta));
   return kM * kG * s * (1.0 / kKt + lever * lever / kKr);
@@ -225,6 +241,9 @@ TEST_CASE("wall: incline, Coulomb threshold with rolling forbidden (f_r = 2 r)",
     // 1 %: the creep is a static equilibrium (exact) once the ramp's rolling-spring oscillation (period ~21 ms,
     // modal damping ratio ~0.2) has decayed for 0.25 s, ~1e-6 of its amplitude. A slip of the contact would add a
     // permanent displacement; sliding would grow it without bound.
+    record_analytic({.case_name = "incline, tan θ = 0.9 f_s, rolling blocked (f_r = 2 r): sticks",
+                     .quantity = "displacement (m)", .closed_form = kCreep, .reference = ref, .measured = x_end,
+                     .error = 100 * err, .kind = ErrorKind::percent, .tolerance = 1});
     CHECK(std::abs(err) < 0.01);
     CHECK(std::abs(r.vx.back()) < 1e-6);  // at rest (sliding at 1.1 f_s reaches 0.03 m/s within 0.1 s)
   }
@@ -240,6 +259,9 @@ TEST_CASE("wall: incline, Coulomb threshold with rolling forbidden (f_r = 2 r)",
     // 1 %: at steady sliding the tangential force is exactly f_s N and the rolling spring holds the spin at zero;
     // the fit over 0.15 s averages the small remaining spring oscillation. A cap on the wrong normal force or a
     // missing cap would be off by >= 10 % (the margin over the threshold is 10 %, so a is 1/10 of g sin).
+    record_analytic({.case_name = "incline, tan θ = 1.1 f_s, rolling blocked (f_r = 2 r): slides",
+                     .quantity = "acceleration (m/s²)", .closed_form = "g (sin θ − f_s cos θ)", .reference = ref,
+                     .measured = a, .error = 100 * err, .kind = ErrorKind::percent, .tolerance = 1});
     CHECK(std::abs(err) < 0.01);
     CHECK(std::abs(wdot) < 1e-3 * a / kR);  // no rolling
   }
@@ -255,6 +277,9 @@ TEST_CASE("wall: incline with the seed's rolling resistance: it rolls unless tan
     const double err = x_end / ref - 1.0;
     WARN("incline, seed f_r, tan = 0.6 f_r/r: displacement " << x_end << " m vs elastic creep " << ref
                                                               << " m (error " << err * 100 << " %)");
+    record_analytic({.case_name = "incline, seed f_r, tan θ = 0.6 f_r/r: held", .quantity = "displacement (m)",
+                     .closed_form = kCreep, .reference = ref, .measured = x_end, .error = 100 * err,
+                     .kind = ErrorKind::percent, .tolerance = 1});
     CHECK(std::abs(err) < 0.01);  // as for the Coulomb stick case
     CHECK(std::abs(r.vx.back()) < 1e-6);
   }
@@ -271,6 +296,9 @@ TEST_CASE("wall: incline with the seed's rolling resistance: it rolls unless tan
     // 1 %: steady rolling with the rolling torque at its cap f_r N is again an exact balance once the spring
     // transients have decayed; the 5/7 factor alone (a sphere sliding or not rolling) would be off by 29 %, and
     // ignoring the rolling resistance by 50 %.
+    record_analytic({.case_name = "incline, seed f_r, tan θ = 3 f_r/r: rolls", .quantity = "acceleration (m/s²)",
+                     .closed_form = "g (sin θ − (f_r/L) cos θ) / (1 + I/(m L²)) ≈ 5/7 g (sin θ − (f_r/L) cos θ)",
+                     .reference = ref, .measured = a, .error = 100 * err, .kind = ErrorKind::percent, .tolerance = 1});
     CHECK(std::abs(err) < 0.01);
     // Rolling, not sliding: the contact point is at rest to 1e-3 of the speed (the tangential spring is static).
     CHECK(r.max_abs_slip_ratio < 1e-3);
@@ -370,6 +398,10 @@ TEST_CASE("wall: rolling friction decelerates a rolling sphere at 5 f_r g / (7 r
                                 << " m/s");
   // 2 % (the task's); expected far smaller: a steady capped torque on a rolling sphere is an exact balance. Without
   // the I/L^2 term (a sliding block) the rate would be 40 % higher.
+  record_analytic({.case_name = "sphere rolling on a plane, slowed by the rolling-friction cap",
+                   .quantity = "acceleration (m/s²)",
+                   .closed_form = "−(f_r g/L) / (1 + I/(m L²)) ≈ −5 f_r g/(7 r)", .reference = ref, .measured = a,
+                   .error = 100 * err, .kind = ErrorKind::percent, .tolerance = 2});
   CHECK(std::abs(err) < 0.02);
   CHECK(max_slip < 1e-4 * v0);  // it rolls: the contact point stays at rest
 }
@@ -440,6 +472,16 @@ TEST_CASE("wall: a rotating drum wall drags a resting sphere along its motion", 
   REQUIRE(wdot > 0.0);
   // 1 % on the sliding phase: kinetic friction f_s m g exactly, the curvature of the drum adds a gravity component
   // of order g phi with phi < 3e-4 rad over 3 ms (0.1 %).
+  const std::string drag = "turning drum wall drags a resting sphere";
+  record_analytic({.case_name = drag, .quantity = "acceleration while sliding (m/s²)", .closed_form = "f_s g",
+                   .reference = a_ref, .measured = a, .error = 100 * (a / a_ref - 1.0), .kind = ErrorKind::percent,
+                   .tolerance = 1});
+  record_analytic({.case_name = drag, .quantity = "spin-up while sliding (rad/s²)", .closed_form = "f_s m g L / I",
+                   .reference = w_ref, .measured = wdot, .error = 100 * (wdot / w_ref - 1.0),
+                   .kind = ErrorKind::percent, .tolerance = 1});
+  record_analytic({.case_name = drag, .quantity = "rolling speed (m/s)", .closed_form = "U / (1 + m L²/I) ≈ 2U/7",
+                   .reference = v_ref, .measured = v_end, .error = 100 * (v_end / v_ref - 1.0),
+                   .kind = ErrorKind::percent, .tolerance = 2});
   CHECK(std::abs(a / a_ref - 1.0) < 0.01);
   CHECK(std::abs(wdot / w_ref - 1.0) < 0.01);
   // 2 % on the rolling speed 4 ms after it starts rolling: the sphere has begun to climb the wall and gravity slows
@@ -453,7 +495,8 @@ namespace {
 struct WallDriverRound {
   std::vector<std::size_t> touching_per_wall;
   std::size_t touching = 0;
-  double worst = 0.0;  // largest difference of a force or torque component, over its scale
+  double worst = 0.0;         // largest difference of a force or torque component, over its scale
+  double worst_spring = 0.0;  // largest difference of a spring field, over the largest spring
 };
 
 // Both wall drivers on the same state from copies of the same wall springs: every component (x, y, z)
@@ -519,6 +562,7 @@ WallDriverRound compare_wall_drivers(gf::World& w) {
     for (std::size_t i = 0; i < n; ++i)
       for (int k = 0; k < 6; ++k) {
         const double d = std::abs(h_simd.springs[q][i].s[k] - live.springs[q][i].s[k]);
+        r.worst_spring = std::max(r.worst_spring, d / smax);
         if (d <= 1e-12 * smax) continue;
         INFO("wall " << q << ", row " << i << ", spring field " << k);
         REQUIRE(d <= 1e-12 * smax);
@@ -534,6 +578,14 @@ WallDriverRound compare_wall_drivers(gf::World& w) {
   return r;
 }
 
+// The worst differences of the rounds of one wall-driver comparison, for analytic.csv.
+void record_wall_drivers(const std::string& case_name, double worst, double worst_spring) {
+  record_analytic({.case_name = case_name, .quantity = "force and torque components: largest difference / largest component",
+                   .closed_form = "identical", .error = worst, .kind = ErrorKind::relative, .tolerance = 1e-12});
+  record_analytic({.case_name = case_name, .quantity = "springs: largest difference / largest spring",
+                   .closed_form = "identical", .error = worst_spring, .kind = ErrorKind::relative, .tolerance = 1e-12});
+}
+
 }  // namespace
 
 TEST_CASE("wall contact: the xsimd driver equals the scalar driver on a stirred pack in a box", "[wall]") {
@@ -542,14 +594,19 @@ TEST_CASE("wall contact: the xsimd driver equals the scalar driver on a stirred 
   DemSimulation sim = DemSimulation::from_text(gf::test::binary_box_scene(3000, 100, 500.0));
   gf::test::stir_by_id(sim.grains(), 11);
   sim.prime();
-  double worst = 0.0;
-  for (int round = 0; round < 6; ++round) {
+  double worst = 0.0, worst_spring = 0.0;
+  const int rounds = 6;
+  for (int round = 0; round < rounds; ++round) {
     sim.advance(300);
     const WallDriverRound r = compare_wall_drivers(sim.world());
     REQUIRE(r.touching > 50);
     worst = std::max(worst, r.worst);
+    worst_spring = std::max(worst_spring, r.worst_spring);
   }
-  WARN("SIMD vs scalar wall driver, box: worst difference " << worst << " of the largest component");
+  WARN("SIMD vs scalar wall driver, box: worst difference " << worst << " of the largest component, "
+                                                            << worst_spring << " of the largest spring");
+  record_wall_drivers("xsimd wall driver vs scalar, stirred binary pack in a box, " + std::to_string(rounds) + " states",
+                      worst, worst_spring);
 }
 
 TEST_CASE("wall contact: the xsimd driver equals the scalar driver in a turning drum (cylinder and end walls)",
@@ -570,8 +627,9 @@ TEST_CASE("wall contact: the xsimd driver equals the scalar driver in a turning 
   REQUIRE(walls[cylinder].omega != 0.0);
   REQUIRE(sim.world().resources.get<gf::Walls>().rotation_enabled);
   std::size_t most_on_cylinder = 0;
-  double worst = 0.0;
-  for (int round = 0; round < 6; ++round) {
+  double worst = 0.0, worst_spring = 0.0;
+  const int rounds = 6;
+  for (int round = 0; round < rounds; ++round) {
     sim.advance(300);
     const WallDriverRound r = compare_wall_drivers(sim.world());
     INFO("round " << round << ": " << r.touching << " rows touch a wall, " << r.touching_per_wall[cylinder]
@@ -579,9 +637,14 @@ TEST_CASE("wall contact: the xsimd driver equals the scalar driver in a turning 
     REQUIRE(r.touching > 20);
     most_on_cylinder = std::max(most_on_cylinder, r.touching_per_wall[cylinder]);
     worst = std::max(worst, r.worst);
+    worst_spring = std::max(worst_spring, r.worst_spring);
   }
-  WARN("SIMD vs scalar wall driver, drum: worst difference " << worst << " of the largest component, up to "
+  WARN("SIMD vs scalar wall driver, drum: worst difference " << worst << " of the largest component, "
+                                                            << worst_spring << " of the largest spring, up to "
                                                             << most_on_cylinder << " rows on the cylinder");
+  record_wall_drivers("xsimd wall driver vs scalar, stirred pack in a turning drum, " + std::to_string(rounds) +
+                          " states",
+                      worst, worst_spring);
   // Once poured, a bed of 420 grains lies along the cylinder's lower arc.
   CHECK(most_on_cylinder > 30);
 }
