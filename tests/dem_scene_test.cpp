@@ -636,7 +636,9 @@ TEST_CASE("cli: SIGTERM stops a run after the step in flight and keeps its resul
   const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
   CHECK(summary.at("status") == "interrupted");
   const std::int64_t steps_done = summary.at("steps").get<std::int64_t>();
-  CHECK(steps_done >= 300);  // at least the 30 rows seen before the signal
+  // At least the 30 rows seen before the signal: t = 0 and every 10 steps to step 290 (the header is
+  // the 31st line). A slow build (the sanitizers) can stop right there.
+  CHECK(steps_done >= 290);
   CHECK(steps_done < requested);
 
   // Every row written before the signal is still there, unchanged, and every row is complete.
