@@ -22,6 +22,8 @@
 
 #include "engine/grains.hpp"
 #include "engine/world.hpp"
+#include "engine/machine_memory.hpp"
+#include "engine/run_loop.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/walls/walls.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
@@ -312,6 +314,28 @@ std::map<std::uint64_t, std::vector<double>> oriented_history(const Grains& g, c
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------------------------------
+TEST_CASE("neighbours: grains piled far closer than a packing stop the search before the memory runs out",
+          "[broadphase]") {
+  // 3,000 grains of 1 to 3 mm radius inside a 1 mm cube: every pair is listed, 4.5 million of them.
+  // With the memory the search may plan for lowered to 64 MB (32 MB for the list: 524,288 pairs) the
+  // search stops past that bound with the reason, where it once grew until the machine ran out.
+  const Pack p = random_pack(11, 3000, 0.001, 0.001);
+  gf::memory_limit().store(std::size_t(64) << 20);
+  Built b;
+  std::string message;
+  try {
+    build_list(b, p, 1e-4);
+  } catch (const gf::StabilityError& e) {
+    message = e.what();
+  }
+  gf::memory_limit().store(0);
+  CHECK_THAT(message, Catch::Contains("the neighbour list passed 524288 pairs") && Catch::Contains("Fix:"));
+  // The same pile with the machine's own memory is listed whole (4.5 million pairs, 0.3 GB).
+  Built whole;
+  build_list(whole, p, 1e-4);
+  CHECK(whole.list.pairs() == 3000u * 2999u / 2u);
+}
+
 TEST_CASE("broadphase: grid pairs equal brute-force pairs on random polydisperse packs", "[broadphase]") {
   // 1500 spheres of radius 0.5..1.5 mm in a 30 mm cube, skin 0.2 mm: cells of 3.2 mm, ~10^3 cells.
   for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u}) {

@@ -28,6 +28,7 @@
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/contact/pair_contact.hpp"
 #include "systems/setup/dem_scene.hpp"
+#include "engine/machine_memory.hpp"
 #include "systems/setup/dem_simulation.hpp"
 #include "tests/test_support.hpp"
 
@@ -224,6 +225,23 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
                Contains("key 'run.duration'") && Contains("steps") && Contains("Fix: at most 1e15 steps"));
     CHECK_THAT(scene_error(f, {"run.dt=1e-320", "run.allow_unstable_dt=true"}),
                Contains("key 'run.duration'") && Contains("inf steps"));
+  }
+  SECTION("a skin larger than the smallest grain") {
+    // A 1 m skin around 1 mm grains listed every pair of a 47,108-grain drum: a billion pairs, until
+    // the machine ran out of memory.
+    // The memory estimate counts the pairs the skin lists, so the scene is refused before anything
+    // is allocated (with the memory this test lets a scene plan for lowered to 64 MB, as a small
+    // machine's).
+    gf::memory_limit().store(std::size_t(64) << 20);
+    // 50 grains list at most 49 partners each, whatever the skin: accepted.
+    const std::string few = scene_error(dir.write("skin.toml", kScene), {"run.skin=1"}, true);
+    // 2,000 grains in a 1 m box with a 1 m skin: 2 million pairs, 0.2 GB of list.
+    const std::string many = scene_error(
+        dir.write("skin_many.toml", with(kScene, "count = { glass = 50 }", "count = { glass = 2000 }")),
+        {"run.skin=1", "wall.0.hi=[1,1,1]", "fill.0.region.hi=[0.99,0.99,0.99]"}, true);
+    gf::memory_limit().store(0);
+    CHECK(few.empty());
+    CHECK_THAT(many, Contains("1999 neighbour pairs per grain with run.skin = 1 m") && Contains("Fix:"));
   }
   SECTION("long text from the user is shown cut") {
     // A 100 kB value, key or --set argument once made a 100 kB message.

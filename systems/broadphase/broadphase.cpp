@@ -1,6 +1,12 @@
 #include "systems/broadphase/broadphase.hpp"
 
+#include "engine/machine_memory.hpp"
+#include "engine/run_loop.hpp"
+
 #include <algorithm>
+#include <atomic>
+#include <climits>
+#include <cstdint>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -201,16 +207,30 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   constexpr std::size_t kRows = 512;
   const std::size_t nblocks = (nown + kRows - 1) / kRows;
   s.partners.resize(nblocks);
+  // Grains piled far closer than any packing (a corrupt state, a blow-up) would list up to n^2 / 2
+  // pairs: the search stops once the list would take half the memory (kBytesPerPair with its
+  // contact and history), and the step stops with the reason instead of exhausting the machine.
+  constexpr std::size_t kBytesPerPair = 64;
+  const std::size_t most_pairs = std::min<std::size_t>(half_of_memory() / kBytesPerPair, UINT32_MAX);
+  std::atomic<std::size_t> listed{0};
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
     std::vector<std::uint32_t>& out = s.partners[blk];
     out.clear();
     const std::size_t r1 = std::min(nown, (blk + 1) * kRows);
-    for (std::size_t i = blk * kRows; i < r1; ++i) {
+    for (std::size_t i = blk * kRows; i < r1 && listed.load(std::memory_order_relaxed) <= most_pairs; ++i) {
       const std::size_t before = out.size();
       visit(i, [&](std::size_t j) { out.push_back(static_cast<std::uint32_t>(j)); });
       list.offsets[i + 1] = static_cast<std::uint32_t>(out.size() - before);
+      listed.fetch_add(out.size() - before, std::memory_order_relaxed);
     }
   });
+  if (listed.load() > most_pairs) {
+    list.offsets.assign(nown + 1, 0);
+    throw StabilityError("the neighbour list passed " + std::to_string(most_pairs) + " pairs (" +
+                         std::to_string(most_pairs / std::max<std::size_t>(nown, 1)) +
+                         " per grain), half of this machine's memory: grains are piled far closer than a "
+                         "packing. Fix: a state file's positions, or reduce run.dt if the run blew up");
+  }
   for (std::size_t i = 0; i < nown; ++i) list.offsets[i + 1] += list.offsets[i];
   const std::size_t np = list.offsets[nown];
   list.i.resize(np);

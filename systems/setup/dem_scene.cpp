@@ -407,9 +407,22 @@ void require_memory(const DemScene& scene, std::size_t n) {
   }
   throw SceneError(scene.file.string() + ":" + std::to_string(big ? big->line : 0) + ": " +
                    (big ? big->where + ": " : std::string()) + "the fills ask for " + std::to_string(n) +
-                   " grains, about " + short_number(need / 1073741824.0) + " GiB of arrays, more than 80 % of this "
-                   "machine's " + short_number(have / 1073741824.0) + " GiB. Fix: lower the fills' counts or volume "
-                   "fractions");
+                   " grains, about " + short_number(need / 1073741824.0) + " GiB of arrays (up to " +
+                   std::to_string(list_pairs_per_grain(scene, n)) + " neighbour pairs per grain with run.skin = " +
+                   short_number(scene.skin) + " m), more than 80 % of this machine's " +
+                   short_number(have / 1073741824.0) + " GiB. Fix: lower the fills' counts or volume fractions, or "
+                   "run.skin (0.1 to 0.3 of the smallest diameter)");
+}
+
+// Neighbour-list pairs per grain: 3.4 in a dense pack of the seed drum with its skin (0.15 of the
+// small diameter); for a larger skin, the grains of the smallest size within reach d + skin of one,
+// at the random-close-packing fraction, counted once per pair, and never more than the other grains.
+std::size_t list_pairs_per_grain(const DemScene& scene, std::size_t n) {
+  double d_min = scene.species.front().diameter;
+  for (const SpeciesSpec& sp : scene.species) d_min = std::min(d_min, sp.diameter);
+  const double reach = (d_min + scene.skin) / d_min;
+  const double most = std::min(0.64 * 8.0 * reach * reach * reach / 2.0, n > 0 ? static_cast<double>(n - 1) : 0.0);
+  return static_cast<std::size_t>(std::ceil(std::max(3.4, most)));
 }
 
 std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n) {
@@ -422,7 +435,7 @@ std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n) {
   std::size_t width = 0;
   with_law(scene.law, [&]<class Law>() { width = Law::kHistory; });
   const std::size_t per_pair = 50, per_contact = 48 + 2 * 8 * width;
-  return n * (per_grain + per_pair * 34 / 10 + per_contact * 17 / 10);
+  return n * (per_grain + per_pair * list_pairs_per_grain(scene, n) + per_contact * 17 / 10);
 }
 
 namespace {
@@ -526,6 +539,8 @@ void build_dem_world(const DemScene& s, World& world) {
   }
 
   require_apart(s, placed, first);
+  // Again with the state files' rows counted, before the grain arrays and the neighbour list exist.
+  require_memory(s, placed.size());
   const std::size_t n = placed.size();
   if (n == 0)
     throw SceneError(s.file.string() + ": the scene's fills place no grains. Fix: give a [[fill]] a count or a "

@@ -107,6 +107,8 @@ void build_dem_world(const DemScene& scene, World& world);
 
 // Estimated bytes for n grains (columns, neighbour list and history at a typical coordination).
 std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n);
+// Neighbour-list pairs per grain the estimate counts for n grains (it grows with run.skin).
+std::size_t list_pairs_per_grain(const DemScene& scene, std::size_t n);
 std::size_t planned_grain_count(const DemScene& scene);
 // Refuses (SceneError) n grains whose arrays would need more than 80 % of this machine's memory.
 void require_memory(const DemScene& scene, std::size_t n);
