@@ -1,12 +1,17 @@
-// Helpers shared by the liquid tests: run a scene file for a while and average an observable.
+// Helpers shared by the liquid tests: run a scene file for a while and average an observable, and record the
+// figures the validation tests check in the results file the README's liquid validation table is made from.
 #pragma once
 
+#include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "systems/mps/liquid_observables.hpp"
 #include "systems/mps/liquid_simulation.hpp"
+#include "test_support.hpp"
 
 namespace gf::test {
 
@@ -55,6 +60,57 @@ inline Samples run_and_sample(LiquidSimulation& sim, std::int64_t steps, std::in
     if (k % every == 0) s.rows.push_back(sample_liquid(sim.world(), sim.scene()));
   }
   return s;
+}
+
+// Seconds of wall-clock time since `t0` (steady clock).
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// What a liquid run cost: steps, fluid nodes and wall plus dummy nodes (at the end of the run), the simulated
+// time and the wall time of the stepping. NaN and 0 where there was no run (the operator checks).
+struct LiquidCost {
+  std::int64_t steps = 0;
+  std::size_t fluid_nodes = 0, boundary_nodes = 0;
+  double simulated_s = std::numeric_limits<double>::quiet_NaN();
+  double wall_s = std::numeric_limits<double>::quiet_NaN();
+};
+
+inline LiquidCost cost_of(LiquidSimulation& sim, std::int64_t steps, double wall_s) {
+  LiquidCost c;
+  c.steps = steps;
+  c.fluid_nodes = sim.nodes().count(kFluid);
+  c.boundary_nodes = sim.nodes().size() - c.fluid_nodes;
+  c.simulated_s = static_cast<double>(steps) * sim.scene().dt;
+  c.wall_s = wall_s;
+  return c;
+}
+
+// One figure a liquid test measures: `measured` in `unit`; `reference` (named `reference_name`, NaN where
+// there is none) and the signed relative error `error_pct` in percent (NaN where not applicable); `bound` is
+// the test's check on the figure in words ("" where the figure is reported, not checked).
+struct LiquidFigure {
+  std::string quantity, unit, reference_name;
+  double reference = std::numeric_limits<double>::quiet_NaN();
+  double measured = std::numeric_limits<double>::quiet_NaN();
+  double error_pct = std::numeric_limits<double>::quiet_NaN();
+  std::string bound;
+};
+
+// Appends `f`, with the cost of its run, to validation.csv when GRAINFLOW_RESULTS names a folder
+// (docs/liquid/validation.csv, turned into the README's liquid validation table by
+// tools/liquid/validation_table.py). `test` names the test program, `case_name` the run.
+inline void record_liquid(const std::string& test, const std::string& case_name, const LiquidFigure& f,
+                          const LiquidCost& c) {
+  record_result("validation.csv",
+                "test,case,quantity,unit,reference_name,reference,measured,error_pct,bound,steps,fluid_nodes,"
+                "boundary_nodes,simulated_s,wall_s",
+                csv_field(test) + "," + csv_field(case_name) + "," + csv_field(f.quantity) + "," + csv_field(f.unit) +
+                    "," + csv_field(f.reference_name) + "," + csv_number(f.reference, 10) + "," +
+                    csv_number(f.measured, 10) + "," + csv_number(f.error_pct, 4) + "," + csv_field(f.bound) + "," +
+                    std::to_string(c.steps) + "," + std::to_string(c.fluid_nodes) + "," +
+                    std::to_string(c.boundary_nodes) + "," + csv_number(c.simulated_s, 6) + "," +
+                    csv_number(c.wall_s, 4));
 }
 
 }  // namespace gf::test
