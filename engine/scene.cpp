@@ -27,6 +27,13 @@ std::string short_number(double v) {
   return os.str();
 }
 
+void require_gravity(const SceneNode& node, const std::array<double, 3>& g) {
+  const double a = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  if (!(a <= 1e6))
+    node.fail("gravity", "|gravity| = " + short_number(a) + " m/s^2 is more than 1e6 m/s^2 (1e5 g)",
+              "give the acceleration in m/s^2, e.g. [0, -9.81, 0]");
+}
+
 void check_step_count(const SceneNode& node, std::string_view key, double seconds, double dt) {
   if (seconds / dt > 1e15)
     node.fail(key, "gives " + short_number(seconds / dt) + " steps of run.dt = " + short_number(dt) + " s",

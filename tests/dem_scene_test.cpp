@@ -226,6 +226,18 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
     CHECK_THAT(scene_error(f, {"run.dt=1e-320", "run.allow_unstable_dt=true"}),
                Contains("key 'run.duration'") && Contains("inf steps"));
   }
+  SECTION("an acceleration past any centrifuge, and fills that place nothing") {
+    // Both were found by the input fuzzer: gravity 1e308 m/s^2 passed check and moved every grain
+    // through a wall in the first step ("reduce run.dt"); a fill of zero grains was refused
+    // without a line.
+    const fs::path f = dir.write("g.toml", kScene);
+    CHECK_THAT(scene_error(f, {"run.gravity=[1e308,1e308,1e308]"}),
+               Contains("key 'run.gravity'") && Contains("more than 1e6 m/s^2") && Contains("Fix:"));
+    const std::string none = with(kScene, "count = { glass = 50 }", "count = { glass = 0 }");
+    CHECK_THAT(scene_error(dir.write("none.toml", none), {}, true),
+               Contains(at(dir.path / "none.toml", line_of(none, "[[fill]]"))) && Contains("place no grains") &&
+                   Contains("Fix:"));
+  }
   SECTION("a skin larger than the smallest grain") {
     // A 1 m skin around 1 mm grains listed every pair of a 47,108-grain drum: a billion pairs, until
     // the machine ran out of memory.

@@ -161,6 +161,7 @@ LiquidScene load_liquid_scene(const SceneDoc& doc) {
   s.duration = run.get_double("duration", Range::non_negative());
   check_step_count(run, "duration", s.duration, s.dt);
   p.gravity = run.get_vec3("gravity", {0, 0, 0});
+  require_gravity(run, p.gravity);
   p.body_force = run.get_vec3("body_force", {0, 0, 0});
   if (dim == 2 && (p.gravity[2] != 0 || p.body_force[2] != 0))
     run.fail(p.gravity[2] != 0 ? "gravity" : "body_force", "a 2D scene has no z component",

@@ -278,6 +278,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   s.seed = static_cast<std::uint64_t>(run.get_int("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
   s.max_overlap = run.get_double("max_overlap", 0.1, Range::open_closed(0, 1));
   const auto g = run.get_vec3("gravity", {0, -9.81, 0});
+  require_gravity(run, g);
   s.gravity = {g[0], g[1], g[2]};
 
   for (const SceneNode& sp : root.tables("species")) {
@@ -543,8 +544,9 @@ void build_dem_world(const DemScene& s, World& world) {
   require_memory(s, placed.size());
   const std::size_t n = placed.size();
   if (n == 0)
-    throw SceneError(s.file.string() + ": the scene's fills place no grains. Fix: give a [[fill]] a count or a "
-                     "volume fraction above 0, or a state file with rows");
+    throw SceneError(s.file.string() + ":" + std::to_string(s.fills.empty() ? 0 : s.fills.front().line) +
+                     ": the scene's fills place no grains. Fix: give a [[fill]] a count or a volume fraction above 0, "
+                     "or a state file with rows");
   // Spin columns only when some species rotates; a species that does not has inv_inertia 0.
   g.spin = s.spin();
   g.resize(n);
