@@ -1,0 +1,30 @@
+#!/usr/bin/env python3
+"""The README's scaling table from a log of tools/bench_scaling.sh (medians of 3 repetitions).
+
+    tools/bench_scaling.sh > docs/bench/scaling.log
+    /usr/bin/python3 tools/bench/scaling_table.py docs/bench/scaling.log
+"""
+import re
+import sys
+
+LINE = re.compile(r"threads:(\d+)/real_time_median.*grains=([0-9.]+)([kM]?) particle_steps/s=([0-9.]+)([kMG]?)/s "
+                  r"rebuilds/step=([0-9.]+)")
+SCALE = {"": 1.0, "k": 1e3, "M": 1e6, "G": 1e9}
+
+
+def main(path):
+    rows = {}
+    for line in open(path):
+        m = LINE.search(line)
+        if m:
+            grains = round(float(m.group(2)) * SCALE[m.group(3)])
+            rows.setdefault(grains, {})[int(m.group(1))] = (float(m.group(4)) * SCALE[m.group(5)], float(m.group(6)))
+    print("| `bench/settled_layer`, 200 steps after settling | 1 thread | 2 threads | list rebuilds per step (1 / 2 threads) |")
+    print("|---|---|---|---|")
+    for grains in sorted(rows):
+        r = rows[grains]
+        print(f"| {grains:,} grains | {r[1][0]:.3g} | {r[2][0]:.3g} | {r[1][1]:.3g} / {r[2][1]:.3g} |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "docs/bench/scaling.log")

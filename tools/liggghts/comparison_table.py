@@ -1,0 +1,39 @@
+#!/usr/bin/env python3
+"""The README's LIGGGHTS comparison table from a log of tools/liggghts/run_comparison.sh.
+
+    REPEATS=5 tools/liggghts/run_comparison.sh > docs/liggghts/comparison.log
+    /usr/bin/python3 tools/liggghts/comparison_table.py docs/liggghts/comparison.log
+
+Medians over the rounds, and the per-round ratios grainflow / LIGGGHTS (each round runs both codes
+back to back, so its ratio is the least disturbed by the machine's drift): median and range.
+"""
+import re
+import statistics
+import sys
+
+ROW = re.compile(r"^(liggghts|grainflow)\s+(\d+)\s+(\d+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+|nan)\s+([0-9.]+)$")
+
+
+def main(path):
+    runs = {}
+    for line in open(path):
+        m = ROW.match(line.strip())
+        if m:
+            runs[m.group(1), int(m.group(2)), int(m.group(3))] = float(m.group(6))
+    rounds = sorted({k[2] for k in runs})
+    med = {(c, n): statistics.median(runs[c, n, r] for r in rounds if (c, n, r) in runs)
+           for c in ("liggghts", "grainflow") for n in (1, 2)}
+    ratio = {n: [runs["grainflow", n, r] / runs["liggghts", n, r] for r in rounds
+                 if ("grainflow", n, r) in runs and ("liggghts", n, r) in runs] for n in (1, 2)}
+    print("| code | 1 core | 2 cores | 1 → 2 |")
+    print("|---|---|---|---|")
+    print(f"| LIGGGHTS 3.8 (mesh drum, `hooke/stiffness`, `epsd` rolling; MPI ranks), median of {len(rounds)} | "
+          f"{med['liggghts', 1]:.3g} | {med['liggghts', 2]:.3g} | ×{med['liggghts', 2] / med['liggghts', 1]:.2f} |")
+    print(f"| grainflow (analytic drum, seed-000 law; TBB threads), median of {len(rounds)} | "
+          f"{med['grainflow', 1]:.3g} | {med['grainflow', 2]:.3g} | ×{med['grainflow', 2] / med['grainflow', 1]:.2f} |")
+    cells = [f"**×{statistics.median(ratio[n]):.2f}** (×{min(ratio[n]):.2f}–{max(ratio[n]):.2f})" for n in (1, 2)]
+    print(f"| ratio grainflow / LIGGGHTS per round: median (range) | {cells[0]} | {cells[1]} | |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "docs/liggghts/comparison.log")
