@@ -27,10 +27,10 @@ std::string short_number(double v) {
   return os.str();
 }
 
-void require_gravity(const SceneNode& node, const std::array<double, 3>& g) {
+void require_acceleration(const SceneNode& node, std::string_view key, const std::array<double, 3>& g) {
   const double a = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
   if (!(a <= 1e6))
-    node.fail("gravity", "|gravity| = " + short_number(a) + " m/s^2 is more than 1e6 m/s^2 (1e5 g)",
+    node.fail(key, "|" + std::string(key) + "| = " + short_number(a) + " m/s^2 is more than 1e6 m/s^2 (1e5 g)",
               "give the acceleration in m/s^2, e.g. [0, -9.81, 0]");
 }
 

@@ -116,9 +116,10 @@ class SceneNode {
 // simulated time at `key` of `node` past that, naming the key and the fix.
 void check_step_count(const SceneNode& node, std::string_view key, double seconds, double dt);
 
-// A body acceleration `gravity` of `node` at most 1e6 m/s^2 (1e5 g, past any centrifuge): a larger
-// one is a typo that moves grains through walls in the first step, reported then as an instability.
-void require_gravity(const SceneNode& node, const std::array<double, 3>& g);
+// A body acceleration (`key` of `node`: gravity, a body force per mass) of at most 1e6 m/s^2 (1e5 g,
+// past any centrifuge): a larger one is a typo that moves grains through walls, or liquid out of its
+// tank, in the first step, reported then as an instability.
+void require_acceleration(const SceneNode& node, std::string_view key, const std::array<double, 3>& g);
 
 // A parsed scene file plus the --set overrides applied to it, and the record of which keys were read.
 // Copies share that record (they are the same document); moving is a pointer move.

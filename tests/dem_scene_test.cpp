@@ -233,6 +233,12 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
     const fs::path f = dir.write("g.toml", kScene);
     CHECK_THAT(scene_error(f, {"run.gravity=[1e308,1e308,1e308]"}),
                Contains("key 'run.gravity'") && Contains("more than 1e6 m/s^2") && Contains("Fix:"));
+    // A drum turning 1e9 rad/s moved its wall 750 m per step, a radius of 1e308 overflowed the
+    // series' arrays: both refused at their keys.
+    const fs::path drum = fs::path(GRAINFLOW_SOURCE_DIR) / "scenes/drum_seed000_settled.toml";
+    CHECK_THAT(scene_error(drum, {"wall.0.omega=1e9"}),
+               Contains("key 'wall[0].omega'") && Contains("m per step, more than 0.1 of the smallest diameter"));
+    CHECK_THAT(scene_error(drum, {"wall.0.radius=1e308"}), Contains("key 'wall[0].radius'") && Contains("1000"));
     const std::string none = with(kScene, "count = { glass = 50 }", "count = { glass = 0 }");
     CHECK_THAT(scene_error(dir.write("none.toml", none), {}, true),
                Contains(at(dir.path / "none.toml", line_of(none, "[[fill]]"))) && Contains("place no grains") &&

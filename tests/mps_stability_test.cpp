@@ -142,6 +142,14 @@ TEST_CASE("bad liquid scene input is a SceneError naming the file, line, key and
     t.replace(t.find("hi = [0.584"), 11, std::string("hi = [") + far);
     REQUIRE_THROWS_WITH(load(t), Catch::Contains("geometry.hi") && Catch::Contains("half this machine's memory"));
   }
+  // A density or body force of 1e308 ran and failed in the pressure solve or as a stability stop:
+  // refused at their keys.
+  t = base;
+  t.replace(t.find("density = "), std::string("density = ").size(), "density = 1e308 #");
+  REQUIRE_THROWS_WITH(load(t), Catch::Contains("liquid.density") && Catch::Contains("Fix:"));
+  t = base;
+  t.replace(t.find("[run]"), 5, "[run]\nbody_force = [1e308, 0.0, 0.0]");
+  REQUIRE_THROWS_WITH(load(t), Catch::Contains("run.body_force") && Catch::Contains("more than 1e6 m/s^2"));
   // A spacing larger than the geometry (1e308 m used to fail with no fix at all).
   t = base;
   {

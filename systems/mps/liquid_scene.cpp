@@ -133,7 +133,7 @@ LiquidScene load_liquid_scene(const SceneDoc& doc) {
   const double l0 = liq.get_double("l0", Range::positive());
   const double re = liq.get_double("re", 2.1, Range::closed(1.5, 5.0));
   p.k = lattice_constants(dim, l0, re * l0);
-  p.rho = liq.get_double("density", Range::positive());
+  p.rho = liq.get_double("density", Range::open_closed(0, 1e6));  // kg/m^3, as a DEM species' bound
   p.nu = liq.get_double("viscosity", Range::non_negative());
   p.gamma = liq.get_double("gamma", 0.001, Range::closed(0, 1));
   p.beta = liq.get_double("surface_threshold", 0.97, Range::open_closed(0, 1));
@@ -161,8 +161,9 @@ LiquidScene load_liquid_scene(const SceneDoc& doc) {
   s.duration = run.get_double("duration", Range::non_negative());
   check_step_count(run, "duration", s.duration, s.dt);
   p.gravity = run.get_vec3("gravity", {0, 0, 0});
-  require_gravity(run, p.gravity);
+  require_acceleration(run, "gravity", p.gravity);
   p.body_force = run.get_vec3("body_force", {0, 0, 0});
+  require_acceleration(run, "body_force", p.body_force);
   if (dim == 2 && (p.gravity[2] != 0 || p.body_force[2] != 0))
     run.fail(p.gravity[2] != 0 ? "gravity" : "body_force", "a 2D scene has no z component",
              "set the third component to 0");

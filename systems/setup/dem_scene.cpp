@@ -65,6 +65,19 @@ void read_contacts(DemScene& s, const SceneNode& root, const SceneNode& ct) {
   s.contacts = std::make_shared<ContactTable>(make_contact_table<Law>(bodies, names, pp, pw));
 }
 
+// A wall surface moving `speed` (m/s) may travel at most 0.1 of the smallest diameter per step:
+// faster, it passes through grains between two contact evaluations (1e9 rad/s moved the seed drum's
+// wall 750 m per step, reported as an overlap instability).
+void require_wall_step(const DemScene& s, const SceneNode& w, double speed) {
+  double smallest = s.species.front().diameter;
+  for (const SpeciesSpec& sp : s.species) smallest = std::min(smallest, sp.diameter);
+  const double step = speed * s.dt;
+  if (step > 0.1 * smallest)
+    w.fail("omega", "the wall's surface moves " + short_number(step) + " m per step, more than 0.1 of the smallest "
+                    "diameter (" + short_number(smallest) + " m)",
+           "lower omega (rad/s) or run.dt");
+}
+
 void read_walls(DemScene& s, const SceneNode& root) {
   for (const SceneNode& w : root.tables("wall")) {
     const std::string type = w.get_choice("type", {"plane", "box", "cylinder", "drum"});
@@ -106,12 +119,14 @@ void read_walls(DemScene& s, const SceneNode& root) {
       c.name = name;
       c.center = to_v(w.get_vec3("center"));
       c.axis = unit_vector(w, "axis", {0, 0, 1}, true);
-      c.radius = w.get_double("radius", Range::positive());
+      // A kilometre-wide drum is a typo (a radius of 1e308 overflowed the series' arrays).
+      c.radius = w.get_double("radius", Range::open_closed(0, 1e3));
       c.omega = w.get_double("omega", 0.0, Range::any());
+      require_wall_step(s, w, std::abs(c.omega) * c.radius);
       c.rot_point = c.center;
       c.rot_axis = c.axis;
       if (type == "drum") {
-        const double length = w.get_double("length", Range::positive());
+        const double length = w.get_double("length", Range::open_closed(0, 1e3));
         s.walls.push_back(c);
         for (int side = 0; side < 2; ++side) {
           Wall e;
@@ -278,7 +293,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   s.seed = static_cast<std::uint64_t>(run.get_int("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
   s.max_overlap = run.get_double("max_overlap", 0.1, Range::open_closed(0, 1));
   const auto g = run.get_vec3("gravity", {0, -9.81, 0});
-  require_gravity(run, g);
+  require_acceleration(run, "gravity", g);
   s.gravity = {g[0], g[1], g[2]};
 
   for (const SceneNode& sp : root.tables("species")) {
