@@ -391,6 +391,17 @@ TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill
     dir.write("grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,1,0.002,0.006,0.003,0.003\n");
     CHECK(scene_error(f, {}, true).empty());
 
+    // Velocities and spins, when the file has them, start the grains moving (a flowing state).
+    dir.write("grains.csv", "id,type,diameter,x,y,z,vx,vy,vz,wx,wy,wz\n1,1,0.002,0.003,0.003,0.003,0.1,-0.2,0.3,4,5,6\n"
+                            "2,1,0.002,0.006,0.003,0.003,0,0,0,0,0,0\n");
+    {
+      auto moving = gf::DemSimulation::from_file(f);
+      const gf::Grains& g = moving.grains();
+      CHECK((g.vel.x[0] == 0.1 && g.vel.y[0] == -0.2 && g.vel.z[0] == 0.3));
+      CHECK((g.omega.x[0] == 4.0 && g.omega.y[0] == 5.0 && g.omega.z[0] == 6.0));
+      CHECK((g.vel.x[1] == 0.0 && g.omega.z[1] == 0.0));
+    }
+
     dir.write("grains.csv", "id,type,diameter,x,y,z\n1,1,0.002,0.003,0.003,0.003\n2,2,0.002,0.006,0.003,0.003\n");
     std::string e = scene_error(f, {}, true);
     CHECK_THAT(e, Contains(at(f, fill_line) + " fill[0]:"));

@@ -46,7 +46,7 @@ bool contains(const std::string& s, const std::string& part) {
 
 TEST_CASE("state CSV round trip is exact", "[fill]") {
   std::vector<StateRow> rows{
-      {1, 1, 1e-3, {0.1, -0.2, 1.0 / 3.0}, 0},
+      {1, 1, 1e-3, {0.1, -0.2, 1.0 / 3.0}, 0, {0.0289, -1.4e-4, 4.6e-6}, {-31.7, 0.25, 1e-12}},
       {std::numeric_limits<std::int64_t>::max(), 2, 3e-3, {-0.0, 1e-300, 4.9e-324}, 0},
       {std::numeric_limits<std::int64_t>::min(), -5, 0.1 + 0.2, {1.7976931348623157e308, 2.5e-7, -3.14159}, 0},
       {42, 0, std::nextafter(1e-3, 1.0), {std::nextafter(0.0, 1.0), 123456.789, -1e-9}, 0},
@@ -62,10 +62,33 @@ TEST_CASE("state CSV round trip is exact", "[fill]") {
     for (int i = 0; i < 3; ++i) {
       CHECK(back[k].x[i] == rows[k].x[i]);
       CHECK(std::signbit(back[k].x[i]) == std::signbit(rows[k].x[i]));
+      CHECK(back[k].v[i] == rows[k].v[i]);
+      CHECK(back[k].w[i] == rows[k].w[i]);
     }
     CHECK(back[k].line == static_cast<int>(k) + 2);
   }
   CHECK_FALSE(fs::exists(fs::path(f.path.string() + ".tmp")));
+}
+
+TEST_CASE("state CSV with velocities: the shared flowing drum state loads, spins optional", "[fill]") {
+  // LIGGGHTS's state at 1.5 s of rotation: positions and velocities, no spins (the data README).
+  const auto rows = gf::read_state_csv(std::string(GRAINFLOW_SOURCE_DIR) + "/scenes/data/drum_flowing_t1.5s_47108.csv");
+  REQUIRE(rows.size() == 47108);
+  CHECK(rows[0].id == 1);
+  CHECK(rows[0].v[0] == 0.0288975);
+  CHECK(rows[0].v[1] == -0.000136485);
+  CHECK(rows[0].w == std::array<double, 3>{});
+  double mean_speed = 0;
+  for (const StateRow& r : rows) mean_speed += std::hypot(r.v[0], r.v[1], r.v[2]) / rows.size();
+  CHECK(mean_speed == Approx(0.0289).epsilon(0.01));  // the data README's mean |v|, to its 3 digits
+  // A header with velocities but a row without them is refused at that row.
+  const TempFile f("id,type,diameter,x,y,z,vx,vy,vz\n1,1,0.001,0,0,0,1,2,3\n2,1,0.001,0.01,0,0\n", "short_row");
+  try {
+    gf::read_state_csv(f.path);
+    FAIL("accepted a short row");
+  } catch (const gf::StateCsvError& e) {
+    CHECK(contains(e.what(), ":3: 6 fields, expected 9 (id,type,diameter,x,y,z,vx,vy,vz)"));
+  }
 }
 
 TEST_CASE("the seed drum state loads", "[fill]") {

@@ -23,6 +23,7 @@ struct PlacedGrain {
   std::array<double, 3> x;  // m
   std::int32_t type;
   double radius;  // m
+  std::array<double, 3> v{}, w{};  // m/s, rad/s: at rest unless a state file gives them
 };
 
 // The request cannot be met (or is malformed); the message says what was reached and what to change.

@@ -21,7 +21,17 @@ namespace gf {
 namespace {
 
 constexpr std::string_view kHeader = "id,type,diameter,x,y,z";
-constexpr std::array<std::string_view, 6> kColumns = {"id", "type", "diameter", "x", "y", "z"};
+constexpr std::array<std::string_view, 12> kColumns = {"id", "type", "diameter", "x",  "y",  "z",
+                                                       "vx", "vy",   "vz",       "wx", "wy", "wz"};
+// The headers read: the positions, then optionally the velocities, then the angular velocities.
+std::string header_of(std::size_t width) {
+  std::string h;
+  for (std::size_t c = 0; c < width; ++c) {  // appends: GCC 12 warns (-Wrestrict) on "," + std::string
+    if (c) h += ',';
+    h += kColumns[c];
+  }
+  return h;
+}
 
 [[noreturn]] void fail(const std::filesystem::path& file, int line, const std::string& problem,
                        const std::string& fix) {
@@ -114,6 +124,7 @@ std::vector<StateRow> read_state_csv(const std::filesystem::path& file) {
   rows.reserve(data.size() / 48);  // rows are ~60 bytes in the usual files: no regrowth
   int line = 0;
   bool header_seen = false;
+  std::size_t width = 0;  // columns of the header
   while (!rest.empty()) {
     const std::size_t nl = rest.find('\n');
     const std::string_view raw = rest.substr(0, nl);
@@ -132,18 +143,22 @@ std::vector<StateRow> read_state_csv(const std::filesystem::path& file) {
         normalised += ',';
         h.remove_prefix(c + 1);
       }
-      if (normalised != kHeader) {
+      for (std::size_t w : {6, 9, 12})
+        if (normalised == header_of(w)) width = w;
+      if (width == 0) {
         // The line itself is not shown: a wrong path may name any file, and its first line is not ours to echo.
-        fail(file, line, "the first line is not the header '" + std::string(kHeader) + "'",
+        fail(file, line,
+             "the first line is not the header '" + std::string(kHeader) + "' (optionally followed by ',vx,vy,vz' "
+             "and then ',wx,wy,wz')",
              "make the first line exactly " + std::string(kHeader) +
-                 " (SI units: diameter and positions in m)");
+                 " (SI units: diameter and positions in m), or add the velocity columns");
       }
       header_seen = true;
       continue;
     }
     if (text.empty()) continue;
 
-    std::array<std::string_view, 6> fields;
+    std::array<std::string_view, 12> fields;
     std::size_t n_fields = 0;
     std::string_view t = text;
     for (;;) {
@@ -153,12 +168,12 @@ std::vector<StateRow> read_state_csv(const std::filesystem::path& file) {
       if (c == std::string_view::npos) break;
       t.remove_prefix(c + 1);
     }
-    if (n_fields != fields.size()) {
+    if (n_fields != width) {
       fail(file, line,
-           std::to_string(n_fields) + " fields, expected 6 (" + std::string(kHeader) + ")",
-           "give every row exactly the six columns of the header, with no extra commas");
+           std::to_string(n_fields) + " fields, expected " + std::to_string(width) + " (" + header_of(width) + ")",
+           "give every row exactly the " + std::to_string(width) + " columns of the header, with no extra commas");
     }
-    for (std::size_t c = 0; c < fields.size(); ++c) {
+    for (std::size_t c = 0; c < width; ++c) {
       if (fields[c].empty()) {
         fail(file, line, "column '" + std::string(kColumns[c]) + "' is empty",
              "fill in every column");
@@ -172,6 +187,13 @@ std::vector<StateRow> read_state_csv(const std::filesystem::path& file) {
     row.type = p.integer<std::int32_t>(fields[1], 1);
     row.diameter = p.real(fields[2], 2);
     for (int i = 0; i < 3; ++i) row.x[i] = p.real(fields[3 + i], 3 + i);
+    for (std::size_t c = 6; c < width; ++c) {
+      double& value = c < 9 ? row.v[c - 6] : row.w[c - 9];
+      value = p.real(fields[c], c);
+      if (!std::isfinite(value))
+        fail(file, line, "column '" + std::string(kColumns[c]) + "' is " + gf::quoted(fields[c]) + ", not finite",
+             "give finite velocities (m/s and rad/s)");
+    }
 
     if (!std::isfinite(row.diameter) || !(row.diameter > 0.0)) {
       fail(file, line, "diameter " + std::string(fields[2]) + " is not a finite number > 0",
@@ -220,8 +242,8 @@ std::vector<StateRow> read_state_csv(const std::filesystem::path& file) {
 
 void write_state_csv(const std::filesystem::path& file, std::span<const StateRow> rows) {
   std::string out;
-  out.reserve(32 + rows.size() * 96);
-  out += kHeader;
+  out.reserve(96 + rows.size() * 192);
+  out += header_of(12);
   out += '\n';
   char buf[64];
   const auto put = [&](auto v, char sep) {
@@ -234,9 +256,9 @@ void write_state_csv(const std::filesystem::path& file, std::span<const StateRow
     put(r.id, ',');
     put(r.type, ',');
     put(r.diameter, ',');
-    put(r.x[0], ',');
-    put(r.x[1], ',');
-    put(r.x[2], '\n');
+    for (int i = 0; i < 3; ++i) put(r.x[i], ',');
+    for (int i = 0; i < 3; ++i) put(r.v[i], ',');
+    for (int i = 0; i < 3; ++i) put(r.w[i], i < 2 ? ',' : '\n');
   }
 
   // Atomically: a full disk leaves the previous file (and WriteError naming this one).

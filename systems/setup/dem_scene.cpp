@@ -549,7 +549,7 @@ void build_dem_world(const DemScene& s, World& world) {
                            ", " + short_number(r.x[1]) + ", " + short_number(r.x[2]) + ") m is outside wall '" +
                            w.name + "'. Fix: move the grain inside the walls, or correct the walls");
         }
-        placed.push_back({r.x, sp, 0.5 * r.diameter});
+        placed.push_back({r.x, sp, 0.5 * r.diameter, r.v, r.w});
       }
     }
   }
@@ -577,6 +577,14 @@ void build_dem_world(const DemScene& s, World& world) {
     g.mass.inv_inertia[i] = sp.rotates ? 1.0 / sp.inertia : 0.0;
     g.species.type[i] = p.type;
     g.pid.id[i] = static_cast<std::int64_t>(i);
+    g.vel.x[i] = p.v[0];
+    g.vel.y[i] = p.v[1];
+    g.vel.z[i] = p.v[2];
+    if (g.spin && sp.rotates) {  // a species that does not rotate keeps zero spin
+      g.omega.x[i] = p.w[0];
+      g.omega.y[i] = p.w[1];
+      g.omega.z[i] = p.w[2];
+    }
   }
   g.next_id = static_cast<std::int64_t>(n);
   g.extras.attach<WallHistory>(n).shape(s.walls.size(), n);
