@@ -344,6 +344,28 @@ TEST_CASE("broadphase: grid pairs equal brute-force pairs on random polydisperse
   }
 }
 
+TEST_CASE("broadphase: a binary 1:3 mixture in a thin slab, searched by size class, equals brute force",
+          "[broadphase]") {
+  // The seed drum's mixture: radii 0.5 and 1.5 mm, one large grain in 28 (equal volumes), in a slab
+  // 8 mm thick like the drum, skin 0.15 mm. The large grains form the coarse class (radius above
+  // twice the smallest): small-small pairs come from the grid of all rows, small-large and
+  // large-large from the large grains' own search, each pair once. Overlaps are allowed.
+  for (std::uint64_t seed : {7u, 8u, 9u}) {
+    INFO("seed " << seed);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 0.04), uz(0.0, 0.008);
+    Pack p;
+    for (std::size_t i = 0; i < 6000; ++i) p.add(u(rng), u(rng) * 0.5, uz(rng), i % 28 == 0 ? 1.5e-3 : 0.5e-3);
+    p.shuffle_ids(seed + 1000);
+    check_against_brute_force(p, 0.15e-3, 5000);
+    Built b;
+    build_list(b, p, 0.15e-3);
+    CHECK(b.state.search.split());
+    CHECK(b.state.search.coarse_rows() == 215u);  // ceil(6000 / 28)
+    CHECK(b.state.search.fine_radius() == 0.5e-3);
+  }
+}
+
 TEST_CASE("broadphase: a dense pack spanning many cells", "[broadphase]") {
   // 6000 spheres of radius 0.2..0.6 mm in a 25 mm cube: ~20^3 cells, many overlapping spheres.
   check_against_brute_force(random_pack(21, 6000, 0.025, 0.2e-3), 0.05e-3, 2000);

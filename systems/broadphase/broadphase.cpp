@@ -101,13 +101,10 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   const std::size_t n = g.n;
 
   // Cells sized for the smallest pair reach: in a mixture of 1 and 3 mm grains, cells sized for
-  // the largest would make a small grain test ~4x more candidates than it can touch. A row then
-  // searches as many cells around its own as its own largest reach needs.
-  double rmax = 0.0, rmin = n ? g.radius.r[0] : 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    rmax = std::max(rmax, g.radius.r[i]);
-    rmin = std::min(rmin, g.radius.r[i]);
-  }
+  // the largest would make a small grain test ~4x more candidates than it can touch (the search by
+  // size class, PairSearch, finds the large partners in a coarser grid of their own).
+  double rmin = n ? g.radius.r[0] : 0.0;
+  for (std::size_t i = 0; i < n; ++i) rmin = std::min(rmin, g.radius.r[i]);
   s.grid.build(g.pos.x.span(), g.pos.y.span(), g.pos.z.span(), 2.0 * rmin + s.skin, std::size_t(1) << 24, true);
   CellGrid& grid = s.grid;
 
@@ -138,70 +135,6 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   // Candidate pairs: count per row, prefix, fill. Each row owns pairs with higher rows only.
   const std::size_t nown = g.n_owned;
   list.offsets.assign(nown + 1, 0);
-  const auto dims = grid.dims;
-  const double skin = s.skin;
-  const double cell = grid.cell;
-  const double inv_cell = 1.0 / cell;
-  const auto origin = grid.origin;
-  // Distance from coordinate v to the cell interval [o + k cell, o + (k + 1) cell] along one axis.
-  auto gap_to = [&](double v, double o, std::int64_t k) {
-    const double lo = o + static_cast<double>(k) * cell;
-    return v < lo ? lo - v : std::max(0.0, v - (lo + cell));
-  };
-  const double* const pc[3] = {g.pos.x.data(), g.pos.y.data(), g.pos.z.data()};
-  const double* const rad = g.radius.r.data();
-  using B = BatchD;
-  constexpr std::size_t L = kLanes;
-  auto visit = [&](std::size_t i, auto&& emit) {
-    const std::uint32_t c = grid.cell_of[i];
-    const std::int64_t cx = c % dims[0];
-    const std::int64_t cy = (c / dims[0]) % dims[1];
-    const std::int64_t cz = c / (dims[0] * dims[1]);
-    // x, y, z here are the grid's axes, which may be any order of the coordinate axes.
-    const double* px = pc[grid.axis[0]];
-    const double* py = pc[grid.axis[1]];
-    const double* pz = pc[grid.axis[2]];
-    const double xi = px[i], yi = py[i], zi = pz[i], ri = g.radius.r[i];
-    // Only cells that a sphere of the row's largest reach can touch: lines of cells along x (the
-    // grid's shortest axis) are culled by their distance in y and z.
-    const double reach = ri + rmax + skin;
-    const auto ext = static_cast<std::int64_t>(std::ceil(reach * inv_cell));
-    for (std::int64_t dz = -ext; dz <= ext; ++dz) {
-      const std::int64_t z = cz + dz;
-      if (z < 0 || z >= dims[2]) continue;
-      const double gz = gap_to(zi, origin[2], z);
-      for (std::int64_t dy = -ext; dy <= ext; ++dy) {
-        const std::int64_t y = cy + dy;
-        if (y < 0 || y >= dims[1]) continue;
-        const double gy = gap_to(yi, origin[1], y);
-        if (gy * gy + gz * gz > reach * reach) continue;
-        // The line is cut to the cells within ext of the row's own; the chord of the sphere would
-        // cut it a little shorter, at the cost of a square root and two roundings per line.
-        const std::int64_t x0 = std::max<std::int64_t>(cx - ext, 0);
-        const std::int64_t x1 = std::min<std::int64_t>(cx + ext, dims[0] - 1);
-        // Cells x0..x1 of one (y, z) line are consecutive, so their rows are one range.
-        const std::size_t base = static_cast<std::size_t>((z * dims[1] + y) * dims[0]);
-        std::size_t b = grid.start[base + x0];
-        const std::size_t e = grid.start[base + x1 + 1];
-        if (b <= i) b = i + 1;
-        // The rows of the line in whole aligned batches (columns are padded to whole batches),
-        // lanes outside [b, e) masked off; hits are rare (a few in a hundred), so they are
-        // emitted bit by bit.
-        for (std::size_t j0 = b / L * L; j0 < e; j0 += L) {
-          const B ddx = B::load_aligned(px + j0) - B(xi), ddy = B::load_aligned(py + j0) - B(yi),
-                  ddz = B::load_aligned(pz + j0) - B(zi);
-          const B cut = (B(ri) + B::load_aligned(rad + j0)) + B(skin);
-          const std::size_t lo = b > j0 ? b - j0 : 0, hi = std::min(L, e - j0);
-          std::uint32_t bits = lane_bits(ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) &
-                               ((1u << hi) - 1u) & ~((1u << lo) - 1u);
-          while (bits != 0) {
-            emit(j0 + static_cast<std::size_t>(__builtin_ctz(bits)));
-            bits &= bits - 1u;
-          }
-        }
-      }
-    }
-  };
   // One search pass: each fixed block of rows collects its partners, then blocks are laid end to
   // end. Blocks do not depend on the thread count, so neither does the list.
   constexpr std::size_t kRows = 512;
@@ -212,6 +145,14 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   // contact and history), and the step stops with the reason instead of exhausting the machine.
   constexpr std::size_t kBytesPerPair = 64;
   const std::size_t most_pairs = std::min<std::size_t>(half_of_memory() / kBytesPerPair, UINT32_MAX);
+  auto too_many = [&] {
+    list.offsets.assign(nown + 1, 0);
+    return StabilityError("the neighbour list passed " + std::to_string(most_pairs) + " pairs (" +
+                          std::to_string(most_pairs / std::max<std::size_t>(nown, 1)) +
+                          " per grain), half of this machine's memory: grains are piled far closer than a "
+                          "packing. Fix: a state file's positions, or reduce run.dt if the run blew up");
+  };
+  if (!s.search.prepare(g, grid, s.skin, most_pairs)) throw too_many();
   std::atomic<std::size_t> listed{0};
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
     std::vector<std::uint32_t>& out = s.partners[blk];
@@ -219,18 +160,12 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     const std::size_t r1 = std::min(nown, (blk + 1) * kRows);
     for (std::size_t i = blk * kRows; i < r1 && listed.load(std::memory_order_relaxed) <= most_pairs; ++i) {
       const std::size_t before = out.size();
-      visit(i, [&](std::size_t j) { out.push_back(static_cast<std::uint32_t>(j)); });
+      s.search.partners(g, grid, i, out);
       list.offsets[i + 1] = static_cast<std::uint32_t>(out.size() - before);
       listed.fetch_add(out.size() - before, std::memory_order_relaxed);
     }
   });
-  if (listed.load() > most_pairs) {
-    list.offsets.assign(nown + 1, 0);
-    throw StabilityError("the neighbour list passed " + std::to_string(most_pairs) + " pairs (" +
-                         std::to_string(most_pairs / std::max<std::size_t>(nown, 1)) +
-                         " per grain), half of this machine's memory: grains are piled far closer than a "
-                         "packing. Fix: a state file's positions, or reduce run.dt if the run blew up");
-  }
+  if (listed.load() > most_pairs) throw too_many();
   for (std::size_t i = 0; i < nown; ++i) list.offsets[i + 1] += list.offsets[i];
   const std::size_t np = list.offsets[nown];
   list.i.resize(np);

@@ -15,6 +15,7 @@
 #include "engine/system.hpp"
 #include "systems/broadphase/cell_grid.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
+#include "systems/broadphase/pair_search.hpp"
 
 namespace gf {
 
@@ -25,6 +26,7 @@ struct BroadphaseState {
   std::int64_t rebuilds = 0;
   std::int64_t checks = 0;
   CellGrid grid;
+  PairSearch search;  // by size class, prepared at each rebuild
   ColumnD ref_x, ref_y, ref_z;  // positions at the last rebuild
   std::vector<std::vector<std::uint32_t>> partners;  // search scratch per block of rows, reused
   std::vector<std::int64_t> carried;                 // per new list pair: index of its old spring, or -1
