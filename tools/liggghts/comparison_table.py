@@ -11,15 +11,17 @@ import re
 import statistics
 import sys
 
-ROW = re.compile(r"^(liggghts|grainflow)\s+(\d+)\s+(\d+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+|nan)\s+([0-9.]+)$")
+ROW = re.compile(r"^(liggghts|grainflow)\s+(\d+)\s+(\d+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+|nan)\s+([0-9.]+)(?:\s+(-?\d+))?$")
 
 
 def main(path):
-    runs = {}
+    runs, builds = {}, {}
     for line in open(path):
         m = ROW.match(line.strip())
         if m:
             runs[m.group(1), int(m.group(2)), int(m.group(3))] = float(m.group(6))
+            if m.group(9) is not None:
+                builds.setdefault(m.group(1), set()).add(int(m.group(9)))
     rounds = sorted({k[2] for k in runs})
     med = {(c, n): statistics.median(runs[c, n, r] for r in rounds if (c, n, r) in runs)
            for c in ("liggghts", "grainflow") for n in (1, 2)}
@@ -33,6 +35,10 @@ def main(path):
           f"{med['grainflow', 1]:.3g} | {med['grainflow', 2]:.3g} | ×{med['grainflow', 2] / med['grainflow', 1]:.2f} |")
     cells = [f"**×{statistics.median(ratio[n]):.2f}** (×{min(ratio[n]):.2f}–{max(ratio[n]):.2f})" for n in (1, 2)]
     print(f"| ratio grainflow / LIGGGHTS per round: median (range) | {cells[0]} | {cells[1]} | |")
+    if builds:  # neighbour-list rebuilds per run (logs from before the column have none)
+        text = "; ".join(f"{'LIGGGHTS' if c == 'liggghts' else c} {'/'.join(map(str, sorted(v)))}"
+                         for c, v in sorted(builds.items(), reverse=True))
+        print(f"| neighbour-list rebuilds per run | {text} | | |")
 
 
 if __name__ == "__main__":

@@ -6,8 +6,10 @@
 
 writes into OUTDIR
     drum.data  LIGGGHTS data file (atom_style granular: id type diameter density x y z), from
-               scenes/data/drum_settled_47108.csv; atom types 1 (1 mm) and 2 (3 mm) as in the CSV,
-               type 3 is the drum wall (no atoms)
+               scenes/data/drum_settled_47108.csv or --csv; atom types 1 (1 mm) and 2 (3 mm) as in the
+               CSV, type 3 is the drum wall (no atoms). A state with velocities (columns vx,vy,vz and
+               optionally wx,wy,wz, as grainflow's final_state.csv and the flowing-drum states) gets
+               a Velocities section, so LIGGGHTS starts from the same motion.
     drum.stl   ASCII STL of the drum: inner cylinder surface and both flat end discs, one closed mesh
     in.drum    the input script (template TEMPLATE below), running N steps (default 2000)
 
@@ -69,18 +71,26 @@ def damping_ratio(e):
 
 
 def read_state(path):
-    rows = []
+    """Rows (id, type, diameter, x, y, z) and, when the file has them, velocities per row
+    (vx, vy, vz, wx, wy, wz; spins 0 when only velocities are given), else None."""
+    rows, vel = [], []
     with open(path, newline="") as f:
-        for r in csv.DictReader(f):
+        reader = csv.DictReader(f)
+        has_v = {"vx", "vy", "vz"} <= set(reader.fieldnames or [])
+        has_w = {"wx", "wy", "wz"} <= set(reader.fieldnames or [])
+        for r in reader:
             rows.append((int(r["id"]), int(r["type"]), float(r["diameter"]),
                          float(r["x"]), float(r["y"]), float(r["z"])))
+            if has_v:
+                w = tuple(float(r[k]) for k in ("wx", "wy", "wz")) if has_w else (0.0, 0.0, 0.0)
+                vel.append(tuple(float(r[k]) for k in ("vx", "vy", "vz")) + w)
     diam = {}
     for _, t, d, _, _, _ in rows:
         if diam.setdefault(t, d) != d:
             sys.exit(f"make_inputs: type {t} has more than one diameter in {path}")
     if sorted(diam) != [1, 2]:
         sys.exit(f"make_inputs: expected atom types 1 and 2 in {path}, found {sorted(diam)}")
-    return rows, diam
+    return rows, (vel if vel else None), diam
 
 
 def type_pair_tables(diam):
@@ -125,7 +135,7 @@ def type_pair_tables(diam):
     return tab, mass
 
 
-def write_data(path, rows):
+def write_data(path, rows, vel):
     lo_xy = -(DRUM_RADIUS + 0.002)
     hi_xy = DRUM_RADIUS + 0.002
     lo_z, hi_z = -(DRUM_HALF_LENGTH + 0.001), DRUM_HALF_LENGTH + 0.001
@@ -137,6 +147,11 @@ def write_data(path, rows):
         f.write("Atoms\n\n")
         for i, t, d, x, y, z in rows:
             f.write(f"{i} {t} {d:.9g} {DENSITY:g} {x:.10g} {y:.10g} {z:.10g}\n")
+        if vel:
+            # atom_style granular: id vx vy vz omegax omegay omegaz
+            f.write("\nVelocities\n\n")
+            for (i, *_), v in zip(rows, vel):
+                f.write(f"{i} " + " ".join(f"{c:.10g}" for c in v) + "\n")
 
 
 def ring(radius, n, z, phase=0.0):
@@ -263,7 +278,7 @@ compute ke_r    all erotate/sphere
 thermo_style    custom step atoms c_ke_t c_ke_r
 thermo_modify   lost error norm no
 thermo          1000
-
+{dump}
 run             {steps}
 """
 
@@ -302,34 +317,42 @@ def main():
     ap.add_argument("--rolling", choices=sorted(ROLLING_EXTRA), default="epsd",
                     help="LIGGGHTS rolling-friction model (default epsd; epsd3 is grainflow's law "
                          "exactly but runs unoptimised in Debian's build)")
-    ap.add_argument("--csv", default=DEFAULT_CSV, help="settled state (id,type,diameter,x,y,z)")
+    ap.add_argument("--csv", default=DEFAULT_CSV,
+                    help="state (id,type,diameter,x,y,z[,vx,vy,vz[,wx,wy,wz]]); default the settled drum")
+    ap.add_argument("--dump-every", type=int, default=0,
+                    help="write dump.STEP.txt (id type radius x y z vx vy vz) every N steps (default: none)")
+    ap.add_argument("--skin", type=float, default=SKIN, help=f"Verlet skin in m (default {SKIN:g}, the scenes')")
     ap.add_argument("--segments", type=int, default=DEFAULT_SEGMENTS, help="facets around the cylinder")
     args = ap.parse_args()
     if args.steps < 0:
         ap.error("--steps must be >= 0")
+    if not args.skin > 0:
+        ap.error("--skin must be > 0")
     if args.segments < 64:
         ap.error("--segments must be >= 64")
 
-    rows, diam = read_state(args.csv)
+    rows, vel, diam = read_state(args.csv)
     tab, _ = type_pair_tables(diam)
     os.makedirs(args.outdir, exist_ok=True)
-    write_data(os.path.join(args.outdir, "drum.data"), rows)
+    write_data(os.path.join(args.outdir, "drum.data"), rows, vel)
     tris = drum_triangles(args.segments)
     write_stl(os.path.join(args.outdir, "drum.stl"), tris)
 
     c_rk = KR / (KN * ROLLING_FRICTION ** 2)
     extra = ROLLING_EXTRA[args.rolling].format(c=c_rk, rolling_visc=fmt(tab["rolling_visc"]))
     script = TEMPLATE.format(
-        skin=SKIN, wall=WALL_TYPE, kn=fmt(tab["kn"]), kt=fmt(tab["kt"]), gamman_abs=fmt(tab["gamman_abs"]),
+        skin=args.skin, wall=WALL_TYPE, kn=fmt(tab["kn"]), kt=fmt(tab["kt"]), gamman_abs=fmt(tab["gamman_abs"]),
         gammat_abs=fmt(tab["gammat_abs"]), friction=fmt(tab["friction"]), rolling_mu=fmt(tab["rolling_mu"]),
         rolling_extra=extra, rolling=args.rolling, dt=DT, period=2.0 * math.pi / OMEGA, g=GRAVITY,
-        steps=args.steps)
+        steps=args.steps,
+        dump=(f"dump            states all custom {args.dump_every} dump.*.txt id type radius x y z vx vy vz\n"
+              f"dump_modify     states sort id pad 7\n" if args.dump_every > 0 else ""))
     with open(os.path.join(args.outdir, "in.drum"), "w") as f:
         f.write(script)
     sag = DRUM_RADIUS * (1.0 - math.cos(math.pi / args.segments))
     print(f"make_inputs: {len(rows)} atoms, {len(tris)} facets (sag {sag * 1e6:.2f} um, "
           f"smallest angle {min(min_angle_deg(t) for t in tris):.2f} deg), {args.steps} steps, "
-          f"rolling {args.rolling} -> {args.outdir}", file=sys.stderr)
+          f"{'with' if vel else 'no'} velocities, rolling {args.rolling} -> {args.outdir}", file=sys.stderr)
 
 
 if __name__ == "__main__":

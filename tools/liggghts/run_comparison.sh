@@ -1,6 +1,13 @@
 #!/usr/bin/env bash
-# Side-by-side speed of LIGGGHTS 3.8 and grainflow on the standard benchmark state (the settled
-# seed-000 drum, 47,108 grains), in one time window.
+# Side-by-side speed of LIGGGHTS 3.8 and grainflow on a benchmark state of the seed-000 drum
+# (47,108 grains), in one time window. STATE picks it:
+#   settled  (default) scenes/drum_seed000_settled.toml: the poured and settled bed at rest; its first
+#            2,000 steps turn the bed as a rigid body (few contacts change, few rebuilds)
+#   flowing  scenes/drum_seed000_flowing.toml: the shared state after 1.5 s of rotation (LIGGGHTS),
+#            positions and velocities, the surface avalanching: the workload of a real run
+#   grainflow  scenes/drum_seed000_flowing_grainflow.toml: grainflow's own state after 3 s of
+#            rotation from the settled bed, positions, velocities and spins
+# Both codes start from the same file (make_inputs.py writes its velocities and spins for LIGGGHTS).
 #
 #   tools/liggghts/run_comparison.sh [BUILD_DIR]        (default BUILD_DIR: <repo>/build)
 #
@@ -11,7 +18,7 @@
 # breakdown of its 1-rank runs.
 #   LIGGGHTS:  wall = its "Loop time" (the run loop only), particle-steps/s = steps x atoms / wall
 #   grainflow: wall = summary.json wall_seconds (the main stage only), particle_steps_per_second
-# Environment: STEPS (2000), REPEATS (2), WORK (work folder; default a new /tmp/liggghts_cmp.*),
+# Environment: STATE (settled), STEPS (2000), REPEATS (2), WORK (work folder; default a new /tmp/liggghts_cmp.*),
 #              ROLLING (LIGGGHTS rolling model for make_inputs.py, default epsd).
 set -euo pipefail
 
@@ -22,7 +29,13 @@ STEPS="${STEPS:-2000}"
 REPEATS="${REPEATS:-2}"
 ROLLING="${ROLLING:-epsd}"
 WORK="${WORK:-$(mktemp -d /tmp/liggghts_cmp.XXXXXX)}"
-SCENE="scenes/drum_seed000_settled.toml"
+STATE="${STATE:-settled}"
+case "$STATE" in
+  settled)   SCENE="scenes/drum_seed000_settled.toml";            CSV="scenes/data/drum_settled_47108.csv" ;;
+  flowing)   SCENE="scenes/drum_seed000_flowing.toml";            CSV="scenes/data/drum_flowing_t1.5s_47108.csv" ;;
+  grainflow) SCENE="scenes/drum_seed000_flowing_grainflow.toml";  CSV="scenes/data/drum_flowing_grainflow_t3.0s_47108.csv" ;;
+  *) echo "run_comparison: STATE must be settled, flowing or grainflow (got '$STATE')" >&2; exit 2 ;;
+esac
 PY=/usr/bin/python3
 MPIRUN=(mpirun --allow-run-as-root --oversubscribe)
 
@@ -35,9 +48,9 @@ echo "# run_comparison: $(date -u +%Y-%m-%dT%H:%M:%SZ), $(nproc --all) cores, lo
 export OMP_NUM_THREADS=1
 echo "# grainflow: $BUILD/grainflow (built $(date -u -r "$BUILD/grainflow" +%H:%M:%SZ 2>/dev/null || echo '?')), repo $(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo '?')$(git -C "$REPO" diff --quiet 2>/dev/null || echo ' (working tree modified)')"
 echo "# LIGGGHTS: $(command -v liggghts) ($(dpkg-query -W -f='${Version}' liggghts 2>/dev/null || echo '?')), rolling_friction $ROLLING"
-echo "# $STEPS steps per run, $REPEATS rounds, work folder $WORK"
+echo "# state $STATE: $SCENE ($CSV); $STEPS steps per run, $REPEATS rounds, work folder $WORK"
 
-"$PY" "$HERE/make_inputs.py" "$WORK/inputs" --steps "$STEPS" --rolling "$ROLLING"
+"$PY" "$HERE/make_inputs.py" "$WORK/inputs" --steps "$STEPS" --rolling "$ROLLING" --csv "$REPO/$CSV"
 
 # The build folder may be rebuilt by others while this runs: wait (up to 10 min) for the binary.
 wait_for_grainflow() {
@@ -124,6 +137,8 @@ for rec in runs:
         if thermo and int(thermo[-1][1]) != atoms:
             print(f"WARNING: {path}: atoms lost ({thermo[-1][1]} of {atoms})")
         psps = steps * atoms / wall
+        m = re.search(r"Neighbor list builds = (\d+)", text)
+        builds = int(m.group(1)) if m else -1
         if n == "1":
             parts = dict(re.findall(r"^(\w+)\s+time \(%\) = [0-9.eE+-]+ \(([0-9.eE+-]+)\)", text, re.M))
             breakdown.append((rnd, parts))
@@ -131,17 +146,18 @@ for rec in runs:
         s = json.load(open(path + "/summary.json"))
         if s.get("status") != "completed":
             print(f"WARNING: {path}: status {s.get('status')}")
-        wall, steps, psps = s["wall_seconds"], s["steps"], s["particle_steps_per_second"]
+        wall, steps, psps = s["wall_seconds"], s["steps_this_run"], s["particle_steps_per_second"]
+        builds = s.get("neighbor_rebuilds", -1)
         ke = s["final"]["ke_translational"]
         mtimes.add(rec[10])
-    rows.append((code, int(n), int(rnd), wall, psps, proc_s, ke, others))
+    rows.append((code, int(n), int(rnd), wall, psps, proc_s, ke, others, builds))
 
 print("\nruns (in the order run)")
 print("(wall: the timed loop; process: the whole command, start-up and input included; other load:")
 print(" cores kept busy by other processes meanwhile, from /proc/stat - should be near 0)")
-print(f"{'code':<10}{'N':>3}{'round':>7}{'wall s':>10}{'process s':>11}{'particle-steps/s':>18}{'KE_t end (J)':>14}{'other load':>12}")
-for code, n, rnd, wall, psps, proc, ke, others in rows:
-    print(f"{code:<10}{n:>3}{rnd:>7}{wall:>10.2f}{proc:>11.2f}{psps:>18.4g}{ke:>14.4g}{others:>12.2f}")
+print(f"{'code':<10}{'N':>3}{'round':>7}{'wall s':>10}{'process s':>11}{'particle-steps/s':>18}{'KE_t end (J)':>14}{'other load':>12}{'rebuilds':>10}")
+for code, n, rnd, wall, psps, proc, ke, others, builds in rows:
+    print(f"{code:<10}{n:>3}{rnd:>7}{wall:>10.2f}{proc:>11.2f}{psps:>18.4g}{ke:>14.4g}{others:>12.2f}{builds:>10}")
 if max(r[7] for r in rows) > 0.2:
     print("WARNING: other processes used the cores during some runs (other load > 0.2): timings are disturbed")
 
