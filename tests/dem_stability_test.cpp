@@ -123,9 +123,11 @@ TEST_CASE("stability: an overlap past the limit stops the step that made it, wit
   CHECK(cs.max_overlap_ratio > limit);  // the state the kernel saw is past the limit
   CHECK_THAT(message, Contains("in step " + std::to_string(steps + 1) + " of the run stage") &&
                           Contains("grain id ") && Contains("run.max_overlap = 0.1") && Contains("Fix: reduce run.dt"));
-  // The wall-overlap check fires here (a grain into the turning drum's cylinder), not the pair check.
-  CHECK_THAT(message, Contains("overlaps wall 'drum' by ") && Contains(" of its diameter"));
-  CHECK_THAT(message, !Contains(" of the smaller diameter"));
+  // Which check fires first here, a grain into the turning drum's cylinder or two grains, depends on
+  // the round-off of the summation order (the steps near the limit are chaotic); either names its
+  // contact. The detectors' own words are pinned by the command-line test above.
+  CHECK_THAT(message, (Contains("overlaps wall 'drum' by ") && Contains(" of its diameter")) ||
+                          (Contains(") and grain id ") && Contains(" of the smaller diameter")));
 }
 
 TEST_CASE("stability: a non-finite value stops the step that made it and names the grain", "[stability]") {

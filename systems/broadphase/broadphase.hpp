@@ -1,7 +1,8 @@
 // Broadphase: uniform grid by counting sort, rows re-sorted in cell order at every rebuild
 // (ties broken by particle id, so the row order depends on positions only, never on input order;
 // cells run fastest along the shortest extent of the grains, so neighbours are close in order),
-// Verlet skin, rebuild when some row moved more than half the skin since the last rebuild.
+// Verlet skin, rebuild when some row moved more than half the skin since the last rebuild and a
+// pair of rows missing from the list touches (list_cover.hpp).
 // Contact history moves with the pair key through rebuilds and re-sorting.
 //
 // Reads:  Position, Radius, ParticleId.  Writes: every Grains column (rows are permuted; attached
@@ -14,6 +15,7 @@
 #include "engine/grains.hpp"
 #include "engine/system.hpp"
 #include "systems/broadphase/cell_grid.hpp"
+#include "systems/broadphase/list_cover.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/broadphase/pair_search.hpp"
 
@@ -27,6 +29,7 @@ struct BroadphaseState {
   std::int64_t checks = 0;
   CellGrid grid;
   PairSearch search;  // by size class, prepared at each rebuild
+  ListCover cover;    // the check that may keep the list when a row moved past skin/2
   ColumnD ref_x, ref_y, ref_z;  // positions at the last rebuild
   std::vector<std::vector<std::uint32_t>> partners;  // search scratch per block of rows, reused
   std::vector<std::int64_t> carried;                 // per new list pair: index of its old spring, or -1
@@ -38,7 +41,8 @@ struct BroadphaseState {
 // with none).
 void rebuild_neighbors(Grains& g, BroadphaseState& state, NeighborList& list, PairHistory& history);
 // True when some row moved more than skin/2 since the last rebuild (or the list is invalid, or
-// rows are queued for insertion or removal).
+// rows are queued for insertion or removal): the screen. The system then rebuilds unless the list
+// still holds every touching pair (list_cover.hpp).
 bool needs_rebuild(const Grains& g, const BroadphaseState& state);
 
 class Broadphase : public SystemBase<Broadphase> {

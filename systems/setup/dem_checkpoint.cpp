@@ -127,6 +127,7 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) 
   out.value("broadphase.force_rebuild", bp.force_rebuild);
   out.value("broadphase.rebuilds", bp.rebuilds);
   out.value("broadphase.checks", bp.checks);
+  out.value("broadphase.kept", bp.cover.kept);
   out.value("walls.rotation_enabled", world.resources.get<Walls>().rotation_enabled);
   list_sections(out, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp);
 }
@@ -192,6 +193,8 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
   bp.force_rebuild = in.value<bool>("broadphase.force_rebuild");
   bp.rebuilds = in.value<std::int64_t>("broadphase.rebuilds");
   bp.checks = in.value<std::int64_t>("broadphase.checks");
+  // Checkpoints written before the list could be kept past skin/2 have no count of it: none.
+  bp.cover.kept = in.has("broadphase.kept") ? in.value<std::int64_t>("broadphase.kept") : 0;
   Walls& walls = world.resources.get<Walls>();
   walls.rotation_enabled = in.value<bool>("walls.rotation_enabled");
   walls.place(world.clock.t);

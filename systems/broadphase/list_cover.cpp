@@ -1,0 +1,85 @@
+#include "systems/broadphase/list_cover.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+namespace gf {
+
+namespace {
+
+double displacement2(const Grains& g, const double* rx, const double* ry, const double* rz, std::size_t i) {
+  const double dx = g.pos.x[i] - rx[i], dy = g.pos.y[i] - ry[i], dz = g.pos.z[i] - rz[i];
+  return dx * dx + dy * dy + dz * dz;
+}
+
+// True when rows a < b are a pair of the list (a owns it; its partners are a handful).
+bool listed(const NeighborList& list, std::uint32_t a, std::uint32_t b) {
+  for (std::uint32_t k = list.offsets[a]; k < list.offsets[a + 1]; ++k)
+    if (list.j[k] == b) return true;
+  return false;
+}
+
+// The larger of a and b, or NaN when either is (a non-finite position must reach the rebuild, whose
+// grid build names the row).
+double nan_max(double a, double b) { return a != a ? a : (b != b ? b : std::max(a, b)); }
+
+}  // namespace
+
+bool list_covers_contacts(const Grains& g, const double* rx, const double* ry, const double* rz, double skin,
+                          const NeighborList& list, ListCover& scratch) {
+  const std::size_t n = g.n_owned;
+  if (list.offsets.size() != n + 1) return false;
+  const double d2max = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, 4096), 0.0,
+      [&](const tbb::blocked_range<std::size_t>& r, double m) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) m = nan_max(m, displacement2(g, rx, ry, rz, i));
+        return m;
+      },
+      nan_max);
+  const double dmax = std::sqrt(d2max);
+  if (!(dmax < skin)) return false;  // also NaN
+  // Movers: d > skin - D (> 0 here).
+  const double lo = skin - dmax, lo2 = lo * lo;
+  std::vector<std::uint32_t>& m = scratch.movers;
+  m.clear();
+  const std::size_t most = n / 8;
+  double rmax = 0.0;
+  std::array<double, 3> bmin{INFINITY, INFINITY, INFINITY}, bmax{-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(displacement2(g, rx, ry, rz, i) > lo2)) continue;
+    if (m.size() >= most) return false;
+    m.push_back(static_cast<std::uint32_t>(i));
+    rmax = std::max(rmax, g.radius.r[i]);
+    const double p[3] = {g.pos.x[i], g.pos.y[i], g.pos.z[i]};
+    for (int d = 0; d < 3; ++d) {
+      bmin[d] = std::min(bmin[d], p[d]);
+      bmax[d] = std::max(bmax[d], p[d]);
+    }
+  }
+  if (m.size() < 2) return true;
+  // Sort and sweep along the movers' widest axis: a touching pair is closer than r_a + r_max there.
+  int ax = 0;
+  for (int d = 1; d < 3; ++d)
+    if (bmax[d] - bmin[d] > bmax[ax] - bmin[ax]) ax = d;
+  const double* c = ax == 0 ? g.pos.x.data() : ax == 1 ? g.pos.y.data() : g.pos.z.data();
+  std::sort(m.begin(), m.end(), [&](std::uint32_t a, std::uint32_t b) { return c[a] < c[b] || (c[a] == c[b] && a < b); });
+  constexpr double kMargin = 1.0 + 1e-9;  // a pair at the kernel's own touching bound counts as touching
+  for (std::size_t p = 0; p < m.size(); ++p) {
+    const std::uint32_t a = m[p];
+    const double reach = (g.radius.r[a] + rmax) * kMargin;
+    for (std::size_t q = p + 1; q < m.size() && c[m[q]] - c[a] < reach; ++q) {
+      const std::uint32_t b = m[q];
+      const double dx = g.pos.x[b] - g.pos.x[a], dy = g.pos.y[b] - g.pos.y[a], dz = g.pos.z[b] - g.pos.z[a];
+      const double rs = (g.radius.r[a] + g.radius.r[b]) * kMargin;
+      if (dx * dx + dy * dy + dz * dz < rs * rs && !listed(list, std::min(a, b), std::max(a, b))) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace gf
