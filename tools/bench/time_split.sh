@@ -1,13 +1,19 @@
 #!/usr/bin/env bash
-# Where a step's time goes: the settled seed-000 drum, 2,000 steps on 1 thread; its summary.json (time
-# per system, particle-steps/s, rebuilds) is kept as docs/bench/drum_time_split.json.
-#   tools/bench/time_split.sh [BUILD_DIR]
+# Where a step's time goes: the seed-000 drum, 2,000 steps on 1 thread; its summary.json (time per
+# system, particle-steps/s, rebuilds) is kept as docs/bench/drum_time_split.json (the settled state,
+# default) or docs/bench/drum_time_split_flowing.json (STATE=flowing: the shared state after 1.5 s).
+#   [STATE=flowing] tools/bench/time_split.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 build=${1:-build}
 out=$(mktemp -d)
-"$build/grainflow" run scenes/drum_seed000_settled.toml --steps 2000 --threads 1 --quiet --out "$out"
-python3 - "$out/summary.json" "$(git rev-parse --short HEAD)" > docs/bench/drum_time_split.json <<'PY'
+case "${STATE:-settled}" in
+  settled) scene=scenes/drum_seed000_settled.toml; keep=docs/bench/drum_time_split.json ;;
+  flowing) scene=scenes/drum_seed000_flowing.toml; keep=docs/bench/drum_time_split_flowing.json ;;
+  *) echo "time_split: STATE must be settled or flowing" >&2; exit 2 ;;
+esac
+"$build/grainflow" run "$scene" --steps 2000 --threads 1 --quiet --out "$out"
+python3 - "$out/summary.json" "$(git rev-parse --short HEAD)" > "$keep" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))
 s["commit"] = sys.argv[2]

@@ -60,14 +60,16 @@ def memory_table():
             f"{kb * 1024 / grains / 1000:.2f} kB |\n")
 
 
-def time_split_table():
-    s = json.loads((ROOT / "docs/bench/drum_time_split.json").read_text())
+def time_split_table(path="docs/bench/drum_time_split.json"):
+    s = json.loads((ROOT / path).read_text())
     steps, grains = s["steps"], s["grains"]
     rows = ["| system | share of the step | ms per step | calls |", "|---|---|---|---|"]
     for t in sorted(s["time_per_system"], key=lambda t: -t["seconds"]):
         rows.append(f"| `{t['system']}` | {100 * t['fraction']:.1f} % | {1e3 * t['seconds'] / steps:.3f} | {t['calls']:,} |")
     rows.append(f"| all ({grains:,} grains, {s['threads']} thread) | {s['particle_steps_per_second']:.3g} particle-steps/s | "
-                f"{1e3 * s['wall_seconds'] / steps:.2f} | {s['neighbor_rebuilds']} list rebuilds |")
+                f"{1e3 * s['wall_seconds'] / steps:.2f} | {s['neighbor_rebuilds']} list rebuilds"
+                + (f" ({s['neighbor_list_kept']} checks kept the list past skin/2)" if "neighbor_list_kept" in s else "")
+                + " |")
     return "\n".join(rows) + "\n"
 
 
@@ -84,9 +86,14 @@ TABLES = {
     "fuzz": fuzz_table,
     "memory": memory_table,
     "time_split": time_split_table,
+    "time_split_flowing": lambda: time_split_table("docs/bench/drum_time_split_flowing.json"),
     "scaling": lambda: script("tools/bench/scaling_table.py", "docs/bench/scaling.log"),
     "system_benchmarks": lambda: script("tools/bench/system_table.py"),
     "liggghts": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison.log"),
+    "liggghts_flowing": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison_flowing.log"),
+    "liggghts_flowing_grainflow": lambda: script("tools/liggghts/comparison_table.py",
+                                                 "docs/liggghts/comparison_flowing_grainflow.log"),
+    "flow_agreement": lambda: script("tools/liggghts/flow_agreement_table.py", "docs/liggghts/flow_agreement.csv"),
     "liquid_validation": lambda: script("tools/liquid/validation_table.py", "docs/liquid/validation.csv"),
     "liquid_boundary": lambda: script("tools/liquid/sweep_table.py", "--boundary", "docs/liquid/sweep.csv",
                                       "docs/liquid/sweep_3d.csv"),

@@ -79,8 +79,10 @@ def run_case(name, scene, omega, out, binary, threads, budget_s, size):
     for o in case_overrides(omega, size, scene):
         cmd += ["--set", o]
     if ckpt.is_file():
-        summary = json.loads((folder / "summary.json").read_text())
-        if summary.get("status") == "completed":
+        # Done when the series has reached the end angle (a piece run with --steps also ends
+        # "completed", short of it).
+        s = load_series(folder)
+        if s is not None and float(s[-1]["angle"]) >= END_ANGLE - 1e-9:
             print(f"{name}: already at {END_ANGLE} rad", file=sys.stderr)
             return
         cmd += ["--resume", str(ckpt)]
@@ -164,6 +166,8 @@ def report(out):
     print("\n".join(lines))
 
     ran = [out / r["case"] for r in rows if r["ran"]]
+    if not ran:
+        return
     sheet = [str(REPO / "tools/seed000/figure_sheet.py")] + [str(f) for f in ran]
     reached = min((r["angle"] for r in rows if r["ran"]), default=0.0)
     angles = [a for a in (1, 2, 5, 10, 18, 30) if a <= reached + 1e-9] or [0]
