@@ -6,6 +6,7 @@
 #include <limits>
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 namespace gf {
@@ -43,17 +44,26 @@ bool list_covers_contacts(const Grains& g, const double* rx, const double* ry, c
       nan_max);
   const double dmax = std::sqrt(d2max);
   if (!(dmax < skin)) return false;  // also NaN
-  // Movers: d > skin - D (> 0 here).
+  // Movers: d > skin - D (> 0 here), collected per fixed block of rows and joined in row order.
   const double lo = skin - dmax, lo2 = lo * lo;
+  constexpr std::size_t kRows = 4096;
+  const std::size_t nblocks = (n + kRows - 1) / kRows;
+  scratch.blocks.resize(nblocks);
+  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
+    std::vector<std::uint32_t>& out = scratch.blocks[b];
+    out.clear();
+    for (std::size_t i = b * kRows; i < std::min(n, (b + 1) * kRows); ++i)
+      if (displacement2(g, rx, ry, rz, i) > lo2) out.push_back(static_cast<std::uint32_t>(i));
+  });
   std::vector<std::uint32_t>& m = scratch.movers;
   m.clear();
-  const std::size_t most = n / 8;
+  for (const auto& v : scratch.blocks) {
+    if (m.size() + v.size() > n / 8) return false;
+    m.insert(m.end(), v.begin(), v.end());
+  }
   double rmax = 0.0;
   std::array<double, 3> bmin{INFINITY, INFINITY, INFINITY}, bmax{-INFINITY, -INFINITY, -INFINITY};
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!(displacement2(g, rx, ry, rz, i) > lo2)) continue;
-    if (m.size() >= most) return false;
-    m.push_back(static_cast<std::uint32_t>(i));
+  for (std::uint32_t i : m) {
     rmax = std::max(rmax, g.radius.r[i]);
     const double p[3] = {g.pos.x[i], g.pos.y[i], g.pos.z[i]};
     for (int d = 0; d < 3; ++d) {

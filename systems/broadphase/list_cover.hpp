@@ -19,7 +19,8 @@
 namespace gf {
 
 struct ListCover {
-  std::vector<std::uint32_t> movers;  // scratch, reused
+  std::vector<std::uint32_t> movers;                // scratch, reused
+  std::vector<std::vector<std::uint32_t>> blocks;   // movers per block of rows, reused
   std::int64_t kept = 0;              // checks where some row moved past skin/2 and the list was kept
 };
 
