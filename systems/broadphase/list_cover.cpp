@@ -9,14 +9,11 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "engine/simd.hpp"
+
 namespace gf {
 
 namespace {
-
-double displacement2(const Grains& g, const double* rx, const double* ry, const double* rz, std::size_t i) {
-  const double dx = g.pos.x[i] - rx[i], dy = g.pos.y[i] - ry[i], dz = g.pos.z[i] - rz[i];
-  return dx * dx + dy * dy + dz * dz;
-}
 
 // True when rows a < b are a pair of the list (a owns it; its partners are a handful).
 bool listed(const NeighborList& list, std::uint32_t a, std::uint32_t b) {
@@ -35,13 +32,32 @@ bool list_covers_contacts(const Grains& g, const double* rx, const double* ry, c
                           const NeighborList& list, ListCover& scratch) {
   const std::size_t n = g.n_owned;
   if (list.offsets.size() != n + 1) return false;
+  // Whole batches: the columns are padded with zeros in both tables (a padding row never moves).
+  using B = BatchD;
+  constexpr std::size_t L = kLanes;
+  auto d2_batch = [&](std::size_t i) {
+    const B dx = B::load_aligned(&g.pos.x[i]) - B::load_aligned(rx + i);
+    const B dy = B::load_aligned(&g.pos.y[i]) - B::load_aligned(ry + i);
+    const B dz = B::load_aligned(&g.pos.z[i]) - B::load_aligned(rz + i);
+    return dx * dx + dy * dy + dz * dz;
+  };
+  const std::size_t nb = (n + L - 1) / L;
   const double d2max = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, n, 4096), 0.0,
+      tbb::blocked_range<std::size_t>(0, nb, 512), 0.0,
       [&](const tbb::blocked_range<std::size_t>& r, double m) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) m = nan_max(m, displacement2(g, rx, ry, rz, i));
+        B mb(0.0), bad(0.0);
+        for (std::size_t b = r.begin(); b != r.end(); ++b) {
+          const B d2 = d2_batch(b * L);
+          mb = xsimd::max(mb, d2);
+          bad += d2 - d2;  // NaN stays NaN
+        }
+        alignas(64) double lane[L], flag[L];
+        mb.store_aligned(lane);
+        bad.store_aligned(flag);
+        for (std::size_t l = 0; l < L; ++l) m = nan_max(m, lane[l] + flag[l]);
         return m;
       },
-      nan_max);
+      [](double a, double b) { return nan_max(a, b); });
   const double dmax = std::sqrt(d2max);
   if (!(dmax < skin)) return false;  // also NaN
   // Movers: d > skin - D (> 0 here), collected per fixed block of rows and joined in row order.
@@ -49,11 +65,17 @@ bool list_covers_contacts(const Grains& g, const double* rx, const double* ry, c
   constexpr std::size_t kRows = 4096;
   const std::size_t nblocks = (n + kRows - 1) / kRows;
   scratch.blocks.resize(nblocks);
+  static_assert(kRows % L == 0);
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
     std::vector<std::uint32_t>& out = scratch.blocks[b];
     out.clear();
-    for (std::size_t i = b * kRows; i < std::min(n, (b + 1) * kRows); ++i)
-      if (displacement2(g, rx, ry, rz, i) > lo2) out.push_back(static_cast<std::uint32_t>(i));
+    for (std::size_t i = b * kRows; i < std::min(n, (b + 1) * kRows); i += L) {
+      std::uint32_t bits = lane_bits(d2_batch(i) > B(lo2));
+      while (bits != 0) {
+        out.push_back(static_cast<std::uint32_t>(i + static_cast<std::size_t>(__builtin_ctz(bits))));
+        bits &= bits - 1u;
+      }
+    }
   });
   std::vector<std::uint32_t>& m = scratch.movers;
   m.clear();
