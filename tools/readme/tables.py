@@ -93,6 +93,8 @@ TABLES = {
     "liggghts_flowing": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison_flowing.log"),
     "liggghts_flowing_grainflow": lambda: script("tools/liggghts/comparison_table.py",
                                                  "docs/liggghts/comparison_flowing_grainflow.log"),
+    "seed_drum": lambda: script("tools/seed000/study_table.py", "docs/seed000/seed_drum_table.json"),
+    "profile_flowing": lambda: script("tools/bench/profile_table.py", "docs/bench/profile_flowing.txt"),
     "flow_agreement": lambda: script("tools/liggghts/flow_agreement_table.py", "docs/liggghts/flow_agreement.csv"),
     "liquid_validation": lambda: script("tools/liquid/validation_table.py", "docs/liquid/validation.csv"),
     "liquid_boundary": lambda: script("tools/liquid/sweep_table.py", "--boundary", "docs/liquid/sweep.csv",

@@ -1,0 +1,28 @@
+#!/usr/bin/python3
+"""The README's table of the seed's drum runs from a copy of `study.py report`'s table.json.
+
+    /usr/bin/python3 tools/seed000/study.py report && cp runs/seed000/table.json docs/seed000/seed_drum_table.json
+    /usr/bin/python3 tools/seed000/study_table.py docs/seed000/seed_drum_table.json
+"""
+import json
+import sys
+
+
+def main(path):
+    rows = json.load(open(path))
+    print("| fill | ω (rad/s) | seed at 30 rad | ours (classifier) at the angle reached | rotation reached (rad) | "
+          "segregation index | wall time | particle-steps/s (threads) |")
+    print("|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        if not r["ran"]:
+            continue
+        print(f"| {r['fill']} | {r['omega']:.2f} | {r['seed']} | {r['ours']} (contrast {r['contrast']:.2f}) | "
+              f"{r['angle']:.2f} of 30 | {r['segregation_index']:.3f} | {r['wall_seconds'] / 3600:.2f} h | "
+              f"{r['particle_steps_per_second']:.3g} ({','.join(map(str, r['threads']))}) |")
+    waiting = [r["seed"] for r in rows if not r["ran"]]
+    if waiting:
+        print(f"\nNot started yet: {len(waiting)} of the {len(rows)} cases.")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "docs/seed000/seed_drum_table.json")
