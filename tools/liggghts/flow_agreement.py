@@ -5,6 +5,7 @@
     /usr/bin/python3 tools/liggghts/flow_agreement.py liggghts [--out runs/flow_ref] [--ranks 1]
     /usr/bin/python3 tools/liggghts/flow_agreement.py grainflow [--out runs/flow_ref] [--threads 2] [--binary build/grainflow]
     /usr/bin/python3 tools/liggghts/flow_agreement.py compare [--out runs/flow_ref] [--docs docs/liggghts]
+    /usr/bin/python3 tools/liggghts/flow_agreement.py spread --out runs/flow_ref --other DIR [--docs docs/liggghts]
 
 `liggghts` runs LIGGGHTS 3.8 (make_inputs.py, dumps every 10,000 steps) in <out>/liggghts;
 `grainflow` runs scenes/drum_seed000_settled.toml in 15 pieces of 10,000 steps, each resumed from the
@@ -17,6 +18,11 @@ over |x| <= 45 mm, fitted by a straight line, and the mean speed |v| of all grai
 and 3 % of mean |v| at every sample, from the first 0.3 s on (before, the bed turns as a rigid body,
 its surface is the settled one and its mean speed starts from zero, so a relative speed difference
 means little).
+
+`spread` measures how far two grainflow runs of the same physics drift apart: <out>/grainflow
+against DIR (states of another build, e.g. one that sums in another order, run with `grainflow
+--out DIR/.. --binary OTHER`), written to <docs>/flow_spread.csv: the flow's own sensitivity, the
+floor under any comparison between codes.
 """
 import argparse
 import csv
@@ -115,25 +121,31 @@ def run_grainflow(out, threads, binary):
         print(f"grainflow: {kept}", file=sys.stderr)
 
 
-def compare(out, docs):
+def compare(out, docs, other=None):
     rows = []
     for k in range(1, SAMPLES + 1):
         step = k * STEPS_PER_SAMPLE
-        lp = os.path.join(out, "liggghts", f"dump.{step:07d}.txt")
+        lp = (os.path.join(other, f"state_{step:07d}.csv") if other
+              else os.path.join(out, "liggghts", f"dump.{step:07d}.txt"))
         gp = os.path.join(out, "grainflow", f"state_{step:07d}.csv")
         if not (os.path.isfile(lp) and os.path.isfile(gp)):
             sys.exit(f"flow_agreement: missing {lp if not os.path.isfile(lp) else gp}; run both codes first")
-        la, ls = measures(read_liggghts(lp))
+        la, ls = measures(read_grainflow(lp) if other else read_liggghts(lp))
         ga, gs = measures(read_grainflow(gp))
         rows.append({"t": round(step * DT, 6), "angle_liggghts_deg": la, "angle_grainflow_deg": ga,
                      "angle_diff_deg": ga - la, "speed_liggghts": ls, "speed_grainflow": gs,
                      "speed_diff_rel": (gs - ls) / ls})
     os.makedirs(docs, exist_ok=True)
-    with open(os.path.join(docs, "flow_agreement.csv"), "w", newline="") as f:
+    name = "flow_spread" if other else "flow_agreement"
+    if other:  # the reference columns hold the other grainflow run
+        rows = [{k.replace("liggghts", "other"): v for k, v in r.items()} for r in rows]
+    with open(os.path.join(docs, name + ".csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         for r in rows:
             w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+    if other:
+        return 0
     late = [r for r in rows if r["t"] >= FROM_T - 1e-9]
     worst_a = max(abs(r["angle_diff_deg"]) for r in late)
     worst_v = max(abs(r["speed_diff_rel"]) for r in late)
@@ -155,7 +167,8 @@ def compare(out, docs):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("command", choices=["liggghts", "grainflow", "compare"])
+    ap.add_argument("command", choices=["liggghts", "grainflow", "compare", "spread"])
+    ap.add_argument("--other", help="spread: folder of the other grainflow run's state_<step>.csv")
     ap.add_argument("--out", default=os.path.join(REPO, "runs", "flow_ref"))
     ap.add_argument("--docs", default=os.path.join(REPO, "docs", "liggghts"))
     ap.add_argument("--ranks", type=int, default=1)
@@ -166,6 +179,11 @@ def main():
         run_liggghts(a.out, a.ranks)
     elif a.command == "grainflow":
         run_grainflow(a.out, a.threads, a.binary)
+    elif a.command == "spread":
+        if not a.other:
+            ap.error("spread needs --other")
+        compare(a.out, a.docs, a.other)
+        print(open(os.path.join(a.docs, "flow_spread.csv")).read())
     else:
         sys.exit(compare(a.out, a.docs))
 

@@ -84,6 +84,9 @@ def read_state(path):
             if has_v:
                 w = tuple(float(r[k]) for k in ("wx", "wy", "wz")) if has_w else (0.0, 0.0, 0.0)
                 vel.append(tuple(float(r[k]) for k in ("vx", "vy", "vz")) + w)
+    # LIGGGHTS atom ids start at 1; grainflow's final_state.csv numbers grains from 0: shift them.
+    shift = 1 - min(r[0] for r in rows) if rows and min(r[0] for r in rows) < 1 else 0
+    rows = [(i + shift, *rest) for i, *rest in rows]
     diam = {}
     for _, t, d, _, _, _ in rows:
         if diam.setdefault(t, d) != d:
