@@ -103,7 +103,7 @@ def run_liggghts(out, ranks):
                         "in.drum", "-log", "log.liggghts"], cwd=work, env=env, stdout=log, stderr=log, check=True)
 
 
-def run_grainflow(out, threads, binary):
+def run_grainflow(out, threads, binary, sets=()):
     work = os.path.join(out, "grainflow")
     os.makedirs(work, exist_ok=True)
     ckpt = os.path.join(work, "checkpoints", "checkpoint.gfc")
@@ -114,6 +114,8 @@ def run_grainflow(out, threads, binary):
             continue
         cmd = [binary, "run", os.path.join(REPO, SCENE), "--out", work, "--threads", str(threads), "--quiet",
                "--steps", str(step), "--set", "output.frame_interval=0", "--set", "output.picture_angles=[]"]
+        for kv in sets:
+            cmd += ["--set", kv]
         if k > 1:
             cmd += ["--resume", ckpt]
         subprocess.run(cmd, check=True)
@@ -165,10 +167,62 @@ def compare(out, docs, other=None):
     return 0 if summary["pass"] else 1
 
 
+def ensemble(out, members, docs):
+    """LIGGGHTS's run against an ensemble of grainflow runs of the same physics that differ only in
+    round-off (another summation order: another build, skin or list). The flow amplifies round-off
+    where the first avalanches start, so one run of each code is a sample, not the answer: the
+    check is whether LIGGGHTS lies within the ensemble's range widened by the tolerances."""
+    if len(members) < 2:
+        sys.exit("flow_agreement: ensemble needs at least two member folders")
+    rows = []
+    for k in range(1, SAMPLES + 1):
+        step = k * STEPS_PER_SAMPLE
+        la, ls = measures(read_liggghts(os.path.join(out, "liggghts", f"dump.{step:07d}.txt")))
+        ms = [measures(read_grainflow(os.path.join(m, f"state_{step:07d}.csv"))) for m in members]
+        angles, speeds = [x[0] for x in ms], [x[1] for x in ms]
+        # distance from LIGGGHTS to the members' range (0 inside it)
+        da = max(0.0, min(angles) - la, la - max(angles))
+        dv = max(0.0, min(speeds) - ls, ls - max(speeds)) / ls
+        rows.append({"t": round(step * DT, 6), "angle_liggghts_deg": la, "angle_min_deg": min(angles),
+                     "angle_max_deg": max(angles), "angle_outside_deg": da, "speed_liggghts": ls,
+                     "speed_min": min(speeds), "speed_max": max(speeds), "speed_outside_rel": dv,
+                     "angle_spread_deg": max(angles) - min(angles),
+                     "speed_spread_rel": (max(speeds) - min(speeds)) / ls})
+    os.makedirs(docs, exist_ok=True)
+    with open(os.path.join(docs, "flow_ensemble.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+    late = [r for r in rows if r["t"] >= FROM_T - 1e-9]
+    worst_a = max(r["angle_outside_deg"] for r in late)
+    worst_v = max(r["speed_outside_rel"] for r in late)
+    commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    summary = {"commit": commit, "members": [os.path.relpath(m, REPO) for m in members], "from_t": FROM_T,
+               "max_angle_outside_deg": worst_a, "angle_tolerance_deg": ANGLE_TOL_DEG,
+               "max_speed_outside_rel": worst_v, "speed_tolerance_rel": SPEED_TOL,
+               "max_angle_spread_deg": max(r["angle_spread_deg"] for r in late),
+               "max_speed_spread_rel": max(r["speed_spread_rel"] for r in late),
+               "pass": worst_a <= ANGLE_TOL_DEG and worst_v <= SPEED_TOL}
+    with open(os.path.join(docs, "flow_ensemble.json"), "w") as f:
+        json.dump(summary, f, indent=1)
+    for r in rows:
+        print(f"t {r['t']:.1f} s: angle LIGGGHTS {r['angle_liggghts_deg']:6.2f}, grainflow {r['angle_min_deg']:6.2f}.."
+              f"{r['angle_max_deg']:6.2f}; mean |v| {r['speed_liggghts']:.4f}, {r['speed_min']:.4f}..{r['speed_max']:.4f}")
+    print(f"from {FROM_T} s: LIGGGHTS outside grainflow's range by at most {worst_a:.2f} deg and {100 * worst_v:.1f} %"
+          f" (tolerances {ANGLE_TOL_DEG} deg, {100 * SPEED_TOL:.0f} %): {'pass' if summary['pass'] else 'FAIL'}")
+    return 0 if summary["pass"] else 1
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("command", choices=["liggghts", "grainflow", "compare", "spread"])
+    ap.add_argument("command", choices=["liggghts", "grainflow", "compare", "spread", "ensemble"])
     ap.add_argument("--other", help="spread: folder of the other grainflow run's state_<step>.csv")
+    ap.add_argument("--set", dest="sets", action="append", default=[],
+                    help="grainflow: a scene override for this member, e.g. run.skin=1.6e-4 (same physics, "
+                         "another list and so another summation order)")
+    ap.add_argument("--members", nargs="*", default=[],
+                    help="ensemble: folders of grainflow runs (each with state_<step>.csv)")
     ap.add_argument("--out", default=os.path.join(REPO, "runs", "flow_ref"))
     ap.add_argument("--docs", default=os.path.join(REPO, "docs", "liggghts"))
     ap.add_argument("--ranks", type=int, default=1)
@@ -178,7 +232,9 @@ def main():
     if a.command == "liggghts":
         run_liggghts(a.out, a.ranks)
     elif a.command == "grainflow":
-        run_grainflow(a.out, a.threads, a.binary)
+        run_grainflow(a.out, a.threads, a.binary, a.sets)
+    elif a.command == "ensemble":
+        sys.exit(ensemble(a.out, a.members, a.docs))
     elif a.command == "spread":
         if not a.other:
             ap.error("spread needs --other")
