@@ -8,8 +8,9 @@ import re
 import sys
 
 LINE = re.compile(r"threads:(\d+)/real_time_median.*grains=([0-9.]+)([kM]?) particle_steps/s=([0-9.]+)([kMG]?)/s "
-                  r"rebuilds/step=([0-9.]+)")
-SCALE = {"": 1.0, "k": 1e3, "M": 1e6, "G": 1e9}
+                  r"rebuilds/step=([0-9.]+)([munkMG]?)")
+# Google Benchmark prints counters with SI prefixes (5m = 0.005).
+SCALE = {"": 1.0, "k": 1e3, "M": 1e6, "G": 1e9, "m": 1e-3, "u": 1e-6, "n": 1e-9}
 
 
 def main(path):
@@ -18,7 +19,8 @@ def main(path):
         m = LINE.search(line)
         if m:
             grains = round(float(m.group(2)) * SCALE[m.group(3)])
-            rows.setdefault(grains, {})[int(m.group(1))] = (float(m.group(4)) * SCALE[m.group(5)], float(m.group(6)))
+            rows.setdefault(grains, {})[int(m.group(1))] = (float(m.group(4)) * SCALE[m.group(5)],
+                                                            float(m.group(6)) * SCALE[m.group(7)])
     print("| `bench/settled_layer`, 200 steps after settling | 1 thread | 2 threads | list rebuilds per step (1 / 2 threads) |")
     print("|---|---|---|---|")
     for grains in sorted(rows):
