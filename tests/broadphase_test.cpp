@@ -477,17 +477,27 @@ TEST_CASE("broadphase: a non-finite position is an error naming the row", "[broa
   REQUIRE_THROWS_WITH(sys.run(world, {}), Catch::Contains("particle row 77 "));
 }
 
+// 25 rows of radius 0.125 on a unit square grid (z = 3) with a skin of 0.5, not yet listed: rows
+// 1 apart are not pairs of the list (listed below 0.75).
+struct SquareOfRows {
+  gf::World world;
+  SquareOfRows() {
+    Pack p;
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j) p.add(1.0 + i, 2.0 + j, 3.0, 0.125);
+    load(world.grains, p);
+    world.resources.emplace<BroadphaseState>().skin = 0.5;
+    world.resources.emplace<NeighborList>();
+    world.resources.emplace<PairHistory>();
+  }
+  BroadphaseState& state() { return world.resources.get<BroadphaseState>(); }
+};
+
 TEST_CASE("broadphase: the screen fires exactly when a row moved more than skin/2", "[broadphase]") {
   // skin = 0.5 and positions on a 1/8 grid keep every displacement and its square exact.
-  Pack p;
-  for (int i = 0; i < 5; ++i)
-    for (int j = 0; j < 5; ++j) p.add(1.0 + i, 2.0 + j, 3.0, 0.125);
-  gf::World world;
-  load(world.grains, p);
-  BroadphaseState& s = world.resources.emplace<BroadphaseState>();
-  s.skin = 0.5;
-  world.resources.emplace<NeighborList>();
-  world.resources.emplace<PairHistory>();
+  SquareOfRows sq;
+  gf::World& world = sq.world;
+  BroadphaseState& s = sq.state();
   gf::Broadphase sys;
   Grains& g = world.grains;
 
@@ -557,15 +567,9 @@ TEST_CASE("broadphase: past skin/2 the list is rebuilt exactly when a pair missi
   // Two neighbours moving towards each other by 0.4 each (D = 0.4: both are movers, d > skin - D)
   // touch (0.2 apart < 0.25) without being listed: rebuild. The same moves in one direction keep
   // them apart: no rebuild. A move of skin or more rebuilds whatever it touches.
-  Pack p;
-  for (int i = 0; i < 5; ++i)
-    for (int j = 0; j < 5; ++j) p.add(1.0 + i, 2.0 + j, 3.0, 0.125);
-  gf::World world;
-  load(world.grains, p);
-  BroadphaseState& s = world.resources.emplace<BroadphaseState>();
-  s.skin = 0.5;
-  world.resources.emplace<NeighborList>();
-  world.resources.emplace<PairHistory>();
+  SquareOfRows sq;
+  gf::World& world = sq.world;
+  BroadphaseState& s = sq.state();
   gf::Broadphase sys;
   Grains& g = world.grains;
   sys.run(world, {});
