@@ -18,8 +18,12 @@
 
 namespace gf {
 
+bool list_invalid(const Grains& g, const BroadphaseState& s) {
+  return !s.valid || s.force_rebuild || s.ref_x.size() != g.n || !g.pending.empty();
+}
+
 bool needs_rebuild(const Grains& g, const BroadphaseState& s) {
-  if (!s.valid || s.force_rebuild || s.ref_x.size() != g.n || !g.pending.empty()) return true;
+  if (list_invalid(g, s)) return true;
   const double lim2 = 0.25 * s.skin * s.skin;
   using B = BatchD;
   constexpr std::size_t L = kLanes;
@@ -253,15 +257,15 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
 void Broadphase::run(World& world, const StepContext&) {
   auto& s = world.resources.get<BroadphaseState>();
   ++s.checks;
-  if (!needs_rebuild(world.grains, s)) return;
   Grains& g = world.grains;
-  const NeighborList& list = world.resources.get<NeighborList>();
-  if (s.valid && !s.force_rebuild && g.pending.empty() && s.ref_x.size() == g.n &&
+  if (!needs_rebuild(g, s)) return;
+  NeighborList& list = world.resources.get<NeighborList>();
+  if (!list_invalid(g, s) &&
       list_covers_contacts(g, s.ref_x.data(), s.ref_y.data(), s.ref_z.data(), s.skin, list, s.cover)) {
     ++s.cover.kept;
     return;
   }
-  rebuild_neighbors(world.grains, s, world.resources.get<NeighborList>(), world.resources.get<PairHistory>());
+  rebuild_neighbors(g, s, list, world.resources.get<PairHistory>());
 }
 
 }  // namespace gf

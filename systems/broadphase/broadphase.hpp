@@ -1,8 +1,9 @@
 // Broadphase: uniform grid by counting sort, rows re-sorted in cell order at every rebuild
 // (ties broken by particle id, so the row order depends on positions only, never on input order;
 // cells run fastest along the shortest extent of the grains, so neighbours are close in order),
-// Verlet skin, rebuild when some row moved more than half the skin since the last rebuild and a
-// pair of rows missing from the list touches (list_cover.hpp).
+// Verlet skin, rebuild when some row moved more than half the skin since the last rebuild and the
+// list can no longer be shown to hold every touching pair (list_cover.hpp: a missing pair touches,
+// a row moved a whole skin, or too many rows moved to check).
 // Contact history moves with the pair key through rebuilds and re-sorting.
 //
 // Reads:  Position, Radius, ParticleId.  Writes: every Grains column (rows are permuted; attached
@@ -40,8 +41,10 @@ struct BroadphaseState {
 // r_i + r_j + skin, carry history over (a removed grain's springs are dropped, new grains start
 // with none).
 void rebuild_neighbors(Grains& g, BroadphaseState& state, NeighborList& list, PairHistory& history);
-// True when some row moved more than skin/2 since the last rebuild (or the list is invalid, or
-// rows are queued for insertion or removal): the screen. The system then rebuilds unless the list
+// True when the list must be rebuilt whatever the positions: none built yet, a rebuild forced, or
+// rows queued for insertion or removal.
+bool list_invalid(const Grains& g, const BroadphaseState& state);
+// True when some row moved more than skin/2 since the last rebuild, or list_invalid: the screen. The system then rebuilds unless the list
 // still holds every touching pair (list_cover.hpp).
 bool needs_rebuild(const Grains& g, const BroadphaseState& state);
 
