@@ -59,9 +59,13 @@ bool list_covers_contacts(const Grains& g, const double* rx, const double* ry, c
       },
       [](double a, double b) { return nan_max(a, b); });
   const double dmax = std::sqrt(d2max);
-  if (!(dmax < skin)) return false;  // also NaN
-  // Movers: d > skin - D (> 0 here), collected per fixed block of rows and joined in row order.
-  const double lo = skin - dmax, lo2 = lo * lo;
+  // Movers: d > skin - D, collected per fixed block of rows and joined in row order. The bound is
+  // lowered by 1e-9 of the skin, far above the round-off of the displacements (positions of order
+  // metres, displacements and skin of order 1e-4 m), so a mover is never dropped by rounding; a row
+  // that moved about a whole skin leaves no bound at all: rebuild.
+  const double lo = skin * (1.0 - 1e-9) - dmax;
+  if (!(lo > 0.0)) return false;  // also NaN
+  const double lo2 = lo * lo;
   constexpr std::size_t kRows = 4096;
   const std::size_t nblocks = (n + kRows - 1) / kRows;
   scratch.blocks.resize(nblocks);

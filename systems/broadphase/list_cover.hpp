@@ -26,7 +26,8 @@ struct ListCover {
 
 // True when every pair of rows touching now (distance below r_i + r_j, with a relative margin of
 // 1e-9) is in `list`, built at the reference positions ref_* with `skin`. False also when the
-// movers are too many to check cheaply (more than an eighth of the rows, or D >= skin).
+// movers are too many to check cheaply (more than an eighth of the rows), or D reaches the skin
+// (within 1e-9 of it, the margin that keeps the movers' bound safe from round-off).
 bool list_covers_contacts(const Grains& g, const double* ref_x, const double* ref_y, const double* ref_z,
                           double skin, const NeighborList& list, ListCover& scratch);
 
