@@ -152,7 +152,12 @@ def compare(out, docs, other=None):
     worst_a = max(abs(r["angle_diff_deg"]) for r in late)
     worst_v = max(abs(r["speed_diff_rel"]) for r in late)
     commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    # The shared LIGGGHTS state at 1.5 s (another LIGGGHTS run of the same input), measured the same way:
+    # how far two LIGGGHTS runs end apart.
+    shared = os.path.join(REPO, "scenes", "data", "drum_flowing_t1.5s_47108.csv")
+    sa, sv = measures(read_grainflow(shared))
     summary = {"commit": commit, "scene": SCENE, "samples": len(rows), "from_t": FROM_T,
+               "shared_liggghts_state_1.5s": {"file": os.path.relpath(shared, REPO), "angle_deg": sa, "speed": sv},
                "max_angle_diff_deg": worst_a, "angle_tolerance_deg": ANGLE_TOL_DEG,
                "max_speed_diff_rel": worst_v, "speed_tolerance_rel": SPEED_TOL,
                "final": rows[-1], "pass": worst_a <= ANGLE_TOL_DEG and worst_v <= SPEED_TOL}
@@ -162,6 +167,7 @@ def compare(out, docs, other=None):
         print(f"t {r['t']:.1f} s: angle LIGGGHTS {r['angle_liggghts_deg']:6.2f} grainflow {r['angle_grainflow_deg']:6.2f}"
               f" ({r['angle_diff_deg']:+.2f} deg); mean |v| {r['speed_liggghts']:.4f} {r['speed_grainflow']:.4f}"
               f" ({100 * r['speed_diff_rel']:+.1f} %)")
+    print(f"the shared LIGGGHTS state at 1.5 s: angle {sa:.2f} deg, mean |v| {sv:.4f} m/s")
     print(f"from {FROM_T} s: largest angle difference {worst_a:.2f} deg (tolerance {ANGLE_TOL_DEG}), largest mean-speed "
           f"difference {100 * worst_v:.1f} % (tolerance {100 * SPEED_TOL:.0f} %): {'pass' if summary['pass'] else 'FAIL'}")
     return 0 if summary["pass"] else 1

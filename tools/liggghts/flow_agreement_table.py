@@ -22,7 +22,12 @@ def main(path):
               f"{100 * float(r['speed_diff_rel']):+.1f} % |")
     print(f"| from {s['from_t']} s: largest | | | {s['max_angle_diff_deg']:.2f} (tolerance {s['angle_tolerance_deg']}) | | | "
           f"{100 * s['max_speed_diff_rel']:.1f} % (tolerance {100 * s['speed_tolerance_rel']:.0f} %) |")
-    print(f"\nCommit {s['commit']}: {'within both tolerances' if s['pass'] else 'OUTSIDE a tolerance'}.")
+    print(f"\nCommit {s['commit']}: {'within both tolerances' if s['pass'] else 'OUTSIDE a tolerance'}.", end="")
+    sh = s.get("shared_liggghts_state_1.5s")
+    if sh:  # another LIGGGHTS run of the same input, measured the same way
+        print(f" The shared LIGGGHTS state at 1.5 s (`{sh['file']}`, another LIGGGHTS run of the same input): "
+              f"{sh['angle_deg']:.2f}°, {sh['speed']:.4f} m/s.", end="")
+    print()
 
 
 def ensemble(path):
