@@ -1,5 +1,7 @@
-// The Grains table: soft spheres. Rows [0, n_owned) are owned; ghost and periodic-image rows,
-// when domain decomposition arrives, follow them and are read but never written by kernels.
+// The Grains table: soft spheres. Rows [0, n_owned) are owned; ghost rows follow them: the images of
+// periodic boundaries (systems/periodic/), and later another domain's grains. Kernels read ghost rows;
+// the pair contacts leave the partner side of a contact in its Force and Torque, which are summed into
+// the owner's (periodic_images.hpp); nothing integrates them.
 // Later archetypes (Bodies with their Members, FluidNodes) are tables of their own beside this one.
 #pragma once
 

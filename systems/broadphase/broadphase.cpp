@@ -2,6 +2,7 @@
 
 #include "engine/machine_memory.hpp"
 #include "engine/run_loop.hpp"
+#include "systems/periodic/periodic_images.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -57,7 +58,7 @@ struct OldHistory {
   std::array<std::vector<double>, kMaxHistory> values;  // the law's width of them
 };
 
-OldHistory collect_active(const NeighborList& list, const PairHistory& h) {
+OldHistory collect_active(const Grains& g, const PeriodicImages& im, const NeighborList& list, const PairHistory& h) {
   OldHistory old;
   const std::size_t m = h.size();
   old.i.resize(m);
@@ -68,7 +69,7 @@ OldHistory collect_active(const NeighborList& list, const PairHistory& h) {
     for (std::size_t e = r.begin(); e != r.end(); ++e) {
       const auto k = static_cast<std::size_t>(h.pair[e]);
       old.i[e] = list.i[k];
-      old.j[e] = list.j[k];
+      old.j[e] = base_row(g, im, list.j[k]);  // an image's spring is its owner's
       for (std::size_t c = 0; c < w; ++c) old.values[c][e] = h.value[c][e];
     }
   });
@@ -93,15 +94,33 @@ void apply_row_changes(Grains& g, OldHistory& old) {
   for (auto& v : old.values) if (!v.empty()) v.resize(e);
 }
 
+// The list index of the pair of owned rows a < b: (a, b), or with periodic images (a, image of b)
+// or (b, image of a); -1 when the pair is not listed.
+std::int64_t listed_pair(const Grains& g, const PeriodicImages& im, const NeighborList& list, std::uint32_t a,
+                         std::uint32_t b) {
+  for (std::size_t k = list.offsets[a]; k < list.offsets[a + 1]; ++k)
+    if (base_row(g, im, list.j[k]) == b) return static_cast<std::int64_t>(k);
+  if (im.size() == 0) return -1;
+  for (std::size_t k = list.offsets[b]; k < list.offsets[b + 1]; ++k)
+    if (list.j[k] >= g.n_owned && base_row(g, im, list.j[k]) == a) return static_cast<std::int64_t>(k);
+  return -1;
+}
+
 }  // namespace
 
 void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHistory& history) {
-  // Sorting would mix ghost rows into the owned ones; the domain exchange that fills ghosts also
-  // gives them their own search (rows of a cell stay one range only for owned rows).
-  if (g.n != g.n_owned)
+  PeriodicImages none;
+  rebuild_neighbors(g, s, list, history, none);
+}
+
+void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHistory& history, PeriodicImages& im) {
+  // Ghost rows other than periodic images would be another domain's, which this search does not place.
+  if (g.n - g.n_owned != im.size())
     throw std::logic_error("rebuild_neighbors: the table has ghost rows, which the neighbour search does not place");
-  OldHistory old = collect_active(list, history);
+  OldHistory old = collect_active(g, im, list, history);
+  g.set_ghosts(0);
   if (!g.pending.empty()) apply_row_changes(g, old);
+  if (im.box.any()) wrap_positions(g, im.box);
   const std::size_t n = g.n;
 
   // Cells sized for the smallest pair reach: in a mixture of 1 and 3 mm grains, cells sized for
@@ -135,6 +154,10 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     grid.cell_of.swap(sorted_cell);
     for (std::size_t r = 0; r < n; ++r) grid.order[r] = static_cast<std::uint32_t>(r);
   }
+  // Periodic images of the sorted rows, within the reach of the largest pair past the faces.
+  double rmax = 0.0;
+  for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, g.radius.r[i]);
+  make_images(g, im, 2.0 * rmax + s.skin);
 
   // Candidate pairs: count per row, prefix, fill. Each row owns pairs with higher rows only.
   const std::size_t nown = g.n_owned;
@@ -201,16 +224,15 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   // Each old spring to its pair's new list index: its rows' new places, the lower one the owner,
   // the other among the owner's partners (a pair that left the list drops its spring). Pairs are
   // distinct, so every spring writes its own entry.
+  // With periodic images the pair may now be listed as (a, image of b) or (b, image of a): the
+  // partners of both are searched for the other's row or image.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, old.i.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t e = r.begin(); e != r.end(); ++e) {
       const std::uint32_t a = s.new_row[old.i[e]], b = s.new_row[old.j[e]];
       const std::uint32_t own = std::min(a, b), other = std::max(a, b);
       if (own >= nown) continue;
-      for (std::size_t k = list.offsets[own]; k < list.offsets[own + 1]; ++k)
-        if (list.j[k] == other) {
-          s.carried[k] = static_cast<std::int64_t>(e);
-          break;
-        }
+      const std::int64_t k = listed_pair(g, im, list, own, other);
+      if (k >= 0) s.carried[static_cast<std::size_t>(k)] = static_cast<std::int64_t>(e);
     }
   });
 
@@ -235,7 +257,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
       const std::int64_t from = s.carried[k];
       if (from < 0) continue;
       const auto f = static_cast<std::size_t>(from);
-      const double sign = list.i[k] == s.new_row[old.i[f]] ? 1.0 : history.exchange_sign;
+      const double sign = list.i[k] == s.new_row[old.i[f]] ? 1.0 : history.exchange_sign;  // owner view
       history.pair[e] = static_cast<std::int32_t>(k);
       history.slot[k] = static_cast<std::int32_t>(e);
       for (std::size_t c = 0; c < width; ++c) history.value[c][e] = sign * old.values[c][f];
@@ -243,9 +265,9 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
     }
   });
 
-  s.ref_x.resize(n);
-  s.ref_y.resize(n);
-  s.ref_z.resize(n);
+  s.ref_x.resize(g.n);
+  s.ref_y.resize(g.n);
+  s.ref_z.resize(g.n);
   std::copy(g.pos.x.begin(), g.pos.x.end(), s.ref_x.begin());
   std::copy(g.pos.y.begin(), g.pos.y.end(), s.ref_y.begin());
   std::copy(g.pos.z.begin(), g.pos.z.end(), s.ref_z.begin());
@@ -260,12 +282,14 @@ void Broadphase::run(World& world, const StepContext&) {
   Grains& g = world.grains;
   if (!needs_rebuild(g, s)) return;
   NeighborList& list = world.resources.get<NeighborList>();
-  if (!list_invalid(g, s) &&
+  PeriodicImages& im = world.resources.get<PeriodicImages>();
+  // The check that keeps the list sweeps owned rows only: with periodic images it is not made.
+  if (!list_invalid(g, s) && !im.box.any() &&
       list_covers_contacts(g, s.ref_x.data(), s.ref_y.data(), s.ref_z.data(), s.skin, list, s.cover)) {
     ++s.cover.kept;
     return;
   }
-  rebuild_neighbors(g, s, list, world.resources.get<PairHistory>());
+  rebuild_neighbors(g, s, list, world.resources.get<PairHistory>(), im);
 }
 
 }  // namespace gf

@@ -19,6 +19,7 @@
 #include "systems/broadphase/list_cover.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/broadphase/pair_search.hpp"
+#include "systems/periodic/periodic_images.hpp"
 
 namespace gf {
 
@@ -41,6 +42,10 @@ struct BroadphaseState {
 // r_i + r_j + skin, carry history over (a removed grain's springs are dropped, new grains start
 // with none).
 void rebuild_neighbors(Grains& g, BroadphaseState& state, NeighborList& list, PairHistory& history);
+// The same with periodic boundaries: owned rows wrapped into the box, then their images made
+// (periodic_images.hpp) and listed with the owned rows they touch.
+void rebuild_neighbors(Grains& g, BroadphaseState& state, NeighborList& list, PairHistory& history,
+                       PeriodicImages& images);
 // True when the list must be rebuilt whatever the positions: none built yet, a rebuild forced, or
 // rows queued for insertion or removal.
 bool list_invalid(const Grains& g, const BroadphaseState& state);
@@ -52,7 +57,7 @@ class Broadphase : public SystemBase<Broadphase> {
  public:
   using Reads = gf::Reads<>;
   using Writes = gf::Writes<Position, Velocity, AngularVelocity, Force, Torque, WallForce, WallTorque, Radius, Mass,
-                            Species, ParticleId, NeighborList, PairHistory, BroadphaseState>;
+                            Species, ParticleId, NeighborList, PairHistory, BroadphaseState, PeriodicImages>;
   std::string_view name() const override { return "broadphase"; }
   void run(World& world, const StepContext& step) override;
 };

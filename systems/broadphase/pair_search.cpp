@@ -153,24 +153,24 @@ bool PairSearch::prepare(const Grains& g, const CellGrid& grid, double skin, std
   }
   extra_start_.assign(n + 1, 0);
   extra_.clear();
-  if (coarse_row_.empty()) {
-    r_fine_ = rmax;
-    return true;
-  }
-  build_coarse_grid(g, rmax);
-  // The coarse rows' pairs in fixed chunks (the result does not depend on the thread count),
-  // stopping past most_pairs as the main search does.
+  if (coarse_row_.empty()) r_fine_ = rmax;
+  else build_coarse_grid(g, rmax);
+  // The coarse rows' pairs, then the image rows' (periodic boundaries), in fixed chunks of queries
+  // (the result does not depend on the thread count), stopping past most_pairs as the main search does.
+  const std::size_t m = coarse_row_.size(), images = g.n - n, queries = m + images;
+  if (queries == 0) return true;
   constexpr std::size_t kChunk = 64;
-  const std::size_t m = coarse_row_.size(), nchunks = (m + kChunk - 1) / kChunk;
+  const std::size_t nchunks = (queries + kChunk - 1) / kChunk;
   chunk_pairs_.resize(nchunks);
   std::atomic<std::size_t> listed{0};
   tbb::parallel_for(std::size_t(0), nchunks, [&](std::size_t k) {
     std::vector<std::uint64_t>& out = chunk_pairs_[k];
     out.clear();
-    for (std::size_t q = k * kChunk; q < std::min(m, (k + 1) * kChunk); ++q) {
+    for (std::size_t q = k * kChunk; q < std::min(queries, (k + 1) * kChunk); ++q) {
       if (listed.load(std::memory_order_relaxed) > most_pairs) return;
       const std::size_t before = out.size();
-      coarse_pairs(g, grid, coarse_row_[q], out);
+      if (q < m) coarse_pairs(g, grid, coarse_row_[q], out);
+      else image_pairs(g, grid, n + (q - m), out);
       listed.fetch_add(out.size() - before, std::memory_order_relaxed);
     }
   });
@@ -205,6 +205,23 @@ void PairSearch::coarse_pairs(const Grains& g, const CellGrid& grid, std::size_t
   scan(cg, cx_.data(), cy_.data(), cz_.data(), cr_.data(), q, [&](std::size_t s) {
     if (crow_[s] > c) out.push_back(hi << 32 | crow_[s]);
   });
+}
+
+void PairSearch::image_pairs(const Grains& g, const CellGrid& grid, std::size_t c,
+                             std::vector<std::uint64_t>& out) const {
+  // Every owned row within reach of image row c, in the grid of all owned rows (the image lies
+  // outside it, past a periodic face: its query cell is clamped as a coarse query's is).
+  const AxisColumns a(g, grid);
+  const double p[3] = {g.pos.x[c], g.pos.y[c], g.pos.z[c]};
+  const double rc = g.radius.r[c];
+  Query q{p[grid.axis[0]], p[grid.axis[1]], p[grid.axis[2]], rc, 0, 0, 0, rc + r_max_ + skin_, skin_, r_max_, 0,
+          g.n_owned};
+  const auto ext = static_cast<std::int64_t>(std::ceil(q.reach / grid.cell));
+  q.cx = cell_index(q.x, grid.origin[0], 1.0 / grid.cell, grid.dims[0], ext);
+  q.cy = cell_index(q.y, grid.origin[1], 1.0 / grid.cell, grid.dims[1], ext);
+  q.cz = cell_index(q.z, grid.origin[2], 1.0 / grid.cell, grid.dims[2], ext);
+  const auto hi = static_cast<std::uint64_t>(c);
+  scan(grid, a.x, a.y, a.z, g.radius.r.data(), q, [&](std::size_t j) { out.push_back(std::uint64_t(j) << 32 | hi); });
 }
 
 void PairSearch::partners(const Grains& g, const CellGrid& grid, std::size_t i,

@@ -9,6 +9,8 @@
 // in a grid of the coarse rows alone, with cells sized for the largest pair. Each pair is found once
 // and listed with its lower row. (LAMMPS' "neighbor multi" splits the search by type in the same
 // spirit.) Without coarse rows (grains within a factor two in size) only the first search runs.
+// Image rows of periodic boundaries (rows past n_owned, outside the grid) search the owned rows from
+// their side, as the coarse rows do, and their pairs are listed with the owned row.
 #pragma once
 
 #include <cstdint>
@@ -36,6 +38,8 @@ class PairSearch {
  private:
   // The coarse row c's pairs as (lower row, higher row): fine rows below it, coarse rows above it.
   void coarse_pairs(const Grains& g, const CellGrid& grid, std::size_t c, std::vector<std::uint64_t>& out) const;
+  // Image row c's pairs (periodic boundaries) as (owned row, c): every owned row within reach.
+  void image_pairs(const Grains& g, const CellGrid& grid, std::size_t c, std::vector<std::uint64_t>& out) const;
   void build_coarse_grid(const Grains& g, double rmax);
 
   double skin_ = 0.0;

@@ -160,6 +160,12 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
 // records that stay in cache, then written to the Force and Torque columns once. Plain restrict
 // pointers held in locals, so that the stores into the records are not taken to change the
 // columns read.
+// The slab that sums row j's partner sides: the owned rows' slabs of `rows` rows, then the ghost
+// rows' (from the first row past the n owned ones).
+inline std::size_t target_slab(std::size_t j, std::size_t n, std::size_t rows) {
+  return j < n ? j / rows : (n + rows - 1) / rows + (j - n) / rows;
+}
+
 struct SlabSums {
   double* __restrict F[3];
   double* __restrict T[3];
@@ -203,8 +209,8 @@ struct SlabSums {
         aj[3] += tjx[q];
         aj[4] += tjy[q];
         aj[5] += tjz[q];
-      } else if (j < n) {  // rows past n_owned are ghosts: their forces are another rank's
-        spill[j / rows].push_back({static_cast<std::uint32_t>(j), fx[c], fy[c], fz[c], tjx[q], tjy[q], tjz[q]});
+      } else {  // a later slab's row, or a ghost row (slabs past the owned ones, from n on)
+        spill[target_slab(j, n, rows)].push_back({static_cast<std::uint32_t>(j), fx[c], fy[c], fz[c], tjx[q], tjy[q], tjz[q]});
       }
     }
     double* cols[6] = {F[0], F[1], F[2], T[0], T[1], T[2]};
@@ -244,7 +250,13 @@ void evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&
   const std::size_t n = g.n_owned;
   const std::size_t rows = slab_rows(n);
   const std::size_t ns = (n + rows - 1) / rows;
-  if (out.spill.size() < ns * ns) out.spill.resize(ns * ns);
+  // Target slabs of the partner sides: the owned rows' and, past them, the image rows' (periodic
+  // boundaries), which start from zero and are folded into their owners by PeriodicFold.
+  const std::size_t nt = target_slab(g.n + rows - 1, n, rows);
+  if (out.spill.size() < ns * nt) out.spill.resize(ns * nt);
+  for (ColumnD* c : {&g.force.x, &g.force.y, &g.force.z}) std::fill(c->begin() + n, c->end(), 0.0);
+  if (g.spin)
+    for (ColumnD* c : {&g.torque.x, &g.torque.y, &g.torque.z}) std::fill(c->begin() + n, c->end(), 0.0);
   const SlabSums sums{{g.force.x.data(), g.force.y.data(), g.force.z.data()},
                       {g.spin ? g.torque.x.data() : nullptr, g.spin ? g.torque.y.data() : nullptr,
                        g.spin ? g.torque.z.data() : nullptr},
@@ -267,19 +279,19 @@ void evaluate_and_sum(Grains& g, const NeighborList& list, PairForces& out, Law&
     }
     thread_local std::vector<double, xsimd::aligned_allocator<double, 64>> acc;  // rows on cache lines
     if (acc.size() < rows * SlabSums::kAcc) acc.resize(rows * SlabSums::kAcc);
-    std::vector<PairForces::Spill>* spill = &out.spill[s * ns];
-    for (std::size_t t = s + 1; t < ns; ++t) spill[t].clear();
+    std::vector<PairForces::Spill>* spill = &out.spill[s * nt];
+    for (std::size_t t = s + 1; t < nt; ++t) spill[t].clear();
     sums.run(a, b, n, rows, c0, c1, st, acc.data(), spill);
   });
-  tbb::parallel_for(std::size_t(1), ns, [&](std::size_t t) {
+  tbb::parallel_for(std::size_t(1), nt, [&](std::size_t t) {
     double* __restrict Fx = sums.F[0];
     double* __restrict Fy = sums.F[1];
     double* __restrict Fz = sums.F[2];
     double* __restrict Tx = sums.T[0];
     double* __restrict Ty = sums.T[1];
     double* __restrict Tz = sums.T[2];
-    for (std::size_t s = 0; s < t; ++s)
-      for (const PairForces::Spill& e : out.spill[s * ns + t]) {
+    for (std::size_t s = 0; s < std::min(t, ns); ++s)
+      for (const PairForces::Spill& e : out.spill[s * nt + t]) {
         Fx[e.j] -= e.fx;
         Fy[e.j] -= e.fy;
         Fz[e.j] -= e.fz;

@@ -10,7 +10,8 @@
 //      law has run over the slab's contacts (steps 3 and 4 are one task per slab, so the law's
 //      outputs are summed while in cache): a slab's contacts add into its own rows in contact order
 //      (owner and partner side), and the partner sides that fall in a later slab are set aside per
-//      target slab, then added there, slab by slab (no atomics).
+//      target slab, then added there, slab by slab (no atomics). Ghost rows (periodic images) are
+//      target slabs past the owned ones: their Force and Torque start from zero each evaluation.
 // Every step is independent of the thread count, so runs are bit-for-bit repeatable.
 // Lever arms are L = r - delta/2 on each side (centre to contact point).
 // compute_pair_forces_scalar is the plain reference the tests and benchmarks compare with.

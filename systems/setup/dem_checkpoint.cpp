@@ -99,6 +99,27 @@ void require_equal(const CheckpointReader& in, const char* what, T stored, T now
             fix);
 }
 
+// The periodic images (the rows past n_owned), when the scene has periodic faces; a scene without
+// them must not resume a checkpoint that has image rows, nor the reverse.
+void restore_images(const CheckpointReader& in, PeriodicImages& im, const Grains& g) {
+  const bool stored = in.has("periodic.owner");
+  if (stored != im.box.any())
+    in.fail(stored ? "it was written with [periodic] faces, the scene now has none"
+                   : "it was written without [periodic] faces, the scene now has them",
+            "resume with the scene (and --set overrides) of the run that wrote the checkpoint");
+  if (!stored) {
+    require(in, g.n == g.n_owned, "ghost rows without periodic faces");
+    return;
+  }
+  in.vector("periodic.owner", im.owner);
+  in.vector("periodic.shift_x", im.sx);
+  in.vector("periodic.shift_y", im.sy);
+  in.vector("periodic.shift_z", im.sz);
+  require(in, im.owner.size() == g.n - g.n_owned && im.sx.size() == im.owner.size() &&
+                  im.sy.size() == im.owner.size() && im.sz.size() == im.owner.size() && all_below(im.owner, g.n_owned),
+          "periodic images");
+}
+
 }  // namespace
 
 void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) {
@@ -130,6 +151,13 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) 
   out.value("broadphase.kept", bp.cover.kept);
   out.value("walls.rotation_enabled", world.resources.get<Walls>().rotation_enabled);
   list_sections(out, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp);
+  const PeriodicImages& im = world.resources.get<PeriodicImages>();
+  if (im.box.any()) {
+    out.vector("periodic.owner", im.owner);
+    out.vector("periodic.shift_x", im.sx);
+    out.vector("periodic.shift_y", im.sy);
+    out.vector("periodic.shift_z", im.sz);
+  }
 }
 
 void restore_dem_state(const CheckpointReader& in, World& world, const DemScene& scene) {
@@ -199,6 +227,7 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
   walls.rotation_enabled = in.value<bool>("walls.rotation_enabled");
   walls.place(world.clock.t);
   list_sections(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp);
+  restore_images(in, world.resources.get<PeriodicImages>(), gr);
   check_grains(in, gr, scene.species.size(), walls);
   check_list(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, gr);
 }

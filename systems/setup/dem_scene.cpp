@@ -78,6 +78,35 @@ void require_wall_step(const DemScene& s, const SceneNode& w, double speed) {
            "lower omega (rad/s) or run.dt");
 }
 
+// [periodic] x|y|z = [min, max] (m): faces of the box along that axis are periodic. The box must
+// exceed twice a pair's reach (the largest diameter and the skin) plus a skin, so that no pair of
+// grains is in reach both directly and through an image.
+void read_periodic(DemScene& s, const SceneNode& root) {
+  const auto node = root.maybe_table("periodic");
+  if (!node) return;
+  double dmax = 0.0;
+  for (const SpeciesSpec& sp : s.species) dmax = std::max(dmax, sp.diameter);
+  const char* names[3] = {"x", "y", "z"};
+  for (int d = 0; d < 3; ++d) {
+    if (!node->has(names[d])) continue;
+    const std::vector<double> v = node->get_doubles(names[d]);
+    if (v.size() != 2 || !(v[1] > v[0]))
+      node->fail(names[d], "give the box along this axis as [min, max] with max > min (m)",
+                 "e.g. " + std::string(names[d]) + " = [-0.02, 0.02]");
+    const double shortest = 2.0 * (dmax + s.skin) + s.skin;
+    if (v[1] - v[0] < shortest)
+      node->fail(names[d], "the periodic length " + short_number(v[1] - v[0]) + " m is shorter than " +
+                               short_number(shortest) + " m, twice a pair's reach (largest diameter + run.skin) "
+                               "plus the skin: a pair of grains would meet twice",
+                 "lengthen the box to at least " + short_number(shortest) + " m");
+    s.periodic.on[d] = true;
+    s.periodic.lo[d] = v[0];
+    s.periodic.hi[d] = v[1];
+  }
+  if (!s.periodic.any())
+    root.fail("periodic", "the [periodic] table names no axis", "give x, y or z = [min, max] (m), or remove the table");
+}
+
 void read_walls(DemScene& s, const SceneNode& root) {
   for (const SceneNode& w : root.tables("wall")) {
     const std::string type = w.get_choice("type", {"plane", "box", "cylinder", "drum"});
@@ -330,6 +359,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
              "set dt <= " + short_number(limit) + ", or stiffen less, or set allow_unstable_dt = true to run anyway");
 
   read_walls(s, root);
+  read_periodic(s, root);
 
   if (auto settle = root.maybe_table("settle")) s.settle_time = settle->get_double("time", Range::non_negative());
   read_fills(s, root);
@@ -392,10 +422,12 @@ void schedule_dem_step(Schedule& step, const DemScene& scene) {
   const std::string& law = scene.law;
   step.emplace<IntegratePositions>(dem_force_terms(scene));
   step.emplace<Broadphase>();
+  if (scene.periodic.any()) step.emplace<PeriodicRefresh>();
   const bool known = with_law(law, [&]<class Law>() {
     step.emplace<PairContact<Law>>();
     if (!scene.walls.empty()) step.emplace<WallContact<Law>>();
   });
+  if (scene.periodic.any()) step.emplace<PeriodicFold>();
   if (!known) throw std::invalid_argument("schedule_dem_step: no contact law is named '" + std::string(law) + "'");
   step.emplace<IntegrateVelocities>(dem_force_terms(scene));
 }
@@ -597,6 +629,7 @@ void build_dem_world(const DemScene& s, World& world) {
   walls.list = s.walls;
   BroadphaseState& bp = world.resources.emplace<BroadphaseState>();
   bp.skin = s.skin;
+  world.resources.emplace<PeriodicImages>().box = s.periodic;
   world.resources.emplace<NeighborList>();
   with_law(s.law, [&]<class Law>() { set_layout(world.resources.emplace<PairHistory>(), Law::history()); });
   world.resources.emplace<PairForces>();

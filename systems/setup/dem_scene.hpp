@@ -17,6 +17,7 @@
 #include "systems/integrate/integrate.hpp"
 #include "systems/output/drum_picture.hpp"
 #include "systems/output/vtk_frames.hpp"
+#include "systems/periodic/periodic_images.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -74,6 +75,7 @@ struct DemScene {
   std::shared_ptr<ContactTable> contacts;
   CriticalStep critical;
   std::vector<Wall> walls;
+  PeriodicBox periodic;  // [periodic]: axes whose faces wrap
   std::vector<FillSpec> fills;
   OutputSpec output;
   int segregation_type = -1;  // the larger species of a binary mixture, else -1
