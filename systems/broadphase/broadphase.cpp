@@ -282,14 +282,17 @@ void Broadphase::run(World& world, const StepContext&) {
   Grains& g = world.grains;
   if (!needs_rebuild(g, s)) return;
   NeighborList& list = world.resources.get<NeighborList>();
-  PeriodicImages& im = world.resources.get<PeriodicImages>();
+  // A world without the resource has no periodic faces.
+  PeriodicImages* im = world.resources.find<PeriodicImages>();
+  const bool periodic = im && im->box.any();
   // The check that keeps the list sweeps owned rows only: with periodic images it is not made.
-  if (!list_invalid(g, s) && !im.box.any() &&
+  if (!list_invalid(g, s) && !periodic &&
       list_covers_contacts(g, s.ref_x.data(), s.ref_y.data(), s.ref_z.data(), s.skin, list, s.cover)) {
     ++s.cover.kept;
     return;
   }
-  rebuild_neighbors(g, s, list, world.resources.get<PairHistory>(), im);
+  if (im) rebuild_neighbors(g, s, list, world.resources.get<PairHistory>(), *im);
+  else rebuild_neighbors(g, s, list, world.resources.get<PairHistory>());
 }
 
 }  // namespace gf
