@@ -24,11 +24,8 @@ or as far as it got) and the free-surface angle against rotation <out>/surface_a
 """
 import argparse
 import json
-import math
-import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import matplotlib
@@ -38,6 +35,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "tools" / "common"))
+from resumable import load_series, pieces, run_piece  # noqa: E402
 HALF = "scenes/drum_seed000_settled.toml"
 QUARTER = "scenes/drum_seed000_quarter.toml"
 # name, scene, omega (rad/s), the seed's outcome after 30 rad
@@ -72,59 +71,11 @@ def case_overrides(omega, size, scene):
 
 
 def run_case(name, scene, omega, out, binary, threads, budget_s, size):
-    folder = out / name
-    ckpt = folder / "checkpoints" / "checkpoint.gfc"
     path = SMALL if size == "small" else scene
-    cmd = [str(binary), "run", str(REPO / path), "--out", str(folder), "--threads", str(threads), "--quiet"]
-    for o in case_overrides(omega, size, scene):
-        cmd += ["--set", o]
-    if ckpt.is_file():
-        # Done when the series has reached the end angle (a piece run with --steps also ends
-        # "completed", short of it).
-        s = load_series(folder)
-        if s is not None and float(s[-1]["angle"]) >= END_ANGLE - 1e-9:
-            print(f"{name}: already at {END_ANGLE} rad", file=sys.stderr)
-            return
-        cmd += ["--resume", str(ckpt)]
-    folder.mkdir(parents=True, exist_ok=True)
-    print(f"{name}: {' '.join(cmd)}", file=sys.stderr)
-    t0 = time.time()
-    with open(folder / "log.txt", "a") as log:
-        p = subprocess.Popen(cmd, stdout=log, stderr=log)
-        try:
-            p.wait(timeout=budget_s)
-        except subprocess.TimeoutExpired:
-            p.send_signal(signal.SIGINT)  # stops after the step in flight, writes the checkpoint
-            p.wait()
-    summary = json.loads((folder / "summary.json").read_text())
-    piece = {
-        "status": summary.get("status"),
-        "rc": p.returncode,
-        "steps_total": summary.get("steps"),
-        "steps": summary.get("steps_this_run"),
-        "wall_seconds": summary.get("wall_seconds"),
-        "settle_wall_seconds": summary.get("settle", {}).get("wall_seconds", 0.0),
-        "total_wall_seconds": time.time() - t0,
-        "particle_steps_per_second": summary.get("particle_steps_per_second"),
-        "threads": threads,
-        "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-    }
-    with open(folder / "pieces.jsonl", "a") as f:
-        f.write(json.dumps(piece) + "\n")
-    print(f"{name}: {piece}", file=sys.stderr)
-
-
-def load_series(folder):
-    path = folder / "series.csv"
-    if not path.is_file():
-        return None
-    data = np.genfromtxt(path, delimiter=",", names=True)
-    return np.atleast_1d(data) if data.size else None
-
-
-def pieces(folder):
-    path = folder / "pieces.jsonl"
-    return [json.loads(line) for line in path.read_text().splitlines() if line.strip()] if path.is_file() else []
+    # Done when the series has reached the end angle (a piece run with --steps also ends
+    # "completed", short of it).
+    run_piece(name, binary, REPO / path, out / name, case_overrides(omega, size, scene), threads, budget_s,
+              lambda s: float(s[-1]["angle"]) >= END_ANGLE - 1e-9)
 
 
 def report(out):

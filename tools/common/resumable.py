@@ -1,0 +1,72 @@
+"""One case of a study run in resumable pieces: the pieces, series and summary of its folder.
+
+A piece runs `grainflow run SCENE --out FOLDER --set ...` (with --resume from the folder's last
+checkpoint when there is one) for at most a wall-time budget, then stops it with SIGINT: grainflow
+finishes the step in flight and writes its checkpoint, so the next piece continues where this one
+stopped, bit-identical to an uninterrupted run. Every piece is logged in FOLDER/pieces.jsonl.
+Used by tools/seed000/study.py and tools/seed001/kiln_map.py.
+"""
+import json
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+
+def load_series(folder):
+    """The folder's series.csv as a structured array (None when there is none yet)."""
+    path = folder / "series.csv"
+    if not path.is_file():
+        return None
+    data = np.genfromtxt(path, delimiter=",", names=True)
+    return np.atleast_1d(data) if data.size else None
+
+
+def pieces(folder):
+    """The pieces logged so far, oldest first."""
+    path = folder / "pieces.jsonl"
+    return [json.loads(line) for line in path.read_text().splitlines() if line.strip()] if path.is_file() else []
+
+
+def run_piece(name, binary, scene, folder, overrides, threads, budget_s, done):
+    """Runs one piece of the case unless done(series) says it is finished; returns the piece's record
+    (None when there was nothing to do)."""
+    ckpt = folder / "checkpoints" / "checkpoint.gfc"
+    cmd = [str(binary), "run", str(scene), "--out", str(folder), "--threads", str(threads), "--quiet"]
+    for o in overrides:
+        cmd += ["--set", o]
+    if ckpt.is_file():
+        s = load_series(folder)
+        if s is not None and done(s):
+            print(f"{name}: already done", file=sys.stderr)
+            return None
+        cmd += ["--resume", str(ckpt)]
+    folder.mkdir(parents=True, exist_ok=True)
+    print(f"{name}: {' '.join(cmd)}", file=sys.stderr)
+    t0 = time.time()
+    with open(folder / "log.txt", "a") as log:
+        p = subprocess.Popen(cmd, stdout=log, stderr=log)
+        try:
+            p.wait(timeout=budget_s)
+        except subprocess.TimeoutExpired:
+            p.send_signal(signal.SIGINT)  # stops after the step in flight, writes the checkpoint
+            p.wait()
+    summary = json.loads((folder / "summary.json").read_text())
+    piece = {
+        "status": summary.get("status"),
+        "rc": p.returncode,
+        "steps_total": summary.get("steps"),
+        "steps": summary.get("steps_this_run"),
+        "wall_seconds": summary.get("wall_seconds"),
+        "settle_wall_seconds": summary.get("settle", {}).get("wall_seconds", 0.0),
+        "total_wall_seconds": time.time() - t0,
+        "particle_steps_per_second": summary.get("particle_steps_per_second"),
+        "threads": threads,
+        "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+    }
+    with open(folder / "pieces.jsonl", "a") as f:
+        f.write(json.dumps(piece) + "\n")
+    print(f"{name}: {piece}", file=sys.stderr)
+    return piece
