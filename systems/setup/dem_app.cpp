@@ -70,7 +70,7 @@ int check_dem_command(const CliOptions& opt) {
   DemSimulation sim(s);
   sim.prime();
   const Schedule& step = sim.step();
-  const std::size_t n = sim.grains().n;
+  const std::size_t n = sim.grains().n_owned;
   std::printf("scene %s: valid\n", s.file.string().c_str());
   with_law(s.law, [&]<class Law>() {
     const HistoryLayout h = Law::history();
