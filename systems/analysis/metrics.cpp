@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
-#include <unordered_map>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
+
+#include "systems/analysis/sample_cells.hpp"
 
 namespace gf {
 
@@ -96,44 +96,12 @@ ContactStats contact_stats(const Grains& g, const NeighborList& list, const Wall
 }
 
 double segregation_index(const Grains& g, std::int32_t type_a, double cell, int min_grains) {
-  struct Acc {
-    double va = 0.0, v = 0.0;
-    int count = 0;
-  };
-  // Sequential: called at output intervals only; a hash map keeps it independent of the domain size.
-  std::unordered_map<std::uint64_t, Acc> cells;
-  cells.reserve(g.n_owned / 4 + 1);
-  const double inv = 1.0 / cell;
-  double va_total = 0.0, v_total = 0.0;
-  for (std::size_t i = 0; i < g.n_owned; ++i) {
-    const auto cx = static_cast<std::int64_t>(std::floor(g.pos.x[i] * inv)) & 0x1fffff;
-    const auto cy = static_cast<std::int64_t>(std::floor(g.pos.y[i] * inv)) & 0x1fffff;
-    const auto cz = static_cast<std::int64_t>(std::floor(g.pos.z[i] * inv)) & 0x1fffff;
-    const std::uint64_t key = (static_cast<std::uint64_t>(cx) << 42) | (static_cast<std::uint64_t>(cy) << 21) |
-                              static_cast<std::uint64_t>(cz);
-    const double r = g.radius.r[i];
-    const double vol = 4.0 / 3.0 * std::numbers::pi * r * r * r;
-    Acc& a = cells[key];
-    a.v += vol;
-    ++a.count;
-    v_total += vol;
-    if (g.species.type[i] == type_a) {
-      a.va += vol;
-      va_total += vol;
-    }
-  }
-  if (v_total <= 0.0) return 0.0;
-  const double p = va_total / v_total;
+  const CellBinning b = bin_cells(g, type_a, cell);
+  const double p = b.fraction_a();
   if (p <= 0.0 || p >= 1.0) return 0.0;
-  double var = 0.0, weight = 0.0;
-  for (const auto& [key, a] : cells) {
-    if (a.count < min_grains) continue;
-    const double f = a.va / a.v;
-    var += a.v * (f - p) * (f - p);
-    weight += a.v;
-  }
-  if (weight <= 0.0) return 0.0;
-  return std::sqrt(var / weight) / std::sqrt(p * (1.0 - p));
+  const CellSpread s = cell_spread(b, p, min_grains);
+  if (s.cells == 0) return 0.0;
+  return std::sqrt(s.variance) / std::sqrt(p * (1.0 - p));
 }
 
 }  // namespace gf
