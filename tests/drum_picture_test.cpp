@@ -301,7 +301,8 @@ TEST_CASE("picture: a run draws each requested angle once it is reached, and rep
     CHECK(final_values.at("petals") == 0);
     const auto rows = gf::test::read_lines(out / "series.csv");
     REQUIRE(rows.size() > 1);
-    CHECK(rows[0].ends_with(",segregation_index,pattern,petals,pattern_contrast,surface_angle"));
+    CHECK(rows[0].ends_with(",segregation_index,lacey_index,lacey_cell_grains,pattern,petals,pattern_contrast,"
+                            "surface_angle,radial_segregation"));
     fs::remove_all(out);
   }
 }

@@ -2,13 +2,15 @@
 // synthetic beds whose mixing is known by construction: grains on a cubic lattice of 1 mm pitch,
 // labelled by their place (segregated) or at random with a fixed seed (mixed). The lattice keeps
 // the number of grains per cell fixed, so the statistics of a random bed are those of binomial
-// draws in equal cells, and every tolerance below follows from them.
+// draws in equal cells, and every tolerance below follows from them. Then the scene's [analysis]
+// keys, and the measures' columns in series.csv and keys in summary.json, through resumed runs.
 #include "systems/analysis/mixing.hpp"
 
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -17,7 +19,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "systems/analysis/metrics.hpp"
+#include "systems/setup/dem_scene.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -306,3 +312,100 @@ TEST_CASE("radial segregation: undefined without species A or without a peripher
   CHECK(std::isnan(gf::radial_segregation(gf::Grains{}, kA, drum_z()).index));
 }
 
+// ---------------------------------------------------------------------------------------------------------------------
+// The scene's [analysis] keys, and the measures in series.csv and summary.json
+
+namespace {
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using gf::test::quote;
+using gf::test::run_cli;
+using gf::test::TempDir;
+
+// The small drum of test_support.hpp: 1 and 3 mm grains, so the default cell is 9 mm.
+const std::string kDrum = gf::test::small_drum_scene(60.0, "max_overlap = 0.3\n");
+
+std::string load_error(const std::string& text) {
+  try {
+    gf::load_dem_scene(gf::SceneDoc::parse(text, "drum.toml"));
+  } catch (const gf::SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The drum with its large species taken out: one species.
+std::string one_species(std::string text) {
+  for (const std::string cut : {"[[species]]\nname = \"large\"\ndiameter = 3.0e-3\ndensity = 2500.0\n", ", large = 20"})
+    text.erase(text.find(cut), cut.size());
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("mixing scene keys: [analysis] sets the cells of a binary mixture, checked against its grains",
+          "[mixing][scene]") {
+  const gf::DemScene plain = gf::load_dem_scene(gf::SceneDoc::parse(kDrum, "drum.toml"));
+  CHECK(plain.mixing_cell == Approx(9e-3).epsilon(1e-12));  // three large diameters
+  CHECK(plain.mixing_min_grains == 10);
+  const gf::DemScene set =
+      gf::load_dem_scene(gf::SceneDoc::parse(kDrum + "[analysis]\nmixing_cell = 0.006\nmixing_min_grains = 20\n", "drum.toml"));
+  CHECK(set.mixing_cell == 0.006);
+  CHECK(set.mixing_min_grains == 20);
+  CHECK(gf::load_dem_scene(gf::SceneDoc::parse(one_species(kDrum), "drum.toml")).mixing_cell == 0.0);
+
+  const std::string narrow = load_error(kDrum + "[analysis]\nmixing_cell = 0.002\n");
+  CHECK_THAT(narrow, Contains("analysis.mixing_cell") && Contains("give at least 0.003 m"));
+  CHECK_THAT(load_error(kDrum + "[analysis]\nmixing_cell = -1.0\n"), Contains("analysis.mixing_cell"));
+  CHECK_THAT(load_error(kDrum + "[analysis]\nmixing_min_grains = 1\n"), Contains("analysis.mixing_min_grains"));
+  CHECK_THAT(load_error(kDrum + "[analysis]\nmixing_cel = 0.006\n"), Contains("mixing_cel") && Contains("mixing_cell"));
+  const std::string single = load_error(one_species(kDrum) + "[analysis]\nmixing_cell = 0.006\n");
+  CHECK_THAT(single, Contains("analysis") && Contains("two species") && Contains("remove the [analysis] table"));
+}
+
+TEST_CASE("mixing outputs: series.csv and summary.json carry the measures, and a resumed run writes the same rows",
+          "[mixing][cli]") {
+  TempDir dir("mixing_cli");
+  const fs::path scene = dir.write("drum.toml", kDrum + "[analysis]\nmixing_cell = 0.006\n");
+  const auto args = [&](const fs::path& out, const std::string& more) {
+    return "run " + quote(scene.string()) + " --out " + quote(out.string()) +
+           " --threads 1 --quiet --set output.checkpoint_interval=4e-3 " + more;
+  };
+  const fs::path one = dir.path / "one", two = dir.path / "two";
+  REQUIRE(run_cli(dir, args(one, "--steps 1300")).code == 0);
+  // The first piece stops off the series grid, so its final row is one the resumed piece drops.
+  REQUIRE(run_cli(dir, args(two, "--steps 550")).code == 0);
+  const auto resumed =
+      run_cli(dir, args(two, "--steps 1300 --resume " + quote((two / "checkpoints" / "checkpoint.gfc").string())));
+  INFO(resumed.err);
+  REQUIRE(resumed.code == 0);
+  const auto rows = gf::test::read_lines(one / "series.csv");
+  REQUIRE(rows.size() == 1 + 14);
+  CHECK(rows[0] ==
+        "time,angle,ke_translational,ke_rotational,contacts,wall_contacts,max_overlap_ratio,segregation_index,"
+        "lacey_index,lacey_cell_grains,pattern,petals,pattern_contrast,surface_angle,radial_segregation");
+  CHECK(gf::test::read_file(two / "series.csv") == gf::test::read_file(one / "series.csv"));
+
+  const auto final_values = nlohmann::json::parse(gf::test::read_file(one / "summary.json")).at("final");
+  CHECK(final_values.at("lacey_cell") == 0.006);
+  CHECK(final_values.contains("lacey_index"));
+  CHECK(final_values.at("lacey_cell_grains").get<double>() >= 0.0);
+  const double radial = final_values.at("radial_segregation").get<double>();
+  CHECK(std::abs(radial) <= 1.0);
+}
+
+TEST_CASE("mixing outputs: a binary mixture without a drum has Lacey's columns and no radial one", "[mixing][cli]") {
+  TempDir dir("mixing_box");
+  const fs::path scene =
+      dir.write("box.toml", gf::test::binary_box_scene(200, 10) + "[output]\nseries_interval = 1.0e-4\n");
+  REQUIRE(run_cli(dir, "run " + quote(scene.string()) + " --out " + quote((dir.path / "out").string()) +
+                           " --threads 1 --quiet --steps 20")
+              .code == 0);
+  const auto rows = gf::test::read_lines(dir.path / "out" / "series.csv");
+  REQUIRE(rows.size() > 1);
+  CHECK(rows[0].ends_with(",segregation_index,lacey_index,lacey_cell_grains"));
+  const auto final_values = nlohmann::json::parse(gf::test::read_file(dir.path / "out" / "summary.json")).at("final");
+  CHECK(final_values.at("lacey_cell") == Approx(9e-3).epsilon(1e-12));
+  CHECK_FALSE(final_values.contains("radial_segregation"));
+}

@@ -27,11 +27,16 @@ double rotation_angle(const Walls& walls, double t) {
 }  // namespace
 
 SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
+  if (mixing() && s_.segregation_type < 0)
+    throw std::logic_error("series: Lacey's index requested without a species to measure (segregation_type)");
   if (!s_.csv) return;
   std::vector<std::string> columns{"time",           "angle",         "ke_translational",  "ke_rotational",
                                    "contacts",       "wall_contacts", "max_overlap_ratio", "segregation_index"};
+  if (mixing())
+    for (const char* c : {"lacey_index", "lacey_cell_grains"}) columns.push_back(c);
   if (s_.pattern)
-    for (const char* c : {"pattern", "petals", "pattern_contrast", "surface_angle"}) columns.push_back(c);
+    for (const char* c : {"pattern", "petals", "pattern_contrast", "surface_angle", "radial_segregation"})
+      columns.push_back(c);
   if (s_.resume_rows)
     csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, std::move(columns), *s_.resume_rows));
   else
@@ -75,37 +80,55 @@ void SeriesOutput::sample(World& world, double t) {
   row.max_overlap_ratio = cs.max_overlap_ratio;
   row.segregation_index =
       s_.segregation_type >= 0 ? segregation_index(g, s_.segregation_type, s_.segregation_cell) : 0.0;
-  if (s_.pattern) {
-    const auto drum = find_drum(walls);
-    if (!drum) throw std::logic_error("series: pattern columns requested for a scene without a drum wall");
-    const Gravity& gr = world.resources.get<Gravity>();
-    const std::size_t n = g.n_owned;
-    const PatternGrains pg{{g.pos.x.data(), n}, {g.pos.y.data(), n}, {g.pos.z.data(), n},
-                           {g.radius.r.data(), n}, {g.species.type.data(), n}};
-    const Pattern p = classify_pattern(pg, drum_section(walls.list[*drum], {gr.x, gr.y, gr.z}), s_.pattern_settings);
-    row.has_pattern = true;
-    row.pattern = static_cast<int>(p.kind);
-    row.petals = p.petals;
-    row.pattern_contrast = p.contrast;
-    row.surface_angle = p.surface_angle;
-  }
+  if (mixing()) sample_mixing(g, row);
+  if (s_.pattern) sample_pattern(world, row);
   row.valid = true;
-  if (csv_) {
-    const std::array<double, 12> v{row.time,
-                                   row.angle,
-                                   row.ke_translational,
-                                   row.ke_rotational,
-                                   static_cast<double>(row.pair_contacts),
-                                   static_cast<double>(row.wall_contacts),
-                                   row.max_overlap_ratio,
-                                   row.segregation_index,
-                                   static_cast<double>(row.pattern),
-                                   static_cast<double>(row.petals),
-                                   row.pattern_contrast,
-                                   row.surface_angle};
-    csv_->append(std::span<const double>(v.data(), s_.pattern ? 12 : 8));
-    ++rows_;
-  }
+  if (csv_) write(row);
+}
+
+void SeriesOutput::sample_mixing(const Grains& g, SeriesRow& row) const {
+  const LaceyIndex m = lacey_index(g, s_.segregation_type, s_.mixing_cell, s_.mixing_min_grains);
+  row.has_mixing = true;
+  row.lacey_index = m.index;
+  row.lacey_cell_grains = m.grains_per_cell;
+  row.lacey_cell = m.cell;
+}
+
+void SeriesOutput::sample_pattern(World& world, SeriesRow& row) const {
+  const Grains& g = world.grains;
+  const Walls& walls = world.resources.get<Walls>();
+  const auto drum = find_drum(walls);
+  if (!drum) throw std::logic_error("series: pattern columns requested for a scene without a drum wall");
+  const Gravity& gr = world.resources.get<Gravity>();
+  const DrumSection section = drum_section(walls.list[*drum], {gr.x, gr.y, gr.z});
+  const std::size_t n = g.n_owned;
+  const PatternGrains pg{{g.pos.x.data(), n}, {g.pos.y.data(), n}, {g.pos.z.data(), n},
+                         {g.radius.r.data(), n}, {g.species.type.data(), n}};
+  const Pattern p = classify_pattern(pg, section, s_.pattern_settings);
+  row.has_pattern = true;
+  row.pattern = static_cast<int>(p.kind);
+  row.petals = p.petals;
+  row.pattern_contrast = p.contrast;
+  row.surface_angle = p.surface_angle;
+  row.radial_segregation = radial_segregation(g, s_.segregation_type, section).index;
+}
+
+// One csv row in the order of the constructor's columns.
+void SeriesOutput::write(const SeriesRow& row) {
+  std::array<double, 15> v{};
+  std::size_t k = 0;
+  for (const double x : {row.time, row.angle, row.ke_translational, row.ke_rotational,
+                         static_cast<double>(row.pair_contacts), static_cast<double>(row.wall_contacts),
+                         row.max_overlap_ratio, row.segregation_index})
+    v[k++] = x;
+  if (mixing())
+    for (const double x : {row.lacey_index, row.lacey_cell_grains}) v[k++] = x;
+  if (s_.pattern)
+    for (const double x : {static_cast<double>(row.pattern), static_cast<double>(row.petals), row.pattern_contrast,
+                           row.surface_angle, row.radial_segregation})
+      v[k++] = x;
+  csv_->append(std::span<const double>(v.data(), k));
+  ++rows_;
 }
 
 FrameOutput::FrameOutput(std::filesystem::path dir, double interval, FrameFields fields)

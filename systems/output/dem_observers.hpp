@@ -14,6 +14,7 @@
 #include "engine/run_loop.hpp"
 #include "engine/system.hpp"
 #include "systems/analysis/metrics.hpp"
+#include "systems/analysis/mixing.hpp"
 #include "systems/analysis/pattern.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/integrate/integrate.hpp"
@@ -35,6 +36,14 @@ struct SeriesRow {
   int pattern = -1, petals = 0;
   double pattern_contrast = std::numeric_limits<double>::quiet_NaN();
   double surface_angle = std::numeric_limits<double>::quiet_NaN();
+  // Binary mixtures (has_mixing): Lacey's index of the larger species over cubic cells of edge
+  // lacey_cell (m) holding lacey_cell_grains grains on average (mixing.hpp); with a drum also the
+  // radial segregation index of the larger species in the drum's cross-section.
+  bool has_mixing = false;
+  double lacey_index = std::numeric_limits<double>::quiet_NaN();
+  double lacey_cell_grains = std::numeric_limits<double>::quiet_NaN();
+  double lacey_cell = std::numeric_limits<double>::quiet_NaN();
+  double radial_segregation = std::numeric_limits<double>::quiet_NaN();
   bool valid = false;
 };
 
@@ -44,8 +53,10 @@ struct SeriesSettings {
   int segregation_type = -1;
   double segregation_cell = 0;
   std::optional<std::size_t> resume_rows;  // continue an existing csv, keeping this many rows
-  bool pattern = false;  // classify the drum pattern at each row (needs a drum wall)
+  bool pattern = false;  // classify the drum pattern and the radial segregation at each row (needs a drum wall)
   PatternSettings pattern_settings;
+  double mixing_cell = 0;      // m; > 0: Lacey's index of segregation_type over cells of this edge
+  int mixing_min_grains = 10;  // cells with fewer grains are left out of it
 };
 
 class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
@@ -63,6 +74,10 @@ class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
 
  private:
   void sample(World& world, double t);
+  void sample_mixing(const Grains& g, SeriesRow& row) const;
+  void sample_pattern(World& world, SeriesRow& row) const;
+  void write(const SeriesRow& row);
+  bool mixing() const { return s_.mixing_cell > 0; }
   SeriesSettings s_;
   std::unique_ptr<SeriesCsv> csv_;
   double next_ = 0;

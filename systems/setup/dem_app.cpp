@@ -50,6 +50,9 @@ void write_final_state(const std::filesystem::path& file, const Grains& g, const
   write_state_csv(file, rows);
 }
 
+// JSON has no NaN: a measure that is not defined for the state (nan in series.csv) is null.
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
 // The fix for a run stopped by an output it could not write (a full disk, a file-size limit).
 std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path& out, bool have_checkpoint) {
   const std::string again = "grainflow run " + opt.scene.string() + " --out " + out.string();
@@ -160,6 +163,8 @@ int run_dem_command(const CliOptions& opt) {
   ss.segregation_cell = s.segregation_cell;
   ss.pattern = s.pattern;
   ss.pattern_settings.large_type = s.segregation_type;
+  ss.mixing_cell = s.mixing_cell;
+  ss.mixing_min_grains = s.mixing_min_grains;
   if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");
   SeriesOutput& series = observe.emplace<SeriesOutput>(ss);
   FrameOutput* frames = nullptr;
@@ -285,14 +290,18 @@ int run_dem_command(const CliOptions& opt) {
                       {"wall_contacts", row.wall_contacts},
                       {"max_overlap_ratio", row.max_overlap_ratio},
                       {"segregation_index", row.segregation_index}};
+  if (row.has_mixing) {
+    summary["final"]["lacey_index"] = number_or_null(row.lacey_index);
+    summary["final"]["lacey_cell"] = row.lacey_cell;
+    summary["final"]["lacey_cell_grains"] = row.lacey_cell_grains;
+  }
   if (row.has_pattern) {
     static const char* kinds[] = {"undecided", "moon", "petals"};
     summary["final"]["pattern"] = kinds[row.pattern + 1];
     summary["final"]["petals"] = row.petals;
     summary["final"]["pattern_contrast"] = row.pattern_contrast;
-    // JSON has no NaN: a bed without a surface to fit reports null.
-    summary["final"]["surface_angle"] =
-        std::isfinite(row.surface_angle) ? nlohmann::json(row.surface_angle) : nlohmann::json(nullptr);
+    summary["final"]["surface_angle"] = number_or_null(row.surface_angle);  // no surface to fit: null
+    summary["final"]["radial_segregation"] = number_or_null(row.radial_segregation);
   }
   double step_total = 0;
   for (auto& t : step.timings()) step_total += t.seconds;

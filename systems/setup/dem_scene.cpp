@@ -304,6 +304,29 @@ void read_pictures(DemScene& s, const SceneNode& out) {
              "give a wall an omega, or use picture_angles = [0] for one picture of the start");
 }
 
+// [analysis]: the cells of Lacey's index for a binary mixture (after its species are known). The
+// default edge is the Danckwerts index's, three large diameters; a cell must at least hold a large
+// grain, and a count of 1 would let in single-grain cells, whose fraction is 0 or 1 however mixed
+// the bed is.
+void read_analysis(DemScene& s, const SceneNode& root) {
+  if (s.segregation_type >= 0) s.mixing_cell = s.segregation_cell;
+  const auto node = root.maybe_table("analysis");
+  if (!node) return;
+  if (s.segregation_type < 0)
+    root.fail("analysis",
+              "the mixing measures compare two species, and the scene has " + std::to_string(s.species.size()),
+              "remove the [analysis] table, or define exactly two [[species]]");
+  const double d = s.species[s.segregation_type].diameter;
+  s.mixing_cell = node->get_double("mixing_cell", s.mixing_cell, Range::open_closed(0, 1e3));
+  if (s.mixing_cell < d)
+    node->fail("mixing_cell",
+               "a cell of " + short_number(s.mixing_cell) + " m is narrower than the large grains (" +
+                   short_number(d) + " m) and holds one of them at most",
+               "give at least " + short_number(d) + " m; the default is three large diameters, " +
+                   short_number(3.0 * d) + " m");
+  s.mixing_min_grains = static_cast<int>(node->get_int("mixing_min_grains", 10, 2, 1000000));
+}
+
 }  // namespace
 
 std::int64_t DemScene::main_steps() const { return static_cast<std::int64_t>(std::llround(duration / dt)); }
@@ -408,6 +431,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
     s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
     for (const Wall& w : s.walls) s.pattern = s.pattern || w.kind == Wall::Kind::CylinderInner;
   }
+  read_analysis(s, root);
   doc.check_all_used();
   return s;
 }

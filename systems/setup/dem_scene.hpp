@@ -80,6 +80,10 @@ struct DemScene {
   OutputSpec output;
   int segregation_type = -1;  // the larger species of a binary mixture, else -1
   double segregation_cell = 0;  // m
+  // [analysis]: Lacey's index (binary mixtures) over cubic cells of this edge, counting cells of at
+  // least this many grains (systems/analysis/mixing.hpp).
+  double mixing_cell = 0;  // m
+  int mixing_min_grains = 10;
   bool pattern = false;  // moon/petal classifier and free-surface angle: a drum and two species
 
   std::int64_t main_steps() const;
