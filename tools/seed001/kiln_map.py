@@ -1,0 +1,214 @@
+#!/usr/bin/python3
+"""Seed 001's mixing map: the kiln slice of scenes/kiln_seed001.toml over size ratio d_L/d_S and
+density ratio rho_L/rho_S, each case run in resumable pieces.
+
+    /usr/bin/python3 tools/seed001/kiln_map.py run [--budget-minutes 30] [--threads 1] [--cases s2.0_r1.5 ...]
+    /usr/bin/python3 tools/seed001/kiln_map.py report [--out runs/seed001] [--docs docs/seed001]
+
+Each case sets species.1 (the large grains) to d_L = ratio x 2 mm and rho_L = ratio x 2800 kg/m^3
+with --set, keeps equal solid volumes (the fill's volume fractions), and turns the kiln REVS
+revolutions. `run` gives each unfinished case (corners and centre first, so a partial map already
+spans the plane) at most --budget-minutes per invocation; a stopped case continues from its
+checkpoint the next time, and finished cases are skipped. `report` writes map.json (per case: the
+Lacey index and the signed radial index averaged over the last AVERAGE_REVS revolutions, with their
+spread, the grains, the mean grains per Lacey cell, wall time), the heat map with the balance line
+(map.png), the mixing curves (curves.png) and the corner pictures (corners.png).
+"""
+import argparse
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "tools" / "common"))
+from resumable import load_series, pieces, run_piece  # noqa: E402
+
+SCENE = REPO / "scenes" / "kiln_seed001.toml"
+D_SMALL = 2.0e-3  # m
+RHO_SMALL = 2800.0  # kg/m^3
+SIZE_RATIOS = [1.0, 1.5, 2.0, 2.5, 3.0]
+DENSITY_RATIOS = [0.5, 1.0, 1.5, 2.0, 3.0]
+REVS = 5.0  # revolutions per case
+AVERAGE_REVS = 2.0  # the steady index: mean over the last two revolutions
+# The corners (the pictures) and the centre first, then the rest in rows.
+FIRST = [(1.0, 0.5), (3.0, 0.5), (1.0, 3.0), (3.0, 3.0), (2.0, 1.5)]
+
+
+def case_name(size, density):
+    return f"s{size:.1f}_r{density:.1f}"
+
+
+def cases():
+    rest = [(s, r) for s in SIZE_RATIOS for r in DENSITY_RATIOS if (s, r) not in FIRST]
+    return FIRST + rest
+
+
+def overrides(size, density):
+    omega = 1.2  # rad/s, the scene's
+    end = REVS * 2 * math.pi + 0.01  # past the last picture's angle, which round-off could miss
+    return [
+        f"species.1.diameter={size * D_SMALL}",
+        f"species.1.density={density * RHO_SMALL}",
+        f"run.end_angle={end}",
+        f"output.checkpoint_interval={0.5 * 2 * math.pi / omega}",  # every half revolution
+        "output.series_interval=0.05",
+        f"output.picture_interval={2 * math.pi}",
+    ]
+
+
+def done(series):
+    return float(series[-1]["angle"]) >= REVS * 2 * math.pi - 1e-6
+
+
+def steady(series):
+    """Mean and standard deviation over the last AVERAGE_REVS revolutions of the Lacey and radial indices."""
+    rev = series["angle"] / (2 * math.pi)
+    tail = series[rev >= rev[-1] - AVERAGE_REVS]
+    return {k: (float(np.mean(tail[k])), float(np.std(tail[k]))) for k in ("lacey_index", "radial_segregation")}
+
+
+def balance_line(table):
+    """Per size ratio, the density ratio where the mean radial index changes sign (linear interpolation
+    in log density ratio), or None when it keeps one sign over the map's density ratios."""
+    line = []
+    for s in SIZE_RATIOS:
+        pts = sorted((r, table[case_name(s, r)]["radial"][0]) for r in DENSITY_RATIOS
+                     if case_name(s, r) in table)
+        for (r0, y0), (r1, y1) in zip(pts, pts[1:]):
+            if y0 == 0 or y0 * y1 < 0:
+                f = y0 / (y0 - y1)
+                line.append((s, math.exp(math.log(r0) + f * (math.log(r1) - math.log(r0)))))
+                break
+    return line
+
+
+def report(out, docs):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    table = {}
+    for size, density in cases():
+        name = case_name(size, density)
+        folder = out / name
+        s = load_series(folder)
+        if s is None or not done(s):
+            continue
+        st = steady(s)
+        summary = json.loads((folder / "summary.json").read_text())
+        ps = pieces(folder)
+        table[name] = {
+            "size_ratio": size, "density_ratio": density,
+            "lacey": st["lacey_index"], "radial": st["radial_segregation"],
+            "lacey_start": float(s[0]["lacey_index"]),
+            "grains": summary["grains"], "lacey_cell": summary["final"].get("lacey_cell"),
+            "lacey_cell_grains": float(np.mean(s["lacey_cell_grains"])),
+            "wall_seconds": sum((p["wall_seconds"] or 0) + p.get("settle_wall_seconds", 0.0) for p in ps),
+            "threads": sorted({p["threads"] for p in ps}),
+        }
+    line = balance_line(table)
+    fit = None
+    pos = [(s, r) for s, r in line if s > 1.0]
+    if len(pos) >= 2:
+        x = np.log([s for s, _ in pos])
+        y = np.log([r for _, r in pos])
+        fit = float(np.sum(x * y) / np.sum(x * x))  # rho_L/rho_S = (d_L/d_S)^k through (1, 1)
+    result = {"revolutions": REVS, "average_revolutions": AVERAGE_REVS, "cases": table,
+              "balance_line": line, "balance_exponent": fit,
+              "complete": len(table), "of": len(SIZE_RATIOS) * len(DENSITY_RATIOS)}
+    docs.mkdir(parents=True, exist_ok=True)
+    (docs / "map.json").write_text(json.dumps(result, indent=1))
+    print(f"kiln map: {len(table)} of {result['of']} cases; balance exponent {fit}")
+    if not table:
+        return
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    for ax, key, title, cmap, lim in ((axes[0], "lacey", "Lacey index M (1 mixed, 0 segregated)", "viridis", (0, 1)),
+                                      (axes[1], "radial", "radial index (+: large at the periphery)", "coolwarm", (-1, 1))):
+        grid = np.full((len(DENSITY_RATIOS), len(SIZE_RATIOS)), np.nan)
+        for v in table.values():
+            grid[DENSITY_RATIOS.index(v["density_ratio"]), SIZE_RATIOS.index(v["size_ratio"])] = v[key][0]
+        im = ax.imshow(grid, origin="lower", cmap=cmap, vmin=lim[0], vmax=lim[1], aspect="auto")
+        for (i, j), val in np.ndenumerate(grid):
+            if not np.isnan(val):
+                ax.text(j, i, f"{val:.2f}", ha="center", va="center", fontsize=7,
+                        color="white" if key == "lacey" and val < 0.5 else "black")
+        ax.set_xticks(range(len(SIZE_RATIOS)), [f"{s:g}" for s in SIZE_RATIOS])
+        ax.set_yticks(range(len(DENSITY_RATIOS)), [f"{r:g}" for r in DENSITY_RATIOS])
+        ax.set_xlabel("size ratio d_L/d_S")
+        ax.set_ylabel("density ratio rho_L/rho_S")
+        ax.set_title(title, fontsize=9)
+        fig.colorbar(im, ax=ax)
+        # The balance line and the candidate laws rho_L/rho_S = (d_L/d_S)^k, in the grid's index coordinates.
+        def to_index(vals, ticks):
+            return np.interp(np.log(vals), np.log(ticks), np.arange(len(ticks)))
+        if line:
+            ax.plot(to_index([s for s, _ in line], SIZE_RATIOS), to_index([r for _, r in line], DENSITY_RATIOS),
+                    "k-o", ms=3, lw=1.5, label="radial index = 0 (ours)")
+        ss = np.linspace(1.0, 3.0, 50)
+        for k, style in ((1, ":"), (2, "--")):
+            rr = ss ** k
+            keep = rr <= DENSITY_RATIOS[-1]
+            ax.plot(to_index(ss[keep], SIZE_RATIOS), to_index(rr[keep], DENSITY_RATIOS), "k" + style, lw=0.8,
+                    label=f"(d_L/d_S)^{k}")
+        ax.legend(fontsize=6, loc="lower right")
+    fig.suptitle(f"Kiln slice, {REVS:g} revolutions, mean over the last {AVERAGE_REVS:g}", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(docs / "map.png", dpi=110)
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+    for size, density in cases():
+        f = out / case_name(size, density)
+        s = load_series(f)
+        if s is None:
+            continue
+        rev = s["angle"] / (2 * math.pi)
+        axes[0].plot(rev, s["lacey_index"], lw=0.7, label=case_name(size, density))
+        axes[1].plot(rev, s["radial_segregation"], lw=0.7)
+    axes[0].set_ylabel("Lacey index")
+    axes[1].set_ylabel("radial index")
+    for ax in axes:
+        ax.set_xlabel("revolutions")
+    axes[0].legend(fontsize=5, ncol=3)
+    fig.tight_layout()
+    fig.savefig(docs / "curves.png", dpi=110)
+
+    corners = [out / case_name(s, r) for s, r in FIRST[:4] if case_name(s, r) in table]
+    if corners:
+        subprocess.run([sys.executable, str(REPO / "tools/seed000/figure_sheet.py")] + [str(c) for c in corners] +
+                       ["--angles", f"{REVS * 2 * math.pi:.2f}", "--out", str(docs / "corners.png")])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("command", choices=["run", "report"])
+    ap.add_argument("--out", type=Path, default=REPO / "runs" / "seed001")
+    ap.add_argument("--docs", type=Path, default=REPO / "docs" / "seed001")
+    ap.add_argument("--binary", type=Path, default=REPO / "build" / "grainflow")
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--budget-minutes", type=float, default=30.0, help="wall time per case in this invocation")
+    ap.add_argument("--cases", nargs="*", default=None, help="names like s2.0_r1.5 (default: all)")
+    a = ap.parse_args()
+    names = {case_name(s, r): (s, r) for s, r in cases()}
+    wanted = a.cases if a.cases else list(names)
+    unknown = set(wanted) - set(names)
+    if unknown:
+        sys.exit(f"kiln_map: unknown case(s) {sorted(unknown)}; cases are {list(names)}")
+    if a.command == "run":
+        if not a.binary.is_file():
+            sys.exit(f"kiln_map: {a.binary} not found: build grainflow first (README)")
+        for name in [n for n in names if n in wanted]:
+            size, density = names[name]
+            run_piece(name, a.binary, SCENE, a.out / name, overrides(size, density), a.threads,
+                      60 * a.budget_minutes, done)
+    else:
+        report(a.out, a.docs)
+
+
+if __name__ == "__main__":
+    main()
