@@ -53,6 +53,11 @@ def run_piece(name, binary, scene, folder, overrides, threads, budget_s, done):
         except subprocess.TimeoutExpired:
             p.send_signal(signal.SIGINT)  # stops after the step in flight, writes the checkpoint
             p.wait()
+    if not (folder / "summary.json").is_file():  # refused before it ran: the log says why
+        tail = (folder / "log.txt").read_text().splitlines()[-3:]
+        print(f"{name}: grainflow exited with status {p.returncode} before running:\n  " + "\n  ".join(tail),
+              file=sys.stderr)
+        return None
     summary = json.loads((folder / "summary.json").read_text())
     piece = {
         "status": summary.get("status"),

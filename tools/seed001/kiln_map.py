@@ -30,6 +30,7 @@ from resumable import load_series, pieces, run_piece  # noqa: E402
 SCENE = REPO / "scenes" / "kiln_seed001.toml"
 D_SMALL = 2.0e-3  # m
 RHO_SMALL = 2800.0  # kg/m^3
+DT_SCENE = 1.2e-5  # s, scenes/kiln_seed001.toml's
 SIZE_RATIOS = [1.0, 1.5, 2.0, 2.5, 3.0]
 DENSITY_RATIOS = [0.5, 1.0, 1.5, 2.0, 3.0]
 REVS = 5.0  # revolutions per case
@@ -47,12 +48,19 @@ def cases():
     return FIRST + rest
 
 
+def step(size, density):
+    """The scene's step (0.29 of the small grain's Rayleigh time) where the small grains set the
+    smallest Rayleigh time; else the same fraction of the large grain's, which scales as d sqrt(rho)."""
+    return DT_SCENE * min(1.0, size * math.sqrt(density))
+
+
 def overrides(size, density):
     omega = 1.2  # rad/s, the scene's
     end = REVS * 2 * math.pi + 0.01  # past the last picture's angle, which round-off could miss
     return [
         f"species.1.diameter={size * D_SMALL}",
         f"species.1.density={density * RHO_SMALL}",
+        f"run.dt={step(size, density)}",
         f"run.end_angle={end}",
         f"output.checkpoint_interval={0.5 * 2 * math.pi / omega}",  # every half revolution
         "output.series_interval=0.05",

@@ -1,0 +1,71 @@
+#!/usr/bin/python3
+"""The kiln map's README tables from docs/seed001/map.json (tools/seed001/kiln_map.py report) or
+docs/seed001/stiffness.json (tools/seed001/stiffness_study.py report, with --stiffness).
+
+    /usr/bin/python3 tools/seed001/map_table.py docs/seed001/map.json
+    /usr/bin/python3 tools/seed001/map_table.py --stiffness docs/seed001/stiffness.json
+"""
+import json
+import sys
+from pathlib import Path
+
+SIZE_RATIOS = [1.0, 1.5, 2.0, 2.5, 3.0]
+DENSITY_RATIOS = [0.5, 1.0, 1.5, 2.0, 3.0]
+
+
+def map_table(m):
+    cases = {(c["size_ratio"], c["density_ratio"]): c for c in m["cases"].values()}
+    head = "| d_L/d_S \\ rho_L/rho_S | " + " | ".join(f"{r:g}" for r in DENSITY_RATIOS) + " |"
+    rows = [head, "|---" * (len(DENSITY_RATIOS) + 1) + "|"]
+    for s in SIZE_RATIOS:
+        cells = []
+        for r in DENSITY_RATIOS:
+            c = cases.get((s, r))
+            cells.append("not run yet" if c is None else f"{c['lacey'][0]:.2f} / {c['radial'][0]:+.2f}")
+        rows.append(f"| {s:g} | " + " | ".join(cells) + " |")
+    done = list(cases.values())
+    rows.append("")
+    rows.append(f"Cases finished: {m['complete']} of {m['of']}, {m['revolutions']:g} revolutions each, values the mean "
+                f"over the last {m['average_revolutions']:g}.")
+    if done:
+        grains = [c["grains"] for c in done]
+        per_cell = [c["lacey_cell_grains"] for c in done]
+        wall = sum(c["wall_seconds"] for c in done)
+        start = [c["lacey_start"] for c in done]
+        rows.append(f"Grains {min(grains):,} to {max(grains):,}; Lacey cells of {done[0]['lacey_cell'] * 1e3:g} mm holding "
+                    f"{min(per_cell):.0f} to {max(per_cell):.0f} grains on average; Lacey index after settling, before "
+                    f"rotation: {min(start):.2f} to {max(start):.2f}; wall time {wall / 3600:.2f} h on one core "
+                    f"({sum(c['wall_seconds'] for c in done) / len(done) / 60:.1f} min per case).")
+    if m["balance_line"]:
+        pts = ", ".join(f"({s:g}, {r:.2f})" for s, r in m["balance_line"])
+        rows.append(f"Radial index = 0 at (d_L/d_S, rho_L/rho_S): {pts}"
+                    + (f"; fitted rho_L/rho_S = (d_L/d_S)^k through (1, 1): k = {m['balance_exponent']:.2f}."
+                       if m["balance_exponent"] is not None else "."))
+    return "\n".join(rows) + "\n"
+
+
+def stiffness_table(s):
+    rows = ["| variant | law | E (Pa) | dt (s) | fill seed | Lacey index | radial index | largest overlap / d | wall time (min) | departs from the seeds' range |",
+            "|---|---|---|---|---|---|---|---|---|---|"]
+    for name, v in s["variants"].items():
+        e = f"{v['youngs_modulus']:.2g}" if "youngs_modulus" in v else "—"
+        rows.append(f"| {name} | {v['law']} | {e} | {v['dt']:.3g} | {v['seed']} | {v['lacey']:.3f} | {v['radial']:+.3f} | "
+                    f"{v['max_overlap_ratio']:.4f} | {v['wall_seconds'] / 60:.1f} | "
+                    f"{'yes' if v.get('departs') else 'no' if 'departs' in v else '—'} |")
+    if s["seed_noise"]:
+        rows.append("")
+        rows.append(f"E/1000 over three fill seeds: Lacey index {s['seed_noise']['mean']:.3f}, range "
+                    f"{s['seed_noise']['range']:.3f}.")
+    return "\n".join(rows) + "\n"
+
+
+def main():
+    args = sys.argv[1:]
+    if args and args[0] == "--stiffness":
+        print(stiffness_table(json.loads(Path(args[1]).read_text())), end="")
+    else:
+        print(map_table(json.loads(Path(args[0]).read_text())), end="")
+
+
+if __name__ == "__main__":
+    main()
