@@ -76,7 +76,7 @@ def steady(series):
     """Mean and standard deviation over the last AVERAGE_REVS revolutions of the Lacey and radial indices."""
     rev = series["angle"] / (2 * math.pi)
     tail = series[rev >= rev[-1] - AVERAGE_REVS]
-    return {k: (float(np.mean(tail[k])), float(np.std(tail[k]))) for k in ("lacey_index", "radial_segregation")}
+    return {k: (float(np.nanmean(tail[k])), float(np.nanstd(tail[k]))) for k in ("lacey_index", "radial_segregation")}
 
 
 def balance_line(table):

@@ -106,8 +106,8 @@ def report(out, docs):
         tail = s[rev >= rev[-1] - AVERAGE_REVS]
         ps = pieces(folder)
         summary = json.loads((folder / "summary.json").read_text())
-        rows[name] = {**v, "lacey": float(np.mean(tail["lacey_index"])), "lacey_std": float(np.std(tail["lacey_index"])),
-                      "radial": float(np.mean(tail["radial_segregation"])),
+        rows[name] = {**v, "lacey": float(np.nanmean(tail["lacey_index"])), "lacey_std": float(np.nanstd(tail["lacey_index"])),
+                      "radial": float(np.nanmean(tail["radial_segregation"])),
                       "wall_seconds": sum((p["wall_seconds"] or 0) + p.get("settle_wall_seconds", 0.0) for p in ps),
                       "grains": summary["grains"], "max_overlap_ratio": summary["final"]["max_overlap_ratio"]}
     seeds = [rows[n]["lacey"] for n in rows if n.startswith("E1e-3_seed")]
