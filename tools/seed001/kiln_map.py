@@ -186,10 +186,14 @@ def report(out, docs):
     fig.tight_layout()
     fig.savefig(docs / "curves.png", dpi=110)
 
-    corners = [out / case_name(s, r) for s, r in FIRST[:4] if case_name(s, r) in table]
+    corners = [(s, r) for s, r in FIRST[:4] if case_name(s, r) in table]
     if corners:
-        subprocess.run([sys.executable, str(REPO / "tools/seed000/figure_sheet.py")] + [str(c) for c in corners] +
-                       ["--angles", f"{REVS * 2 * math.pi:.2f}", "--out", str(docs / "corners.png")])
+        labels = []
+        for s, r in corners:
+            labels += ["--label", f"{out / case_name(s, r)}=d_L/d_S = {s:g}, rho_L/rho_S = {r:g}"]
+        subprocess.run([sys.executable, str(REPO / "tools/seed000/figure_sheet.py")] +
+                       [str(out / case_name(s, r)) for s, r in corners] + labels +
+                       ["--angles", "0", f"{REVS * 2 * math.pi:.2f}", "--out", str(docs / "corners.png")])
 
 
 def main():
