@@ -316,6 +316,13 @@ void read_analysis(DemScene& s, const SceneNode& root) {
     root.fail("analysis",
               "the mixing measures compare two species, and the scene has " + std::to_string(s.species.size()),
               "remove the [analysis] table, or define exactly two [[species]]");
+  // The species the measures follow (default the larger; on equal diameters the first): a map over
+  // size ratios that reach 1 names it, so the radial index keeps its sign across the map.
+  if (node->has("species")) {
+    s.segregation_type = species_index(s, *node, "species", node->get_string("species"));
+    s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
+    s.mixing_cell = s.segregation_cell;
+  }
   const double d = s.species[s.segregation_type].diameter;
   s.mixing_cell = node->get_double("mixing_cell", s.mixing_cell, Range::open_closed(0, 1e3));
   if (s.mixing_cell < d)
