@@ -49,6 +49,9 @@ def stiffness_table(s):
             "|---|---|---|---|---|---|---|---|---|---|"]
     for name, v in s["variants"].items():
         e = f"{v['youngs_modulus']:.2g}" if "youngs_modulus" in v else "—"
+        if "failed" in v:
+            rows.append(f"| {name} | {v['law']} | {e} | {v['dt']:.3g} | {v['seed']} | stopped: {v['failed']} | | | | |")
+            continue
         rows.append(f"| {name} | {v['law']} | {e} | {v['dt']:.3g} | {v['seed']} | {v['lacey']:.3f} | {v['radial']:+.3f} | "
                     f"{v['max_overlap_ratio']:.4f} | {v['wall_seconds'] / 60:.1f} | "
                     f"{'yes' if v.get('departs') else 'no' if 'departs' in v else '—'} |")

@@ -100,6 +100,12 @@ def report(out, docs):
     for name, v in VARIANTS.items():
         folder = out / name
         s = load_series(folder)
+        ps = pieces(folder)
+        if ps and ps[-1]["status"] == "failed":  # the run stopped itself: the reason is the log's last line
+            reason = (folder / "log.txt").read_text().strip().splitlines()[-1].replace("grainflow: error: ", "")
+            reason = reason.split(". Fix:")[0]
+            rows[name] = {**v, "failed": reason}
+            continue
         if s is None or not done(s):
             continue
         rev = s["angle"] / (2 * math.pi)
@@ -110,11 +116,12 @@ def report(out, docs):
                       "radial": float(np.nanmean(tail["radial_segregation"])),
                       "wall_seconds": sum((p["wall_seconds"] or 0) + p.get("settle_wall_seconds", 0.0) for p in ps),
                       "grains": summary["grains"], "max_overlap_ratio": summary["final"]["max_overlap_ratio"]}
-    seeds = [rows[n]["lacey"] for n in rows if n.startswith("E1e-3_seed")]
+    seeds = [rows[n]["lacey"] for n in rows if n.startswith("E1e-3_seed") and "lacey" in rows[n]]
     noise = {"mean": float(np.mean(seeds)), "range": float(np.ptp(seeds))} if len(seeds) >= 2 else None
     if noise:
         for r in rows.values():
-            r["departs"] = abs(r["lacey"] - noise["mean"]) > max(noise["range"], 1e-9)
+            if "lacey" in r:
+                r["departs"] = abs(r["lacey"] - noise["mean"]) > max(noise["range"], 1e-9)
     docs.mkdir(parents=True, exist_ok=True)
     (docs / "stiffness.json").write_text(json.dumps({"revolutions": REVS, "average_revolutions": AVERAGE_REVS,
                                                       "size_ratio": SIZE_RATIO, "density_ratio": DENSITY_RATIO,
@@ -127,6 +134,8 @@ def report(out, docs):
         ax.axhspan(noise["mean"] - noise["range"], noise["mean"] + noise["range"], color="0.85",
                    label="E/1000, three seeds: mean ± range")
     for name, r in rows.items():
+        if "lacey" not in r:
+            continue
         bad = r.get("departs", False)
         ax.plot(r["wall_seconds"] / 60, r["lacey"], "s" if r["law"] != "hertz_mindlin" else "o",
                 color="tab:red" if bad else "tab:blue")
