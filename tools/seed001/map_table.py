@@ -44,6 +44,12 @@ def map_table(m):
     return "\n".join(rows) + "\n"
 
 
+def departs(v):
+    if "departs" not in v:
+        return "—"
+    return ("yes: " + ", ".join({"lacey": "Lacey", "radial": "radial"}[k] for k in v["departs_by"])) if v["departs"] else "no"
+
+
 def stiffness_table(s):
     rows = ["| variant | law | E (Pa) | dt (s) | fill seed | Lacey index | radial index | largest overlap / d | wall time (min) | departs from the seeds' range |",
             "|---|---|---|---|---|---|---|---|---|---|"]
@@ -54,11 +60,12 @@ def stiffness_table(s):
             continue
         rows.append(f"| {name} | {v['law']} | {e} | {v['dt']:.3g} | {v['seed']} | {v['lacey']:.3f} | {v['radial']:+.3f} | "
                     f"{v['max_overlap_ratio']:.4f} | {v['wall_seconds'] / 60:.1f} | "
-                    f"{'yes' if v.get('departs') else 'no' if 'departs' in v else '—'} |")
+                    f"{departs(v)} |")
     if s["seed_noise"]:
         rows.append("")
-        rows.append(f"E/1000 over three fill seeds: Lacey index {s['seed_noise']['mean']:.3f}, range "
-                    f"{s['seed_noise']['range']:.3f}.")
+        n = s["seed_noise"]
+        rows.append(f"E/1000 over three fill seeds: Lacey index {n['lacey']['mean']:.3f} (range {n['lacey']['range']:.3f}), "
+                    f"radial index {n['radial']['mean']:+.3f} (range {n['radial']['range']:.3f}).")
     return "\n".join(rows) + "\n"
 
 
