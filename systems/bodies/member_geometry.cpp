@@ -366,6 +366,17 @@ Vector3d mean_of(const MemberShape& m, auto&& keep) {
   return sum / count;
 }
 
+// Mean of the vertices i with height base + d.v_i below r, each weighted by r minus its height.
+Vector3d depth_weighted(const MemberShape& m, const Vector3d& d, double base, double r) {
+  Vector3d sum = Vector3d::Zero();
+  double weight = 0;
+  for (std::size_t i = 0; i < m.vertices(); ++i) {
+    const double w = r - (base + d.dot(own_vertex(m, i)));
+    if (w > 0) sum += w * own_vertex(m, i), weight += w;
+  }
+  return sum / weight;
+}
+
 MemberShape with_bound(MemberShape s) {
   const Vector3d c = mean_of(s, [](std::size_t) { return true; });
   double reach = 0;
@@ -455,8 +466,12 @@ MemberContact member_plane(const MemberShape& a, const Vector3d& point, const Ve
   const double low = d.dot(own_vertex(a, farthest_vertex(a, -d)));
   const double tie = kMemberTolerance * a.bound_radius;
   const auto tied = [&](std::size_t i) { return d.dot(own_vertex(a, i)) <= low + tie; };
-  const Vector3d lowest = a.origin + a.rotation * mean_of(a, tied);
   const double h = base + low;
+  // Where the force acts: the vertices whose dilation spheres reach through the plane, weighted by
+  // how far (r - their height). A face resting nearly flat then pushes at its middle, and a tilt
+  // moves the point towards the deeper side, a torque that grows with the tilt; the lowest vertex
+  // alone would flip the torque's sign from corner to corner at every step's round-off.
+  const Vector3d lowest = a.origin + a.rotation * (h < a.radius ? depth_weighted(a, d, base, a.radius) : mean_of(a, tied));
   // Between the core (lowest) and the plane (lowest - h normal); finish moves it by r/2 along -normal,
   // to midway between the member's surface and the plane.
   MemberContact c = finish(h < 0 ? MemberProximity::penetrating : MemberProximity::separated, -normal, h,

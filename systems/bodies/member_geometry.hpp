@@ -34,10 +34,13 @@
 // midpoint of the bounding centres: libccd's zero tests are absolute (DBL_EPSILON), and tolerances
 // are then relative to the grains (kMemberTolerance of their size), as right for 1 mm as for 1 m.
 //
-// Spheres are members with a point core. A plane wall meets a member at the core's support point
-// along -normal, the normal pointing out of the wall (its lowest vertex); vertices tied within the tolerance
-// (a face or an edge lying on the plane's direction) are averaged, so a box resting flat on a floor
-// is pushed at its face's centre rather than at one corner.
+// Spheres are members with a point core. A plane wall meets a member with the overlap of its lowest
+// vertex (the core's support point along -normal, the normal pointing out of the wall), pushing at the
+// mean of the vertices whose dilation spheres reach through the plane, each weighted by its own
+// overlap: a box resting flat on a floor is pushed at its face's centre, and a small tilt moves the
+// point towards the lower side (a restoring torque that grows with the tilt, instead of the lowest
+// corner's, which changes sides with the round-off). Apart, the vertices tied within the tolerance
+// are averaged.
 // A face-to-face contact between members gets one point of the touching patch, whichever GJK's
 // simplex ends on; the laws see one contact per member pair.
 #pragma once
