@@ -97,6 +97,7 @@ TABLES = {
     "liggghts_flowing_grainflow": lambda: script("tools/liggghts/comparison_table.py",
                                                  "docs/liggghts/comparison_flowing_grainflow.log"),
     "kiln_map": lambda: script("tools/seed001/map_table.py", "docs/seed001/map.json"),
+    "kiln_stiffness": lambda: script("tools/seed001/map_table.py", "--stiffness", "docs/seed001/stiffness.json"),
     "seed_drum": lambda: script("tools/seed000/study_table.py", "docs/seed000/seed_drum_table.json"),
     "profile_flowing": lambda: script("tools/bench/profile_table.py", "docs/bench/profile_flowing.txt"),
     "flow_ensemble": lambda: script("tools/liggghts/flow_agreement_table.py", "--ensemble",
