@@ -60,6 +60,17 @@ def memory_table():
             f"{kb * 1024 / grains / 1000:.2f} kB |\n")
 
 
+def pulsation_table(path="docs/seed000/pulsation_w0.50/pulsation.json"):
+    s = json.loads((ROOT / path).read_text())
+    rows = ["| signal | window (rad) | dominant period (s) | period (rad of rotation) | prominence | mean | std |",
+            "|---|---|---|---|---|---|---|"]
+    for key, label, unit in (("surface_angle", "free-surface angle", "°"), ("ke_translational", "kinetic energy", " J")):
+        v = s[key]
+        rows.append(f"| {label} | {s['from_rad']:.1f} to {s['to_rad']:.2f} | {v['period_s']:.2f} | {v['period_rad']:.2f} | "
+                    f"{v['prominence']:.1f} | {v['mean']:.4g}{unit} | {v['std']:.3g}{unit} |")
+    return "\n".join(rows) + "\n"
+
+
 def time_split_table(path="docs/bench/drum_time_split.json"):
     s = json.loads((ROOT / path).read_text())
     steps, grains = s["steps"], s["grains"]
@@ -96,6 +107,7 @@ TABLES = {
     "liggghts_flowing": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison_flowing.log"),
     "liggghts_flowing_grainflow": lambda: script("tools/liggghts/comparison_table.py",
                                                  "docs/liggghts/comparison_flowing_grainflow.log"),
+    "pulsation": pulsation_table,
     "kiln_map": lambda: script("tools/seed001/map_table.py", "docs/seed001/map.json"),
     "kiln_stiffness": lambda: script("tools/seed001/map_table.py", "--stiffness", "docs/seed001/stiffness.json"),
     "seed_drum": lambda: script("tools/seed000/study_table.py", "docs/seed000/seed_drum_table.json"),
