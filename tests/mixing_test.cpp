@@ -208,14 +208,7 @@ namespace {
 
 constexpr double kR = 0.05;  // m, drum radius
 
-gf::DrumSection drum_z() {
-  gf::Wall w;
-  w.kind = gf::Wall::Kind::CylinderInner;
-  w.cur_center = {0, 0, 0};
-  w.cur_axis = {0, 0, 1};
-  w.radius = kR;
-  return gf::drum_section(w, {0, -9.81, 0});
-}
+gf::DrumSection drum_z() { return gf::test::drum_section_z(kR); }
 
 // A bed filling the lower half of the drum: 1 mm grains on the lattice inside radius R - 1 mm and
 // below the axis, three layers deep along the axis (about 11,300 grains). `label(rho)` gives each

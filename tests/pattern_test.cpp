@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "systems/fill/state_csv.hpp"
+#include "tests/test_support.hpp"
 
 using gf::PatternKind;
 
@@ -27,14 +28,7 @@ struct Bed {
   gf::PatternGrains view() const { return {x, y, z, r, type}; }
 };
 
-gf::DrumSection section() {
-  gf::Wall w;
-  w.kind = gf::Wall::Kind::CylinderInner;
-  w.cur_center = {0, 0, 0};
-  w.cur_axis = {0, 0, 1};
-  w.radius = kR;
-  return gf::drum_section(w, {0, -9.81, 0});
-}
+gf::DrumSection section() { return gf::test::drum_section_z(kR); }
 
 // The bed: below a free surface through (0, h) rising at `tilt` (rad) towards +x, inside the drum.
 struct Surface {

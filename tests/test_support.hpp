@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include "engine/grains.hpp"
+#include "systems/analysis/drum_section.hpp"
 #include "systems/contact/vec3.hpp"
 
 namespace gf::test {
@@ -138,6 +139,17 @@ inline void record_analytic(const AnalyticCheck& c) {
                 csv_field(c.case_name) + "," + csv_field(c.quantity) + "," + csv_field(c.closed_form) + "," +
                     csv_number(c.reference, 10) + "," + csv_number(c.measured, 10) + "," + csv_number(c.error, 4) +
                     "," + kind + "," + csv_number(c.tolerance, 4));
+}
+
+// The cross-section frame of a drum of `radius` (m) about the z axis through the origin, gravity
+// along -y: the frame the pattern and mixing tests place their synthetic beds in.
+inline DrumSection drum_section_z(double radius) {
+  Wall w;
+  w.kind = Wall::Kind::CylinderInner;
+  w.cur_center = {0, 0, 0};
+  w.cur_axis = {0, 0, 1};
+  w.radius = radius;
+  return drum_section(w, {0, -9.81, 0});
 }
 
 // Random velocities (each component uniform in [-max_speed, max_speed]) and spins (uniform in
