@@ -135,7 +135,7 @@ def report(out, docs):
     if not table:
         return
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.8))
     for ax, key, title, cmap, lim in ((axes[0], "lacey", "Lacey index M (1 mixed, 0 segregated)", "viridis", (0, 1)),
                                       (axes[1], "radial", "radial index (+: large at the periphery)", "coolwarm", (-1, 1))):
         grid = np.full((len(DENSITY_RATIOS), len(SIZE_RATIOS)), np.nan)
@@ -164,7 +164,7 @@ def report(out, docs):
             keep = rr <= DENSITY_RATIOS[-1]
             ax.plot(to_index(ss[keep], SIZE_RATIOS), to_index(rr[keep], DENSITY_RATIOS), "k" + style, lw=0.8,
                     label=f"(d_L/d_S)^{k}")
-        ax.legend(fontsize=6, loc="lower right")
+        ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3)
     fig.suptitle(f"Kiln slice, {REVS:g} revolutions, mean over the last {AVERAGE_REVS:g}", fontsize=10)
     fig.tight_layout()
     fig.savefig(docs / "map.png", dpi=110)
