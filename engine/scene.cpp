@@ -519,6 +519,25 @@ std::vector<double> SceneNode::get_doubles(std::string_view key) const {
   return SceneAccess::numbers(*this, *n, key, "an array of numbers", "[1.0, 2.0]");
 }
 
+std::vector<std::array<double, 3>> SceneNode::get_vec3_list(std::string_view key) const {
+  const toml::node* n = SceneAccess::find(*this, key);
+  if (!n) SceneAccess::missing(*this, key);
+  SceneAccess::mark(*this, n);
+  const std::string fix = "write it as `" + key_text(key) + " = [[x, y, z], ...]`";
+  const toml::array* a = n->as_array();
+  if (!a || a->empty()) SceneAccess::fail_node(*this, *n, path(key), "expected a non-empty list of [x, y, z]", fix);
+  std::vector<std::array<double, 3>> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    const auto v = SceneAccess::numbers(*this, e, key, "an array of 3 numbers [x, y, z]", "[[0.0, 0.0, 1.0]]");
+    if (v.size() != 3)
+      SceneAccess::fail_node(*this, e, path(key) + "[" + std::to_string(i) + "]",
+                             "expected 3 numbers [x, y, z], got " + std::to_string(v.size()), fix);
+    out.push_back({v[0], v[1], v[2]});
+  }
+  return out;
+}
+
 SceneNode SceneNode::table(std::string_view key) const {
   const toml::node* n = SceneAccess::find(*this, key);
   if (!n) {

@@ -82,6 +82,8 @@ class SceneNode {
   std::array<double, 3> get_vec3(std::string_view key) const;  // array of exactly 3 finite numbers
   std::array<double, 3> get_vec3(std::string_view key, std::array<double, 3> fallback) const;
   std::vector<double> get_doubles(std::string_view key) const;  // array of finite numbers, any length
+  // A non-empty array of [x, y, z] arrays, e.g. positions = [[0, 1, 0], [0, 2, 0]].
+  std::vector<std::array<double, 3>> get_vec3_list(std::string_view key) const;
 
   SceneNode table(std::string_view key) const;  // required sub-table ([a.b] or a = { ... })
   std::optional<SceneNode> maybe_table(std::string_view key) const;

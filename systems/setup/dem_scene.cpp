@@ -336,6 +336,8 @@ void read_analysis(DemScene& s, const SceneNode& root) {
 
 }  // namespace
 
+Region read_fill_region(const SceneNode& node, const Gravity& g) { return read_region(node, g); }
+
 std::int64_t DemScene::main_steps() const { return static_cast<std::int64_t>(std::llround(duration / dt)); }
 std::int64_t DemScene::settle_steps() const { return static_cast<std::int64_t>(std::llround(settle_time / dt)); }
 
@@ -354,6 +356,8 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   const auto g = run.get_vec3("gravity", {0, -9.81, 0});
   require_acceleration(run, "gravity", g);
   s.gravity = {g[0], g[1], g[2]};
+  const bool with_bodies = scene_has_bodies(root);
+  if (with_bodies) require_body_scene(root);
 
   for (const SceneNode& sp : root.tables("species")) {
     SpeciesSpec spec;
@@ -370,7 +374,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
     spec.rotates = sp.get_bool("rotates", true);
     s.species.push_back(spec);
   }
-  if (s.species.empty())
+  if (s.species.empty() && !with_bodies)
     root.fail("species", "the scene defines no species",
               "add [[species]] with name, diameter (m) and density (kg/m^3)");
   if (s.species.size() > static_cast<std::size_t>(kMaxSpecies))
@@ -380,6 +384,10 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   s.law = ct.get_choice("model", law_names());
   with_law(s.law, [&]<class Law>() { read_contacts<Law>(s, root, ct); });
   s.critical = s.contacts->critical_period();
+  if (with_bodies) {
+    s.bodies = std::make_shared<const BodiesSpec>(read_bodies(s, root));
+    s.critical = s.bodies->critical;
+  }
 
   const double limit = s.dt_safety * s.critical.period;
   if (s.dt > limit && !s.allow_unstable_dt)
@@ -392,7 +400,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   read_periodic(s, root);
 
   if (auto settle = root.maybe_table("settle")) s.settle_time = settle->get_double("time", Range::non_negative());
-  read_fills(s, root);
+  if (!with_bodies) read_fills(s, root);
 
   const bool has_duration = run.has("duration"), has_angle = run.has("end_angle");
   if (has_duration == has_angle)
@@ -450,6 +458,10 @@ ForceTerms dem_force_terms(const DemScene& scene) {
 }
 
 void schedule_dem_step(Schedule& step, const DemScene& scene) {
+  if (scene.bodies) {
+    schedule_body_step(step, scene);
+    return;
+  }
   const std::string& law = scene.law;
   step.emplace<IntegratePositions>(dem_force_terms(scene));
   step.emplace<Broadphase>();
@@ -551,7 +563,27 @@ void require_apart(const DemScene& s, const std::vector<PlacedGrain>& placed, co
 
 }  // namespace
 
+namespace {
+
+// A scene of composite grains only: no grain rows, and the resources the step and its priming read.
+void build_bodies_only(const DemScene& s, World& world) {
+  world.grains.spin = false;
+  world.grains.resize(0);
+  world.grains.extras.attach<WallHistory>(0).shape(s.walls.size(), 0);
+  world.clock = Clock{0.0, s.dt, 0};
+  world.resources.emplace<Gravity>(s.gravity);
+  world.resources.emplace<Walls>().list = s.walls;
+  with_law(s.law, [&]<class Law>() { set_layout(world.resources.emplace<PairHistory>(), Law::history()); });
+  build_body_world(s, world);
+}
+
+}  // namespace
+
 void build_dem_world(const DemScene& s, World& world) {
+  if (s.bodies) {
+    build_bodies_only(s, world);
+    return;
+  }
   require_memory(s, planned_grain_count(s));
   Grains& g = world.grains;
   std::vector<PlacedGrain> placed;

@@ -18,6 +18,7 @@
 #include "systems/output/drum_picture.hpp"
 #include "systems/output/vtk_frames.hpp"
 #include "systems/periodic/periodic_images.hpp"
+#include "systems/setup/dem_body_scene.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -84,6 +85,7 @@ struct DemScene {
   // least this many grains (systems/analysis/mixing.hpp).
   double mixing_cell = 0;  // m
   int mixing_min_grains = 10;
+  std::shared_ptr<const BodiesSpec> bodies;  // [[shape]] and [[bodies]]; null when the scene has none
   bool pattern = false;  // moon/petal classifier and free-surface angle: a drum and two species
 
   std::int64_t main_steps() const;
@@ -98,6 +100,9 @@ struct DemScene {
 
 // Reads and validates everything; throws SceneError naming file, line, key and fix.
 DemScene load_dem_scene(const SceneDoc& doc);
+
+// A [[fill]]'s region table (box or cylinder; a cylinder's max_height measured against gravity).
+Region read_fill_region(const SceneNode& node, const Gravity& g);
 
 // The DEM systems of one step in phase order, with the drivers of the scene's contact law.
 // The force terms the DEM step's integrator sums: pair contacts, then walls (when the scene has any).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <type_traits>
 
+#include "systems/bodies/body_contact.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
 #include "systems/walls/walls.hpp"
@@ -41,6 +42,10 @@ void DemSimulation::prime() {
   for_each_column(world_->grains.extras.get<WallHistory>(), [](auto& c) {
     std::fill(c.begin(), c.end(), typename std::decay_t<decltype(c)>::value_type{});
   });
+  if (BodyContactState* b = world_->resources.find<BodyContactState>()) {
+    b->history.clear();
+    std::fill(b->walls.value.begin(), b->walls.value.end(), 0.0);
+  }
 }
 
 StageReport DemSimulation::settle(double progress_seconds) {

@@ -1,0 +1,70 @@
+// Composite grains in a DEM scene: the [[shape]] and [[bodies]] tables read and validated, the
+// Bodies and Members tables built from them, and the bodies' step. Keys (SI units):
+//   [[shape]]   name; kind = "box" (size = [x, y, z]), "triangular_prism" (side, length),
+//               "up_down_cone" (base_radius, neck_radius, height, facets = 12, join = "narrow_ends" or
+//               "wide_ends"), "letter" (letter = O T Z K A C, width, height, depth, stroke), "file"
+//               (path of an .obj or .stl, relative to the scene); radius (dilation, m, >= 0; > 0 under
+//               hertz_mindlin); density (kg/m^3); grid (voxel edge of the mass properties, m, default a
+//               tenth of the shape's smallest bounding-box edge); under hertz_mindlin also
+//               youngs_modulus and poisson_ratio, the same for every shape (one material for all bodies).
+//   [[bodies]]  shape (a [[shape]] name); positions = [[x, y, z], ...] (centres of mass) or count with
+//               region = { shape = "box", lo, hi } or a cylinder as a random fill's (bounding spheres
+//               kept apart; optional seed); orientation = "identity" (default) or "random"; velocity.
+// Bodies touch each other member by member and the scene's plane and box walls (static: no omega),
+// with the [contact] law. Not yet in one scene with bodies: spheres ([[species]], [[fill]]), cylinder
+// and drum walls, rotating planes, [periodic], [output] and [analysis]; such scenes are refused.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/scene.hpp"
+#include "engine/schedule.hpp"
+#include "engine/world.hpp"
+#include "systems/bodies/body_shapes.hpp"
+#include "systems/bodies/mass_properties.hpp"
+#include "systems/contact/contact_table.hpp"
+
+namespace gf {
+
+struct DemScene;
+
+struct BodyShape {
+  std::string name;
+  int line = 0;
+  ShapeSpec shape;
+  MassProperties props;
+  double bound = 0;  // m, a sphere about the centre of mass holding the dilated shape
+};
+
+struct BodyPlacement {
+  std::size_t shape = 0;
+  int line = 0;
+  std::array<double, 3> x{};                    // m, centre of mass
+  std::array<double, 4> q{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z), the shape frame to the world
+  std::array<double, 3> v{};                    // m/s
+};
+
+struct BodiesSpec {
+  int line = 0;  // the first [[bodies]] table
+  std::vector<BodyShape> shapes;
+  std::vector<BodyPlacement> placed;
+  CriticalStep critical{0.0, ""};
+  std::function<void(World&)> install_model;  // emplaces BodyContactModel<L> of the scene's law
+  std::function<void(Schedule&)> schedule_contacts;  // BodyContact<L>
+};
+
+// Whether the scene has [[bodies]] tables.
+bool scene_has_bodies(const SceneNode& root);
+// Refuses (SceneError) what bodies cannot share a scene with yet; call before the walls are read.
+void require_body_scene(const SceneNode& root);
+// Reads [[shape]] and [[bodies]] with the scene's [contact] law (s.law, s.seed, s.gravity set).
+BodiesSpec read_bodies(const DemScene& s, const SceneNode& root);
+// The Bodies and Members tables, the planes and the contact state, and the resources the step reads.
+void build_body_world(const DemScene& s, World& world);
+// The bodies' step: integrator halves around the members' placement and the contacts.
+void schedule_body_step(Schedule& step, const DemScene& s);
+
+}  // namespace gf
