@@ -509,6 +509,7 @@ void require_memory(const DemScene& scene, std::size_t n) {
 // small diameter); for a larger skin, the grains of the smallest size within reach d + skin of one,
 // at the random-close-packing fraction, counted once per pair, and never more than the other grains.
 std::size_t list_pairs_per_grain(const DemScene& scene, std::size_t n) {
+  if (scene.species.empty()) return 0;  // a scene of composite grains only
   double d_min = scene.species.front().diameter;
   for (const SpeciesSpec& sp : scene.species) d_min = std::min(d_min, sp.diameter);
   const double reach = (d_min + scene.skin) / d_min;
