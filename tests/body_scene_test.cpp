@@ -10,6 +10,7 @@
 #include "engine/scene.hpp"
 #include "systems/bodies/bodies.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -108,4 +109,19 @@ TEST_CASE("bodies placed by count in a region keep their bounding spheres apart"
     for (std::size_t j = i + 1; j < b.n; ++j)
       CHECK(std::hypot(b.pos.x[i] - b.pos.x[j], b.pos.y[i] - b.pos.y[j], b.pos.z[i] - b.pos.z[j]) >= 2 * bound);
   sim.advance(100);
+}
+
+TEST_CASE("body scene: grainflow check and run refuse bodies alike, naming the table and the fix", "[bodies][cli]") {
+  gf::test::TempDir dir("body_scene_cli");
+  const auto scene = dir.write("bodies.toml", kScene);
+  for (const char* command : {"check", "run"}) {
+    const std::string out = (dir.path / "out").string();
+    const gf::test::Exit e = gf::test::run_cli(
+        dir, std::string(command) + " " + gf::test::quote(scene.string()) +
+                 (std::string(command) == "run" ? " --out " + gf::test::quote(out) : std::string()));
+    INFO(command << ": " << e.err);
+    CHECK(e.exited);
+    CHECK(e.code != 0);
+    CHECK_THAT(e.err, Catch::Matchers::Contains("[[bodies]]") && Catch::Matchers::Contains("Fix:"));
+  }
 }
