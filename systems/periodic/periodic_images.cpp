@@ -111,12 +111,10 @@ void fold_image_forces(Grains& g, const PeriodicImages& im) {
     g.force.x[o] += g.force.x[r];
     g.force.y[o] += g.force.y[r];
     g.force.z[o] += g.force.z[r];
-    g.force.x[r] = g.force.y[r] = g.force.z[r] = 0.0;
     if (!g.spin) continue;
     g.torque.x[o] += g.torque.x[r];
     g.torque.y[o] += g.torque.y[r];
     g.torque.z[o] += g.torque.z[r];
-    g.torque.x[r] = g.torque.y[r] = g.torque.z[r] = 0.0;
   }
 }
 

@@ -14,7 +14,7 @@
 //
 // Systems: PeriodicRefresh (after the broadphase, before the contacts) writes the image rows'
 // Position, Velocity, AngularVelocity; PeriodicFold (after the contacts) adds image rows' Force and
-// Torque into their owners and zeroes them.
+// Torque into their owners.
 #pragma once
 
 #include <array>
@@ -51,7 +51,8 @@ void make_images(Grains& g, PeriodicImages& im, double reach);
 // Position + shift, velocity and spin of every image from its owner.
 void refresh_images(Grains& g, const PeriodicImages& im);
 
-// Adds each image row's Force and Torque into its owner's, in image order, and zeroes the image's.
+// Adds each image row's Force and Torque into its owner's, in image order (the pair kernel starts the
+// image rows from zero at each evaluation).
 void fold_image_forces(Grains& g, const PeriodicImages& im);
 
 // The owned row a row stands for: itself, or an image's owner.
