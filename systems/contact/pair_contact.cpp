@@ -152,6 +152,12 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
   st.t[5][c - st.c0] = sc.lj * nxf.z + res.torque_j.z;
 }
 
+// The slab that sums row j's partner sides: the owned rows' slabs of `rows` rows, then the ghost
+// rows' (from the first row past the n owned ones).
+inline std::size_t target_slab(std::size_t j, std::size_t n, std::size_t rows) {
+  return j < n ? j / rows : (n + rows - 1) / rows + (j - n) / rows;
+}
+
 // Sums into Force and Torque by slabs of owner rows. A slab's contacts are one run of the packed
 // list (contacts keep list order, rows own list runs); each adds to its owner and, when the partner
 // is in the same slab (partners are later rows), to the partner too, in contact order. A partner in
@@ -160,12 +166,6 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
 // records that stay in cache, then written to the Force and Torque columns once. Plain restrict
 // pointers held in locals, so that the stores into the records are not taken to change the
 // columns read.
-// The slab that sums row j's partner sides: the owned rows' slabs of `rows` rows, then the ghost
-// rows' (from the first row past the n owned ones).
-inline std::size_t target_slab(std::size_t j, std::size_t n, std::size_t rows) {
-  return j < n ? j / rows : (n + rows - 1) / rows + (j - n) / rows;
-}
-
 struct SlabSums {
   double* __restrict F[3];
   double* __restrict T[3];
