@@ -79,19 +79,31 @@ def steady(series):
     return {k: (float(np.nanmean(tail[k])), float(np.nanstd(tail[k]))) for k in ("lacey_index", "radial_segregation")}
 
 
+def resolved(case):
+    """Whether a case's mean radial index stands out of its own fluctuation over the averaging window."""
+    mean, std = case["radial"]
+    return abs(mean) > std
+
+
 def balance_line(table):
     """Per size ratio, the density ratio where the mean radial index changes sign (linear interpolation
-    in log density ratio), or None when it keeps one sign over the map's density ratios."""
+    in log density ratio) between two cases whose means both stand out of their fluctuation, or
+    nothing when no such pair brackets zero over the map's density ratios."""
     line = []
     for s in SIZE_RATIOS:
         pts = sorted((r, table[case_name(s, r)]["radial"][0]) for r in DENSITY_RATIOS
-                     if case_name(s, r) in table)
+                     if case_name(s, r) in table and resolved(table[case_name(s, r)]))
         for (r0, y0), (r1, y1) in zip(pts, pts[1:]):
-            if y0 == 0 or y0 * y1 < 0:
+            if y0 * y1 < 0:
                 f = y0 / (y0 - y1)
                 line.append((s, math.exp(math.log(r0) + f * (math.log(r1) - math.log(r0)))))
                 break
     return line
+
+
+def near_zero(table):
+    """The cases whose mean radial index lies within its fluctuation of zero: (size ratio, density ratio)."""
+    return sorted((c["size_ratio"], c["density_ratio"]) for c in table.values() if not resolved(c))
 
 
 def report(out, docs):
@@ -127,7 +139,7 @@ def report(out, docs):
         y = np.log([r for _, r in pos])
         fit = float(np.sum(x * y) / np.sum(x * x))  # rho_L/rho_S = (d_L/d_S)^k through (1, 1)
     result = {"revolutions": REVS, "average_revolutions": AVERAGE_REVS, "cases": table,
-              "balance_line": line, "balance_exponent": fit,
+              "balance_line": line, "balance_exponent": fit, "radial_near_zero": near_zero(table),
               "complete": len(table), "of": len(SIZE_RATIOS) * len(DENSITY_RATIOS)}
     docs.mkdir(parents=True, exist_ok=True)
     (docs / "map.json").write_text(json.dumps(result, indent=1))

@@ -36,6 +36,10 @@ def map_table(m):
                     f"{min(per_cell):.0f} to {max(per_cell):.0f} grains on average; Lacey index after settling, before "
                     f"rotation: {min(start):.2f} to {max(start):.2f}; wall time {wall / 3600:.2f} h on one core "
                     f"({sum(c['wall_seconds'] for c in done) / len(done) / 60:.1f} min per case).")
+    if m.get("radial_near_zero"):
+        pts = ", ".join(f"({s:g}, {r:g})" for s, r in m["radial_near_zero"])
+        rows.append(f"Radial index within its fluctuation (standard deviation over the window) of 0 at "
+                    f"(d_L/d_S, rho_L/rho_S): {pts}; sign changes are read only between cases outside it.")
     if m["balance_line"]:
         pts = ", ".join(f"({s:g}, {r:.2f})" for s, r in m["balance_line"])
         rows.append(f"Radial index = 0 at (d_L/d_S, rho_L/rho_S): {pts}"
