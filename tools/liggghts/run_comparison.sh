@@ -19,7 +19,8 @@
 #   LIGGGHTS:  wall = its "Loop time" (the run loop only), particle-steps/s = steps x atoms / wall
 #   grainflow: wall = summary.json wall_seconds (the main stage only), particle_steps_per_second
 # Environment: STATE (settled), STEPS (2000), REPEATS (2), WORK (work folder; default a new /tmp/liggghts_cmp.*),
-#              ROLLING (LIGGGHTS rolling model for make_inputs.py, default epsd).
+#              ROLLING (LIGGGHTS rolling model for make_inputs.py, default epsd),
+#              SKIN (Verlet skin in m given to both codes; default the scene's, 1.5e-4).
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -30,6 +31,7 @@ REPEATS="${REPEATS:-2}"
 ROLLING="${ROLLING:-epsd}"
 WORK="${WORK:-$(mktemp -d /tmp/liggghts_cmp.XXXXXX)}"
 STATE="${STATE:-settled}"
+SKIN="${SKIN:-1.5e-4}"
 case "$STATE" in
   settled)   SCENE="scenes/drum_seed000_settled.toml";            CSV="scenes/data/drum_settled_47108.csv" ;;
   flowing)   SCENE="scenes/drum_seed000_flowing.toml";            CSV="scenes/data/drum_flowing_t1.5s_47108.csv" ;;
@@ -48,9 +50,9 @@ echo "# run_comparison: $(date -u +%Y-%m-%dT%H:%M:%SZ), $(nproc --all) cores, lo
 export OMP_NUM_THREADS=1
 echo "# grainflow: $BUILD/grainflow (built $(date -u -r "$BUILD/grainflow" +%H:%M:%SZ 2>/dev/null || echo '?')), repo $(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo '?')$(git -C "$REPO" diff --quiet 2>/dev/null || echo ' (working tree modified)')"
 echo "# LIGGGHTS: $(command -v liggghts) ($(dpkg-query -W -f='${Version}' liggghts 2>/dev/null || echo '?')), rolling_friction $ROLLING"
-echo "# state $STATE: $SCENE ($CSV); $STEPS steps per run, $REPEATS rounds, work folder $WORK"
+echo "# state $STATE: $SCENE ($CSV); $STEPS steps per run, $REPEATS rounds, skin $SKIN m, work folder $WORK"
 
-"$PY" "$HERE/make_inputs.py" "$WORK/inputs" --steps "$STEPS" --rolling "$ROLLING" --csv "$REPO/$CSV"
+"$PY" "$HERE/make_inputs.py" "$WORK/inputs" --steps "$STEPS" --rolling "$ROLLING" --csv "$REPO/$CSV" --skin "$SKIN"
 
 # The build folder may be rebuilt by others while this runs: wait (up to 10 min) for the binary.
 wait_for_grainflow() {
@@ -89,7 +91,7 @@ run_grainflow() {  # threads round
     t0=$EPOCHREALTIME
     c0=$(ticks)
     rc=0
-    (cd "$REPO" && "$BUILD/grainflow" run "$SCENE" --steps "$STEPS" --threads "$n" --quiet --out "$out" \
+    (cd "$REPO" && "$BUILD/grainflow" run "$SCENE" --steps "$STEPS" --threads "$n" --quiet --out "$out" --set "run.skin=$SKIN" \
         > "$out.log" 2>&1) || rc=$?
     [ "$rc" -eq 0 ] && break
     tries=$((tries + 1))
