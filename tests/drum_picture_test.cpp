@@ -302,7 +302,7 @@ TEST_CASE("picture: a run draws each requested angle once it is reached, and rep
     const auto rows = gf::test::read_lines(out / "series.csv");
     REQUIRE(rows.size() > 1);
     CHECK(rows[0].ends_with(",segregation_index,lacey_index,lacey_cell_grains,pattern,petals,pattern_contrast,"
-                            "surface_angle,radial_segregation"));
+                            "surface_angle,radial_segregation,depth_segregation"));
     fs::remove_all(out);
   }
 }

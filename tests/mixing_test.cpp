@@ -1,4 +1,4 @@
-// Lacey's mixing index and the drum's radial segregation index (systems/analysis/mixing.hpp) on
+// Lacey's mixing index and the drum's radial and depth segregation indices (systems/analysis/mixing.hpp) on
 // synthetic beds whose mixing is known by construction: grains on a cubic lattice of 1 mm pitch,
 // labelled by their place (segregated) or at random with a fixed seed (mixed). The lattice keeps
 // the number of grains per cell fixed, so the statistics of a random bed are those of binomial
@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "systems/analysis/metrics.hpp"
+#include "systems/analysis/pattern.hpp"
 #include "systems/setup/dem_scene.hpp"
 #include "tests/test_support.hpp"
 
@@ -306,6 +307,104 @@ TEST_CASE("radial segregation: undefined without species A or without a peripher
 }
 
 // ---------------------------------------------------------------------------------------------------------------------
+// Depth segregation against the free surface
+
+namespace {
+
+// The half-drum lattice labelled by place: `label(x, y)`. Its free surface is flat at y = 0 (the
+// top row's centres at -0.5 mm, radius 0.5 mm). The deepest half of its area lies below
+// h = 0.404 R (the circular segment below y = -h has area R^2 acos(h/R) - h sqrt(R^2 - h^2), a
+// quarter of pi R^2 there), so the split falls near y = -0.40 R on the lattice too.
+std::vector<Grain> half_drum_xy(const std::function<std::int32_t(double, double)>& label) {
+  auto out = half_drum([](double) { return kB; });
+  for (Grain& g : out) g.type = label(g.x, g.y);
+  return out;
+}
+
+// The pattern classifier's fit of the surface (pattern.hpp), as the series feeds it to the index.
+gf::DepthSegregation depth_of(const std::vector<Grain>& list, const gf::DrumSection& drum) {
+  const gf::Grains g = table_of(list);
+  const std::size_t n = g.n_owned;
+  const gf::PatternGrains pg{{g.pos.x.data(), n}, {g.pos.y.data(), n}, {g.pos.z.data(), n},
+                             {g.radius.r.data(), n}, {g.species.type.data(), n}};
+  const gf::Pattern p = gf::classify_pattern(pg, drum);
+  return gf::depth_segregation(g, kA, drum, p.surface_angle, p.surface_level);
+}
+
+}  // namespace
+
+TEST_CASE("depth segregation: layers under a flat surface give +1 and -1", "[mixing]") {
+  // The fitted surface of the lattice is the line v = 0 (every column's top is at 0).
+  const auto flat = table_of(half_drum_xy([](double, double) { return kB; }));
+  const std::size_t n = flat.n_owned;
+  const gf::Pattern p = gf::classify_pattern({{flat.pos.x.data(), n}, {flat.pos.y.data(), n}, {flat.pos.z.data(), n},
+                                              {flat.radius.r.data(), n}, {flat.species.type.data(), n}},
+                                             drum_z());
+  CHECK(p.surface_angle == Approx(0.0).margin(1e-12));
+  CHECK(p.surface_level == Approx(0.0).margin(1e-12));
+  // A below 0.5 R lies inside the deep half: the shallow half holds none.
+  const gf::DepthSegregation deep = depth_of(half_drum_xy([](double, double y) { return y < -0.5 * kR ? kA : kB; }),
+                                             drum_z());
+  CHECK(deep.split_depth == Approx(0.404 * kR).margin(2.0 * kPitch));
+  CHECK(deep.shallow_fraction == 0.0);
+  CHECK(deep.index == 1.0);
+  // A above 0.3 R of depth lies inside the shallow half.
+  const gf::DepthSegregation top = depth_of(half_drum_xy([](double, double y) { return y > -0.3 * kR ? kA : kB; }),
+                                            drum_z());
+  CHECK(top.deep_fraction == 0.0);
+  CHECK(top.index == -1.0);
+}
+
+TEST_CASE("depth segregation: a tilted surface is measured across its own slope", "[mixing]") {
+  // The bed and its layers turned by 20 degrees about the axis (a rolling bed's slope): depth is
+  // taken perpendicular to the fitted line, so A deep under the tilted surface still gives +1.
+  // Read against a horizontal line instead, the same layers cross the split and give less.
+  const double a = 20.0 * std::numbers::pi / 180.0, c = std::cos(a), s = std::sin(a);
+  auto list = half_drum_xy([](double, double y) { return y < -0.5 * kR ? kA : kB; });
+  for (Grain& g : list) {
+    const double x = g.x, y = g.y;
+    g.x = c * x - s * y;
+    g.y = s * x + c * y;
+  }
+  const gf::Grains g = table_of(list);
+  const gf::DepthSegregation along = gf::depth_segregation(g, kA, drum_z(), a, 0.0);
+  CHECK(along.index == 1.0);
+  const gf::DepthSegregation level = gf::depth_segregation(g, kA, drum_z(), 0.0, 0.0);
+  CHECK(level.index < 0.9);
+  // The fit of the turned lattice's top finds that slope to within a degree (its columns are 2 mm
+  // wide; the lattice's turned steps are a pitch high).
+  const gf::DepthSegregation fitted = depth_of(list, drum_z());
+  CHECK(fitted.index == 1.0);
+}
+
+TEST_CASE("depth segregation: a core reads near 0 where the radial index reads -1", "[mixing]") {
+  // A within 0.3 R of the centroid (0.42 R deep): the depth split (0.40 R) cuts that disc near its
+  // middle, about 54 % of its area below, so the index is (0.54 - 0.46) / 1 = 0.08 to first
+  // order; 0.15 bounds it with the lattice's steps. The radial index of the same bed is -1: the
+  // two indices tell a core from layers.
+  const auto core = half_drum([](double rho) { return rho < 0.3 * kR ? kA : kB; });
+  const gf::DepthSegregation d = depth_of(core, drum_z());
+  CHECK(std::abs(d.index) < 0.15);
+  CHECK(gf::radial_segregation(table_of(core), kA, drum_z()).index == -1.0);
+}
+
+TEST_CASE("depth segregation: a random bed gives about 0, and no surface gives NaN", "[mixing]") {
+  // As for the radial index: halves of N / 2 grains of one size, sigma = sqrt((1 - q) / (N q)).
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double q = 0.3;
+  const auto list = half_drum([&](double) { return u(rng) < q ? kA : kB; });
+  const gf::DepthSegregation d = depth_of(list, drum_z());
+  const double sigma = std::sqrt((1.0 - q) / (static_cast<double>(list.size()) * q));
+  INFO("index " << d.index << ", sigma " << sigma);
+  CHECK(std::abs(d.index) < 4.0 * sigma);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CHECK(std::isnan(gf::depth_segregation(table_of(list), kA, drum_z(), nan, 0.0).index));
+  CHECK(std::isnan(gf::depth_segregation(table_of(list), kA, drum_z(), 0.0, nan).index));
+  CHECK(std::isnan(depth_of(half_drum([](double) { return kB; }), drum_z()).index));
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
 // The scene's [analysis] keys, and the measures in series.csv and summary.json
 
 namespace {
@@ -377,7 +476,8 @@ TEST_CASE("mixing outputs: series.csv and summary.json carry the measures, and a
   REQUIRE(rows.size() == 1 + 14);
   CHECK(rows[0] ==
         "time,angle,ke_translational,ke_rotational,contacts,wall_contacts,max_overlap_ratio,segregation_index,"
-        "lacey_index,lacey_cell_grains,pattern,petals,pattern_contrast,surface_angle,radial_segregation");
+        "lacey_index,lacey_cell_grains,pattern,petals,pattern_contrast,surface_angle,radial_segregation,"
+        "depth_segregation");
   CHECK(gf::test::read_file(two / "series.csv") == gf::test::read_file(one / "series.csv"));
 
   const auto final_values = nlohmann::json::parse(gf::test::read_file(one / "summary.json")).at("final");
@@ -386,6 +486,8 @@ TEST_CASE("mixing outputs: series.csv and summary.json carry the measures, and a
   CHECK(final_values.at("lacey_cell_grains").get<double>() >= 0.0);
   const double radial = final_values.at("radial_segregation").get<double>();
   CHECK(std::abs(radial) <= 1.0);
+  const double depth = final_values.at("depth_segregation").get<double>();
+  CHECK(std::abs(depth) <= 1.0);
 }
 
 TEST_CASE("mixing outputs: a binary mixture without a drum has Lacey's columns and no radial one", "[mixing][cli]") {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -49,14 +50,44 @@ Section section_of(const Grains& g, const DrumSection& drum) {
   return s;
 }
 
-// Rows in order of distance from the centroid, ties by id, so the split does not depend on row order.
-std::vector<std::size_t> by_distance(const Grains& g, const Section& s) {
-  std::vector<std::size_t> order(s.rho2.size());
+// The volume fraction of A in the half of the bed (by solid volume) with the smallest keys, and in
+// the other half. Rows are taken in order of key, ties by id, so the split does not depend on row
+// order; the first half ends with the row at which its volume first reaches half the bed's.
+struct HalfSplit {
+  double first = std::numeric_limits<double>::quiet_NaN();   // phi of the first half (smallest keys)
+  double second = std::numeric_limits<double>::quiet_NaN();  // phi of the rest; NaN when empty
+  double last_key = 0.0;                                     // the key of the first half's last row
+};
+
+HalfSplit split_half(const Grains& g, std::int32_t type_a, const std::vector<double>& key,
+                     const std::vector<double>& vol, double total) {
+  std::vector<std::size_t> order(key.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return s.rho2[a] != s.rho2[b] ? s.rho2[a] < s.rho2[b] : g.pid.id[a] < g.pid.id[b];
+    return key[a] != key[b] ? key[a] < key[b] : g.pid.id[a] < g.pid.id[b];
   });
-  return order;
+  double first = 0.0, first_a = 0.0, second = 0.0, second_a = 0.0;
+  HalfSplit out;
+  for (const std::size_t i : order) {
+    const double a = g.species.type[i] == type_a ? vol[i] : 0.0;
+    if (first < 0.5 * total) {
+      first += vol[i];
+      first_a += a;
+      out.last_key = key[i];
+    } else {
+      second += vol[i];
+      second_a += a;
+    }
+  }
+  if (first > 0.0) out.first = first_a / first;
+  if (second > 0.0) out.second = second_a / second;
+  return out;
+}
+
+// (phi_b - phi_a) / (phi_b + phi_a); NaN when undefined.
+double contrast_index(double phi_a, double phi_b) {
+  const double sum = phi_a + phi_b;
+  return sum > 0.0 ? (phi_b - phi_a) / sum : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
@@ -86,23 +117,36 @@ RadialSegregation radial_segregation(const Grains& g, std::int32_t type_a, const
   if (!(s.volume > 0.0)) return out;
   out.centre_u = s.u;
   out.centre_v = s.v;
-  double core = 0.0, core_a = 0.0, periphery = 0.0, periphery_a = 0.0;
-  for (const std::size_t i : by_distance(g, s)) {
-    const bool a = g.species.type[i] == type_a;
-    if (core < 0.5 * s.volume) {
-      core += s.vol[i];
-      core_a += a ? s.vol[i] : 0.0;
-      out.split_radius = std::sqrt(s.rho2[i]);
-    } else {
-      periphery += s.vol[i];
-      periphery_a += a ? s.vol[i] : 0.0;
-    }
+  const HalfSplit h = split_half(g, type_a, s.rho2, s.vol, s.volume);
+  out.split_radius = std::sqrt(h.last_key);
+  out.core_fraction = h.first;
+  out.periphery_fraction = h.second;
+  if (std::isfinite(h.second)) out.index = contrast_index(h.first, h.second);
+  return out;
+}
+
+DepthSegregation depth_segregation(const Grains& g, std::int32_t type_a, const DrumSection& drum,
+                                   double surface_angle, double surface_level) {
+  DepthSegregation out;
+  if (!std::isfinite(surface_angle) || !std::isfinite(surface_level)) return out;
+  const std::size_t n = g.n_owned;
+  std::vector<double> neg_depth(n), vol(n);
+  const double c = std::cos(surface_angle), sn = std::sin(surface_angle);
+  double total = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = drum.u(g.pos.x[i], g.pos.y[i], g.pos.z[i]), v = drum.v(g.pos.x[i], g.pos.y[i], g.pos.z[i]);
+    // Below the line v = level + u tan(a) by (level + u tan(a) - v) cos(a) = level cos(a) + u sin(a) - v cos(a).
+    neg_depth[i] = -(surface_level * c + u * sn - v * c);
+    vol[i] = grain_volume(g.radius.r[i]);
+    total += vol[i];
   }
-  out.core_fraction = core_a / core;
-  if (!(periphery > 0.0)) return out;
-  out.periphery_fraction = periphery_a / periphery;
-  const double sum = out.periphery_fraction + out.core_fraction;
-  if (sum > 0.0) out.index = (out.periphery_fraction - out.core_fraction) / sum;
+  if (!(total > 0.0)) return out;
+  // Smallest keys first: the deepest grains, then up to the surface.
+  const HalfSplit h = split_half(g, type_a, neg_depth, vol, total);
+  out.split_depth = -h.last_key;
+  out.deep_fraction = h.first;
+  out.shallow_fraction = h.second;
+  if (std::isfinite(h.second)) out.index = contrast_index(h.second, h.first);
   return out;
 }
 

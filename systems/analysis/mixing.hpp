@@ -1,5 +1,5 @@
-// Mixing measures of a binary mixture: Lacey's index over cubic sample cells, and a radial
-// segregation index for the cross-section of a rotating drum. Species A is one species (the scenes
+// Mixing measures of a binary mixture: Lacey's index over cubic sample cells, and a radial and a
+// depth segregation index for the cross-section of a rotating drum. Species A is one species (the scenes
 // take the larger one); every other grain counts as B. Both read volume fractions: the grains of a
 // binary mixture usually differ in size, and a fraction by number would weigh a large grain as
 // much as a small one.
@@ -78,5 +78,26 @@ struct RadialSegregation {
   double centre_u = 0.0, centre_v = 0.0;                                 // m, (u_c, v_c)
 };
 RadialSegregation radial_segregation(const Grains& g, std::int32_t type_a, const DrumSection& drum);
+
+// Layering against the free surface, which the radial index can miss: a bed whose heavy grains lie
+// under a light surface layer and along the wall has A both in the core and in the periphery about
+// the centroid, and reads as mixed there (seed 001's equal-size, unequal-density beds).
+//   depth_i    distance of grain i's centre below the free surface, perpendicular to it: the line
+//              v = level + u tan(angle) in the section plane (the fit of pattern.hpp)
+//   deep       the deepest grains, taken in order of depth (ties by id), up to the one with which
+//              their solid volume first reaches half of the bed's; shallow: the others
+//   index      (phi_deep - phi_shallow) / (phi_deep + phi_shallow), in [-1, 1]: +1 when A lies only
+//              in the deep half, -1 only in the shallow half, about 0 mixed.
+// A core of A (the radial index near -1) sits mid-depth and splits between the halves, so the two
+// indices together tell a core from layers. NaN when the surface is not known (NaN angle or level)
+// or the bed holds no A.
+struct DepthSegregation {
+  double index = std::numeric_limits<double>::quiet_NaN();
+  double deep_fraction = std::numeric_limits<double>::quiet_NaN();     // phi_deep
+  double shallow_fraction = std::numeric_limits<double>::quiet_NaN();  // phi_shallow
+  double split_depth = 0.0;                                            // m, depth of the deep half's last grain
+};
+DepthSegregation depth_segregation(const Grains& g, std::int32_t type_a, const DrumSection& drum,
+                                   double surface_angle, double surface_level);
 
 }  // namespace gf

@@ -14,16 +14,20 @@ namespace {
 
 constexpr int kRadialBins = 256;
 
-// Least-squares slope of the bed's top against u, as an angle; NaN with fewer than 3 columns.
-double surface_angle(const std::vector<std::array<double, 3>>& tops, const std::vector<int>& counts, double u0,
-                     double width) {
+// The least-squares line v = level + u tan(angle) through the bed's top; NaN (both) with fewer than 3 columns.
+struct SurfaceLine {
+  double angle = std::numeric_limits<double>::quiet_NaN();
+  double level = std::numeric_limits<double>::quiet_NaN();
+};
+SurfaceLine surface_line(const std::vector<std::array<double, 3>>& tops, const std::vector<int>& counts, double u0,
+                         double width) {
   int lo = -1, hi = -1;
   for (int c = 0; c < static_cast<int>(tops.size()); ++c)
     if (counts[c] >= 3) {
       if (lo < 0) lo = c;
       hi = c;
     }
-  if (lo < 0) return std::numeric_limits<double>::quiet_NaN();
+  if (lo < 0) return {};
   const double span = (hi - lo + 1) * width, a = u0 + lo * width + 0.2 * span, b = u0 + (hi + 1) * width - 0.2 * span;
   double n = 0, su = 0, sv = 0, suu = 0, suv = 0;
   for (int c = lo; c <= hi; ++c) {
@@ -37,8 +41,9 @@ double surface_angle(const std::vector<std::array<double, 3>>& tops, const std::
     suv += uc * v;
   }
   const double den = n * suu - su * su;
-  if (n < 3 || !(den > 0)) return std::numeric_limits<double>::quiet_NaN();
-  return std::atan((n * suv - su * sv) / den);
+  if (n < 3 || !(den > 0)) return {};
+  const double slope = (n * suv - su * sv) / den;
+  return {std::atan(slope), (sv - slope * su) / n};
 }
 
 }  // namespace
@@ -85,7 +90,9 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
     else if (top > t[2])
       t[2] = top;
   }
-  out.surface_angle = surface_angle(tops, col_count, -R, col_w);
+  const SurfaceLine top = surface_line(tops, col_count, -R, col_w);
+  out.surface_angle = top.angle;
+  out.surface_level = top.level;
   if (!(v_large > 0) || !(v_large < v_all)) return out;
   const double p = v_large / v_all;
   out.large_fraction = p;

@@ -26,7 +26,7 @@
 // The free-surface angle is a least-squares line through the top of the bed: in vertical columns
 // two large diameters wide (narrower if that leaves fewer than ten across the drum), the
 // third-highest grain top (v + r; so one or two grains in flight do not lift it), over the middle
-// 60 % of the bed's width (the ends curve up the wall).
+// 60 % of the bed's width (the ends curve up the wall); the line's level is reported with its angle.
 // Cost: two passes over the rows and an atan2 per band grain; no state between calls.
 #pragma once
 
@@ -56,6 +56,7 @@ struct Pattern {
   double contrast = 0;        // mean |s| over the band's arc: 0 mixed, 1 fully segregated
   double surface_angle = 0;   // rad, free surface to the horizontal, positive rising towards `right`
                               // (to the right in the pictures); NaN if the bed has no surface to fit
+  double surface_level = 0;   // m, v of the fitted surface line at u = 0 (on the drum axis); NaN with the angle
   double band_inner = 0;      // m, r_in
   double arc = 0;             // rad, the bed's arc in the band after trimming
   double noise = 0;           // sigma: spread of s a random mixture of this bed would show

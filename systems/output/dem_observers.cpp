@@ -35,7 +35,8 @@ SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
   if (mixing())
     for (const char* c : {"lacey_index", "lacey_cell_grains"}) columns.push_back(c);
   if (s_.pattern)
-    for (const char* c : {"pattern", "petals", "pattern_contrast", "surface_angle", "radial_segregation"})
+    for (const char* c : {"pattern", "petals", "pattern_contrast", "surface_angle", "radial_segregation",
+                          "depth_segregation"})
       columns.push_back(c);
   if (s_.resume_rows)
     csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, std::move(columns), *s_.resume_rows));
@@ -111,11 +112,13 @@ void SeriesOutput::sample_pattern(World& world, SeriesRow& row) const {
   row.pattern_contrast = p.contrast;
   row.surface_angle = p.surface_angle;
   row.radial_segregation = radial_segregation(g, s_.segregation_type, section).index;
+  row.depth_segregation =
+      depth_segregation(g, s_.segregation_type, section, p.surface_angle, p.surface_level).index;
 }
 
 // One csv row in the order of the constructor's columns.
 void SeriesOutput::write(const SeriesRow& row) {
-  std::array<double, 15> v{};
+  std::array<double, 16> v{};
   std::size_t k = 0;
   for (const double x : {row.time, row.angle, row.ke_translational, row.ke_rotational,
                          static_cast<double>(row.pair_contacts), static_cast<double>(row.wall_contacts),
@@ -125,7 +128,7 @@ void SeriesOutput::write(const SeriesRow& row) {
     for (const double x : {row.lacey_index, row.lacey_cell_grains}) v[k++] = x;
   if (s_.pattern)
     for (const double x : {static_cast<double>(row.pattern), static_cast<double>(row.petals), row.pattern_contrast,
-                           row.surface_angle, row.radial_segregation})
+                           row.surface_angle, row.radial_segregation, row.depth_segregation})
       v[k++] = x;
   csv_->append(std::span<const double>(v.data(), k));
   ++rows_;

@@ -38,12 +38,13 @@ struct SeriesRow {
   double surface_angle = std::numeric_limits<double>::quiet_NaN();
   // Binary mixtures (has_mixing): Lacey's index of the larger species over cubic cells of edge
   // lacey_cell (m) holding lacey_cell_grains grains on average (mixing.hpp); with a drum also the
-  // radial segregation index of the larger species in the drum's cross-section.
+  // radial and depth segregation indices of the larger species in the drum's cross-section.
   bool has_mixing = false;
   double lacey_index = std::numeric_limits<double>::quiet_NaN();
   double lacey_cell_grains = std::numeric_limits<double>::quiet_NaN();
   double lacey_cell = std::numeric_limits<double>::quiet_NaN();
   double radial_segregation = std::numeric_limits<double>::quiet_NaN();
+  double depth_segregation = std::numeric_limits<double>::quiet_NaN();
   bool valid = false;
 };
 

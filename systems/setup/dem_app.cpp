@@ -315,6 +315,7 @@ int run_dem_command(const CliOptions& opt) {
     summary["final"]["pattern_contrast"] = row.pattern_contrast;
     summary["final"]["surface_angle"] = number_or_null(row.surface_angle);  // no surface to fit: null
     summary["final"]["radial_segregation"] = number_or_null(row.radial_segregation);
+    summary["final"]["depth_segregation"] = number_or_null(row.depth_segregation);
   }
   double step_total = 0;
   for (auto& t : step.timings()) step_total += t.seconds;
