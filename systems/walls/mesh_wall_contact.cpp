@@ -1,0 +1,285 @@
+#include "systems/walls/mesh_wall_contact.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "engine/run_loop.hpp"
+#include "engine/scene.hpp"
+#include "systems/contact/laws.hpp"
+#include "systems/contact/sphere_geometry.hpp"
+
+namespace gf {
+
+namespace {
+
+// A rotation by a fixed angle about a unit axis through a point (Rodrigues), its cosine and sine
+// computed once per evaluation, not per grain.
+struct Turn {
+  Vec3d k{0, 0, 1}, o{0, 0, 0};
+  double c = 1.0, s = 0.0;
+  bool identity = true;
+  Turn() = default;
+  Turn(const MeshWall& w, double angle) : k(w.rot_axis), o(w.rot_point), c(std::cos(angle)), s(std::sin(angle)) {
+    identity = angle == 0.0;
+  }
+  // The vector turned by +angle (sign 1) or -angle (sign -1).
+  Vec3d vec(const Vec3d& v, double sign) const {
+    if (identity) return v;
+    const Vec3d kxv = cross(k, v);
+    const double kv = dot(k, v);
+    return (c * v + (sign * s) * kxv) + (kv * (1.0 - c)) * k;
+  }
+  Vec3d to_reference(const Vec3d& p) const { return identity ? p : o + vec(p - o, -1.0); }
+  Vec3d to_world(const Vec3d& p) const { return identity ? p : o + vec(p - o, 1.0); }
+};
+
+double angle_of(const MeshWall& w, double t, bool rotation_enabled) { return rotation_enabled ? w.omega * t : 0.0; }
+
+constexpr double kConeTol = 1e-9;   // of a unit direction: the cone tests' allowance for rounding
+constexpr double kMergeTol = 1e-6;  // of the grain's radius: closest points closer are one contact
+
+// Whether direction u (from q to the centre, unit, reference frame) lies in the normal cone of q's
+// feature on the mesh: q is then a local minimum of the distance to the centre (see the header).
+bool in_normal_cone(const TriangleMesh& m, std::uint32_t t, Feature f, const Vec3d& u, const Vec3d& q) {
+  if (f == Feature::Face) return true;
+  const auto k = static_cast<std::size_t>(feature_index(f));
+  if (is_edge(f)) {
+    const std::uint32_t e = m.edge_of[t][k];
+    for (std::uint32_t a = m.edge_start[e]; a < m.edge_start[e + 1]; ++a) {
+      const std::uint32_t j = m.edge_tri[a];
+      for (std::size_t kk = 0; kk < 3; ++kk)
+        if (m.edge_of[j][kk] == e && dot(u, m.edge_out[j][kk]) < -kConeTol) return false;
+    }
+    return true;
+  }
+  const std::uint32_t v = m.tri[t][k];
+  for (std::uint32_t a = m.vertex_start[v]; a < m.vertex_start[v + 1]; ++a) {
+    const Vec3d w = m.vertex[m.vertex_nbr[a]] - q;
+    if (dot(u, w) > kConeTol * std::sqrt(dot(w, w))) return false;
+  }
+  return true;
+}
+
+int rank(Feature f) { return f == Feature::Face ? 0 : (is_edge(f) ? 1 : 2); }
+
+// Slot key: the mesh (bits 40 and up, from 1) and the flat region of the triangle, or for an edge
+// or vertex contact whose direction is not its triangle's normal, the edge (kind 1) or vertex
+// (kind 2) itself (bits 38-39).
+std::uint64_t key_of(const TriangleMesh& m, std::size_t wall, std::uint32_t t, Feature f, const Vec3d& u) {
+  const std::uint64_t base = static_cast<std::uint64_t>(wall + 1) << 40;
+  if (f == Feature::Face || std::abs(dot(u, m.normal[t])) >= 1.0 - kConeTol) return base | m.region[t];
+  const auto k = static_cast<std::size_t>(feature_index(f));
+  if (is_edge(f)) return base | (std::uint64_t{1} << 38) | m.edge_of[t][k];
+  return base | (std::uint64_t{2} << 38) | m.tri[t][k];
+}
+
+struct Hit {
+  std::uint32_t wall, tri;
+  Feature f;
+  Vec3d q, u;  // reference frame
+  double d;
+};
+
+// The merged contacts of a sphere (centre p, radius r, world frame) with every mesh; `turn` holds
+// each mesh's rotation. Returns their number; more than kMeshSlots is an error.
+std::size_t find_hits(const MeshWalls& walls, const Turn* turn, const Vec3d& p, double r, Hit* hits) {
+  std::size_t nh = 0;
+  const double r2 = r * r, merge2 = (kMergeTol * r) * (kMergeTol * r);
+  for (std::size_t w = 0; w < walls.list.size(); ++w) {
+    const MeshWall& mw = walls.list[w];
+    const TriangleMesh& m = *mw.mesh;
+    const Vec3d pr = turn[w].to_reference(p);
+    const std::size_t first = nh;
+    for (const std::uint32_t t : mw.grid->near(pr)) {
+      const ClosestPoint cp = closest_point_on_triangle(pr, m.corner(t, 0), m.corner(t, 1), m.corner(t, 2));
+      const Vec3d dv = pr - cp.q;
+      const double d2 = dot(dv, dv);
+      if (d2 >= r2) continue;
+      const double d = std::sqrt(d2);
+      const Vec3d u = d > 0.0 ? (1.0 / d) * dv : m.normal[t];
+      if (!in_normal_cone(m, t, cp.feature, u, cp.q)) continue;
+      bool merged = false;
+      for (std::size_t h = first; h < nh; ++h) {
+        const Vec3d e = hits[h].q - cp.q;
+        if (dot(e, e) > merge2) continue;
+        merged = true;
+        if (rank(cp.feature) < rank(hits[h].f)) hits[h] = {static_cast<std::uint32_t>(w), t, cp.feature, cp.q, u, d};
+        break;
+      }
+      if (merged) continue;
+      if (nh == kMeshSlots)
+        throw StabilityError("a grain at (" + short_number(p.x) + ", " + short_number(p.y) + ", " + short_number(p.z) +
+                             ") m touches more than " + std::to_string(kMeshSlots) +
+                             " separate features of the mesh walls at once (mesh '" + mw.name +
+                             "'). Fix: a mesh with folds or slivers finer than a grain; remesh it with triangles no "
+                             "smaller than a grain's radius, or remove overlapping copies of surfaces");
+      hits[nh++] = {static_cast<std::uint32_t>(w), t, cp.feature, cp.q, u, d};
+    }
+  }
+  return nh;
+}
+
+template <class Law>
+bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const ContactTable& table, double dt,
+                 double t_contact, double overlap_limit) {
+  constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
+  static_assert(H <= 8, "a wall contact's history fits a slot");
+  const std::size_t nw = walls.list.size();
+  std::vector<Turn> turn(nw);
+  for (std::size_t w = 0; w < nw; ++w) turn[w] = Turn(walls.list[w], angle_of(walls.list[w], t_contact, rotation_enabled));
+  MeshWallForce& force = g.extras.get<MeshWallForce>();
+  MeshWallTorque& torque = g.extras.get<MeshWallTorque>();
+  Column<MeshSlots>& hist = g.extras.get<MeshContactHistory>().slots;
+  const double lim2 = 2.0 * overlap_limit;
+  auto rows = [&](const tbb::blocked_range<std::size_t>& range, double worst) {
+    Hit hits[kMeshSlots];
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const Vec3d p{g.pos.x[i], g.pos.y[i], g.pos.z[i]};
+      const double ri = g.radius.r[i];
+      const std::size_t nh = find_hits(walls, turn.data(), p, ri, hits);
+      MeshSlots& old = hist[i];
+      Vec3d f{0, 0, 0}, tq{0, 0, 0};
+      if (nh == 0) {
+        if (old.key[0] != 0) std::fill(std::begin(old.key), std::end(old.key), std::uint64_t{0});
+      } else {
+        const Vec3d vi{g.vel.x[i], g.vel.y[i], g.vel.z[i]};
+        const Vec3d wi = g.spin ? Vec3d{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : Vec3d{0.0, 0.0, 0.0};
+        const double* kc = table.wall(static_cast<std::size_t>(g.species.type[i]));
+        std::array<double, K> c;
+        std::copy(kc, kc + K, c.begin());
+        MeshSlots now{};
+        int from[kMeshSlots];
+        bool claimed[kMeshSlots] = {};
+        Vec3d nrm[kMeshSlots];
+        for (std::size_t h = 0; h < nh; ++h) {
+          const Hit& x = hits[h];
+          const MeshWall& mw = walls.list[x.wall];
+          now.key[h] = key_of(*mw.mesh, x.wall, x.tri, x.f, x.u);
+          nrm[h] = -turn[x.wall].vec(x.u, 1.0);
+          from[h] = -1;
+          for (std::size_t j = 0; j < kMeshSlots && old.key[j] != 0; ++j)
+            if (!claimed[j] && old.key[j] == now.key[h]) {
+              from[h] = static_cast<int>(j);
+              claimed[j] = true;
+              break;
+            }
+        }
+        // Unmatched contacts take the unclaimed slot of their mesh with the nearest normal (within 30 degrees).
+        for (std::size_t h = 0; h < nh; ++h) {
+          if (from[h] >= 0) continue;
+          double best = std::cos(std::numbers::pi / 6.0);
+          for (std::size_t j = 0; j < kMeshSlots && old.key[j] != 0; ++j) {
+            if (claimed[j] || (old.key[j] >> 40) != (now.key[h] >> 40)) continue;
+            const double cs = nrm[h].x * old.n[j][0] + nrm[h].y * old.n[j][1] + nrm[h].z * old.n[j][2];
+            if (cs >= best) best = cs, from[h] = static_cast<int>(j);
+          }
+          if (from[h] >= 0) claimed[from[h]] = true;
+        }
+        for (std::size_t h = 0; h < nh; ++h) {
+          const Hit& x = hits[h];
+          const MeshWall& mw = walls.list[x.wall];
+          const Vec3d n = nrm[h];
+          const double om = rotation_enabled ? mw.omega : 0.0;
+          const SphereContact<double> sc = sphere_wall(p, n, x.d, ri, vi, wi, om * mw.rot_axis, mw.rot_point);
+          worst = std::max(worst, (ri - x.d) - lim2 * ri);
+          std::array<double, H> s{};
+          if (from[h] >= 0) std::copy(old.s[from[h]], old.s[from[h]] + H, s.begin());
+          const ContactForce<double> res = Law::evaluate(true, sc.g, c, dt, s);
+          std::copy(s.begin(), s.end(), now.s[h]);
+          now.n[h][0] = n.x, now.n[h][1] = n.y, now.n[h][2] = n.z;
+          f = f + res.force;
+          tq = tq + sc.li * cross(n, res.force_t) + res.torque_i;
+        }
+        old = now;
+      }
+      force.x[i] = f.x;
+      force.y[i] = f.y;
+      force.z[i] = f.z;
+      if (!g.spin) continue;
+      torque.x[i] = tq.x;
+      torque.y[i] = tq.y;
+      torque.z[i] = tq.z;
+    }
+    return worst;
+  };
+  return tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, g.n_owned, 256),
+                              -std::numeric_limits<double>::infinity(), rows,
+                              [](double a, double b) { return std::max(a, b); }) > 0.0;
+}
+
+}  // namespace
+
+MeshWall make_mesh_wall(std::string name, TriangleMesh mesh, double largest_radius) {
+  MeshWall w;
+  w.name = std::move(name);
+  auto m = std::make_shared<TriangleMesh>(std::move(mesh));
+  w.grid = std::make_shared<const TriangleGrid>(build_triangle_grid(*m, largest_radius));
+  w.mesh = std::move(m);
+  return w;
+}
+
+void attach_mesh_walls(World& world, const std::vector<MeshWall>& walls) {
+  Grains& g = world.grains;
+  g.extras.attach<MeshWallForce>(g.n);
+  g.extras.attach<MeshWallTorque>(g.n);
+  g.extras.attach<MeshContactHistory>(g.n);
+  world.resources.emplace<MeshWalls>().list = walls;
+}
+
+template <class L>
+bool compute_mesh_wall_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const ContactTable& table,
+                              double dt, double t_contact, double overlap_limit) {
+  return mesh_forces<L>(g, walls, rotation_enabled, table, dt, t_contact, overlap_limit);
+}
+
+std::vector<MeshContactPoint> mesh_contacts_of(const MeshWalls& walls, const Vec3d& p, double radius, double t,
+                                               bool rotation_enabled) {
+  std::vector<Turn> turn(walls.list.size());
+  for (std::size_t w = 0; w < walls.list.size(); ++w)
+    turn[w] = Turn(walls.list[w], angle_of(walls.list[w], t, rotation_enabled));
+  Hit hits[kMeshSlots];
+  const std::size_t nh = find_hits(walls, turn.data(), p, radius, hits);
+  std::vector<MeshContactPoint> out;
+  for (std::size_t h = 0; h < nh; ++h) {
+    const Hit& x = hits[h];
+    const Turn& tr = turn[x.wall];
+    out.push_back({x.wall, x.tri, x.f, tr.to_world(x.q), -tr.vec(x.u, 1.0), x.d,
+                   key_of(*walls.list[x.wall].mesh, x.wall, x.tri, x.f, x.u)});
+  }
+  return out;
+}
+
+void report_mesh_overlap(const Grains& g, const MeshWalls& walls, double limit, const StepContext& step, double t,
+                         bool rotation_enabled) {
+  double worst = -1.0;
+  std::size_t at = 0, wall = 0, past = 0;
+  for (std::size_t i = 0; i < g.n_owned; ++i) {
+    const double r = g.radius.r[i];
+    for (const MeshContactPoint& c : mesh_contacts_of(walls, {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, r, t, rotation_enabled)) {
+      const double ratio = (r - c.gap) / (2.0 * r);
+      past += ratio > limit;
+      if (ratio > worst) worst = ratio, at = i, wall = c.wall;
+    }
+  }
+  const std::string name = walls.list.empty() ? std::string("a mesh wall") : "mesh wall '" + walls.list[wall].name + "'";
+  throw StabilityError(std::string("grain ") + std::to_string(g.pid.id[at]) + " (row " + std::to_string(at) + ") overlaps " +
+                       name + " by " + short_number(worst) + " of its diameter at step " + std::to_string(step.step) +
+                       " (t = " + short_number(t) + " s, stage " + std::string(step.stage) + "), past run.max_overlap = " +
+                       short_number(limit) + " (" + std::to_string(past) +
+                       " mesh contacts past it). Fix: lower run.dt or the wall's omega, stiffen the wall contact "
+                       "(kn), or check that the mesh is closed where grains press on it");
+}
+
+// The driver for every registered law: the table's external linkage makes the compiler emit them.
+template <class... Laws>
+constexpr auto mesh_wall_drivers(LawList<Laws...>) {
+  return std::array{&compute_mesh_wall_forces<Laws>...};
+}
+extern const auto kMeshWallDrivers = mesh_wall_drivers(ContactLaws{});
+
+}  // namespace gf
