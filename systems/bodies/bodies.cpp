@@ -64,6 +64,11 @@ std::size_t Bodies::push(const BodyRow& row) {
   omega.x[i] = row.w[0], omega.y[i] = row.w[1], omega.z[i] = row.w[2];
   mass.m[i] = row.mass, mass.inv_m[i] = 1.0 / row.mass;
   inertia.i1[i] = row.inertia[0], inertia.i2[i] = row.inertia[1], inertia.i3[i] = row.inertia[2];
+  motion.state[i] = static_cast<std::uint8_t>(row.motion);
+  if (row.motion != Motion::moving) {
+    vel.x[i] = vel.y[i] = vel.z[i] = 0.0;
+    omega.x[i] = omega.y[i] = omega.z[i] = 0.0;
+  }
   return i;
 }
 
@@ -97,6 +102,14 @@ std::size_t Members::bytes() {
   std::size_t b = table_bytes(*this);
   for_each_column(vertices, [&b](auto& col) { b += col.bytes(); });
   return b;
+}
+
+void remove_body(Bodies& b, std::size_t i) {
+  if (i >= b.n) throw std::out_of_range("body row " + std::to_string(i) + " past the last of " + std::to_string(b.n));
+  b.motion.state[i] = static_cast<std::uint8_t>(Motion::removed);
+  for (ColumnD* c : {&b.vel.x, &b.vel.y, &b.vel.z, &b.omega.x, &b.omega.y, &b.omega.z, &b.force.x, &b.force.y,
+                     &b.force.z, &b.torque.x, &b.torque.y, &b.torque.z})
+    (*c)[i] = 0.0;
 }
 
 void place_members(Bodies& bodies, Members& members) {

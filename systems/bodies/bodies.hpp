@@ -61,6 +61,15 @@ struct BodyTorque {
   ColumnD x, y, z;  // N m, world frame, about the centre of mass
   auto columns() { return std::tie(x, y, z); }
 };
+// How a body takes part in the run. A fixed body (a hopper's wall or floor, a gate) never moves: the
+// integrator leaves it, and its members meet the moving bodies' members as a wall does (the contact
+// law's wall parameters, m* the moving body's mass). A removed body (a gate opened, a body that fell
+// into a sink) stays in the tables where it was, inert: no contacts, not integrated, not counted.
+enum class Motion : std::uint8_t { moving = 0, fixed = 1, removed = 2 };
+struct BodyMotion {
+  Column<std::uint8_t> state;  // Motion
+  auto columns() { return std::tie(state); }
+};
 
 // One body's state, for Bodies::push.
 struct BodyRow {
@@ -69,6 +78,7 @@ struct BodyRow {
   std::array<double, 3> v{}, w{};               // m/s, rad/s (world frame)
   double mass = 0;                              // kg
   std::array<double, 3> inertia{};              // kg m^2, principal moments
+  Motion motion = Motion::moving;               // fixed: v and w are set to zero on push
 };
 
 struct Bodies {
@@ -83,8 +93,10 @@ struct Bodies {
   BodyInertia inertia;
   BodyForce force;
   BodyTorque torque;
+  BodyMotion motion;
 
-  auto components() { return std::tie(pos, q, vel, omega, mass, inertia, force, torque); }
+  auto components() { return std::tie(pos, q, vel, omega, mass, inertia, force, torque, motion); }
+  bool moving(std::size_t i) const { return motion.state[i] == static_cast<std::uint8_t>(Motion::moving); }
 
   std::size_t owned_rows() const { return n; }
   std::size_t rows() const { return n; }
@@ -159,6 +171,10 @@ struct Members {
   std::size_t push(const MemberRow& row);
   std::size_t bytes();
 };
+
+// Makes body i inert where it stands (Motion::removed; velocities, force and torque zero). Its
+// members' contacts end at the next contact evaluation, which drops their springs.
+void remove_body(Bodies& bodies, std::size_t i);
 
 // Each member's world centre from its body's pose: c_world = x_body + R(q_body) c_body.
 void place_members(Bodies& bodies, Members& members);

@@ -43,9 +43,22 @@ bool within_reach(const Members& m, std::size_t i, std::size_t j, double skin) {
   return dx * dx + dy * dy + dz * dz < reach * reach;
 }
 
+Motion motion_of(const BodyContactState& s, std::size_t m) {
+  return s.motion.size() > m ? static_cast<Motion>(s.motion[m]) : Motion::moving;
+}
+
+// Whether members i and j can touch: of different bodies, at least one moving, neither removed.
+bool may_touch(const Members& m, const BodyContactState& s, std::size_t i, std::size_t j) {
+  if (m.body.row[j] == m.body.row[i]) return false;
+  const Motion a = motion_of(s, i), b = motion_of(s, j);
+  return a != Motion::removed && b != Motion::removed && (a == Motion::moving || b == Motion::moving);
+}
+
 // Member i's partners j > i of other bodies within reach, from the 27 cells around i's, ascending.
-void partners_of(const Members& m, const CellGrid& grid, double skin, std::size_t i, std::vector<std::uint32_t>& out) {
+void partners_of(const Members& m, const BodyContactState& st, const CellGrid& grid, double skin, std::size_t i,
+                 std::vector<std::uint32_t>& out) {
   out.clear();
+  if (motion_of(st, i) == Motion::removed) return;
   const auto c = cell_coords(grid, grid.cell_of[i]);
   for (std::int64_t z = std::max<std::int64_t>(c[2] - 1, 0); z <= std::min(c[2] + 1, grid.dims[2] - 1); ++z)
     for (std::int64_t y = std::max<std::int64_t>(c[1] - 1, 0); y <= std::min(c[1] + 1, grid.dims[1] - 1); ++y)
@@ -53,23 +66,27 @@ void partners_of(const Members& m, const CellGrid& grid, double skin, std::size_
         const auto cell = static_cast<std::size_t>((z * grid.dims[1] + y) * grid.dims[0] + x);
         for (std::uint32_t s = grid.start[cell]; s < grid.start[cell + 1]; ++s) {
           const std::uint32_t j = grid.order[s];
-          if (j > i && m.body.row[j] != m.body.row[i] && within_reach(m, i, j, skin)) out.push_back(j);
+          if (j > i && may_touch(m, st, i, j) && within_reach(m, i, j, skin)) out.push_back(j);
         }
       }
   std::sort(out.begin(), out.end());
 }
 
-// Every pair in reach, in key order (by the lower member, then the higher).
+// Every pair in reach, in key order (by the lower member, then the higher). A pair of a moving and a
+// fixed member lists the moving one as a (the owner), so that the law sees the fixed one as its wall.
 void find_pairs(const Members& m, BodyContactState& s, std::vector<std::uint32_t>& a, std::vector<std::uint32_t>& b) {
   s.grid.build({m.centre.x.data(), m.n}, {m.centre.y.data(), m.n}, {m.centre.z.data(), m.n},
                2.0 * largest_bound(m) + s.skin);
   std::vector<std::vector<std::uint32_t>> found(m.n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.n, 64), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) partners_of(m, s.grid, s.skin, i, found[i]);
+    for (std::size_t i = r.begin(); i != r.end(); ++i) partners_of(m, s, s.grid, s.skin, i, found[i]);
   });
   a.clear(), b.clear();
   for (std::size_t i = 0; i < m.n; ++i)
-    for (std::uint32_t j : found[i]) a.push_back(static_cast<std::uint32_t>(i)), b.push_back(j);
+    for (std::uint32_t j : found[i]) {
+      const bool swap = motion_of(s, i) == Motion::fixed;
+      a.push_back(swap ? j : static_cast<std::uint32_t>(i)), b.push_back(swap ? static_cast<std::uint32_t>(i) : j);
+    }
 }
 
 // The history entries of pairs still listed, at their new list indices. Both key lists increase, and
@@ -104,6 +121,7 @@ ContactBody<typename L::Material> contact_body(const Bodies& bodies, const Membe
   c.inertia = std::min({bodies.inertia.i1[b], bodies.inertia.i2[b], bodies.inertia.i3[b]});
   c.radius = members.dilation.r[m];
   c.material = model.material;
+  c.wall = !bodies.moving(b);  // a fixed body meets the others as a wall (infinite mass)
   return c;
 }
 
@@ -123,10 +141,11 @@ void refresh_constants(const Bodies& bodies, const Members& members, const BodyC
                        MemberPairList& list) {
   list.width = L::kConstants;
   list.constants.clear(), list.wall_constants.clear();
-  for (std::size_t k = 0; k < list.pairs(); ++k)
-    store_constants(L::constants(contact_body(bodies, members, model, list.a[k]),
-                                 contact_body(bodies, members, model, list.b[k]), model.pair),
+  for (std::size_t k = 0; k < list.pairs(); ++k) {
+    const auto b = contact_body(bodies, members, model, list.b[k]);  // a is the moving one of the pair
+    store_constants(L::constants(contact_body(bodies, members, model, list.a[k]), b, b.wall ? model.wall : model.pair),
                     list.constants, "a member pair");
+  }
   ContactBody<typename L::Material> wall;
   wall.wall = true;
   for (std::size_t m = 0; m < members.n; ++m)
@@ -219,6 +238,11 @@ std::vector<Outcome> evaluate_walls(const Bodies& bodies, const Members& members
     for (std::size_t m = r.begin(); m != r.end(); ++m)
       for (std::size_t p = 0; p < planes.list.size(); ++p) {
         double* h = w.at(m, p);
+        if (!bodies.moving(members.body.row[m])) {  // fixed on a wall, or removed: no contact
+          w.touching[m * w.planes + p] = 0;
+          std::fill(h, h + w.width, 0.0);
+          continue;
+        }
         const MemberContact c = member_plane(shapes[m], planes.list[p].point, planes.list[p].normal);
         w.touching[m * w.planes + p] = c.touching();
         if (!c.touching()) {
@@ -267,6 +291,7 @@ void sum_pairs(Bodies& bodies, const Members& members, const std::vector<Outcome
     add_to_body(bodies, members.body.row[s.list.a[k]], o.force, o.torque_a);
     add_to_body(bodies, members.body.row[s.list.b[k]], -o.force, o.torque_b);
     report.max_overlap = std::max(report.max_overlap, o.delta);
+    report.fixed_contacts += !bodies.moving(members.body.row[s.list.b[k]]);
   }
   next.map_slots(out.size());
   s.history = std::move(next);
@@ -298,6 +323,7 @@ void adopt_layout(PairHistory& h) {
 
 bool member_pairs_stale(const Members& members, const BodyContactState& state) {
   if (!state.valid || state.ref_x.size() != members.n) return true;
+  if (!state.motion.empty() && state.motion.size() != members.n) return true;
   const double limit2 = 0.25 * state.skin * state.skin;
   for (std::size_t i = 0; i < members.n; ++i) {
     const double dx = members.centre.x[i] - state.ref_x[i], dy = members.centre.y[i] - state.ref_y[i],
@@ -330,6 +356,15 @@ BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, 
   check_members(bodies, members);
   adopt_layout<L>(state.history);
   BodyContactReport report;
+  // A body fixed or removed since the last evaluation: the list (and the law's constants) change.
+  bool motion_changed = state.motion.size() != members.n;
+  state.motion.resize(members.n);
+  for (std::size_t m = 0; m < members.n; ++m) {
+    const std::uint8_t now = bodies.motion.state[members.body.row[m]];
+    motion_changed = motion_changed || state.motion[m] != now;
+    state.motion[m] = now;
+  }
+  if (motion_changed) state.valid = false;
   if (member_pairs_stale(members, state)) {
     rebuild_member_pairs(members, state);
     report.rebuilt = true;
@@ -348,6 +383,7 @@ BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, 
   zero_loads(bodies);
   sum_pairs(bodies, members, pairs, state, report);
   sum_walls(bodies, members, walls, state, report);
+  state.last = report;
   return report;
 }
 

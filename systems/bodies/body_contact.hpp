@@ -44,7 +44,12 @@
 //           Hertz, whose theory has no finite radius on a face). A member with r = 0 (a sharp core)
 //           has no Hertz stiffness: give such bodies rounded members.
 //
-// Reads:  the bodies' pose, velocities, mass and inertia; the members' rows, cores and centres;
+// Fixed and removed bodies (BodyMotion): pairs of members of two fixed bodies are never listed, and
+// a removed body's members are in no pair and touch no plane. A moving member against a fixed one is
+// the law's particle against a wall (the [contact.wall] parameters, m* = the moving body's mass); it
+// is listed as the pair's owner whatever the ids' order.
+//
+// Reads:  the bodies' pose, velocities, mass, inertia and motion; the members' rows, cores and centres;
 //         BodyPlanes, BodyContactModel<L>.
 // Writes: BodyForce, BodyTorque (set: the sum of every member contact), BodyContactState.
 #pragma once
@@ -86,7 +91,8 @@ struct BodyContactModel {
 
 // The member-pair Verlet list, in increasing key order, with the law's constants per pair.
 struct MemberPairList {
-  std::vector<std::uint32_t> a, b;     // member rows (= ids), a < b, of different bodies
+  std::vector<std::uint32_t> a, b;     // member rows (= ids) of different bodies: a < b, except that a
+                                       // moving member paired with a fixed one is a (the owner)
   std::vector<std::uint64_t> key;      // pair_key(a, b), increasing
   std::size_t width = 0;               // the law's constants per pair
   std::vector<double> constants;       // width per pair
@@ -102,6 +108,15 @@ struct MemberWallHistory {
   double* at(std::size_t m, std::size_t p) { return value.data() + (m * planes + p) * width; }
 };
 
+// What one evaluation found.
+struct BodyContactReport {
+  std::size_t pair_contacts = 0;  // member pairs touching
+  std::size_t fixed_contacts = 0;  // of them, a moving member touching a fixed body's member
+  std::size_t wall_contacts = 0;  // (member, plane) pairs touching
+  double max_overlap = 0;         // m, the largest overlap of any contact
+  bool rebuilt = false;           // the member-pair list was rebuilt first
+};
+
 // Everything the contacts of bodies keep from step to step.
 struct BodyContactState {
   double skin = 0;            // m, the Verlet skin of the member-pair list
@@ -112,14 +127,10 @@ struct BodyContactState {
   MemberPairList list;
   PairHistory history;        // member pairs touching at the last evaluation (list order)
   MemberWallHistory walls;
-};
-
-// What one evaluation found.
-struct BodyContactReport {
-  std::size_t pair_contacts = 0;  // member pairs touching
-  std::size_t wall_contacts = 0;  // (member, plane) pairs touching
-  double max_overlap = 0;         // m, the largest overlap of any contact
-  bool rebuilt = false;           // the member-pair list was rebuilt first
+  // Per member, its body's Motion at the last evaluation: a change rebuilds the list, so a removed
+  // body's springs are dropped and a fixed body's pairs take the wall's constants.
+  std::vector<std::uint8_t> motion;
+  BodyContactReport last;     // the last evaluation's counts, for the outputs
 };
 
 // True when the list must be rebuilt: none yet, the member count changed, or some member's centre
@@ -144,7 +155,7 @@ template <class L>
 class BodyContact : public SystemBase<BodyContact<L>> {
  public:
   using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMass, BodyInertia,
-                          MemberBody, MemberCore, MemberDilation, MemberBound, MemberCentre, CoreVertices, BodyPlanes,
+                          BodyMotion, MemberBody, MemberCore, MemberDilation, MemberBound, MemberCentre, CoreVertices, BodyPlanes,
                           BodyContactModel<L>>;
   using Writes = gf::Writes<BodyForce, BodyTorque, BodyContactState>;
   std::string_view name() const override { return "body_contact"; }

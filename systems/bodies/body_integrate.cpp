@@ -64,6 +64,7 @@ void free_rotation(Quaterniond& q, Vector3d& L, const Vector3d& I, double dt) {
 }
 
 bool kick_drift_row(Bodies& b, std::size_t i, const Gravity& g, double dt) {
+  if (!b.moving(i)) return true;  // fixed or removed: never moved (their velocities stay zero)
   const double h = 0.5 * dt;
   kick_velocity(b, i, g, h);
   b.pos.x[i] += dt * b.vel.x[i];
@@ -81,6 +82,7 @@ bool kick_drift_row(Bodies& b, std::size_t i, const Gravity& g, double dt) {
 }
 
 bool kick_row(Bodies& b, std::size_t i, const Gravity& g, double dt) {
+  if (!b.moving(i)) return true;
   const double h = 0.5 * dt;
   const bool v_finite = kick_velocity(b, i, g, h);
   const Quaterniond q = orientation(b, i);

@@ -22,6 +22,8 @@
 // constant torque about a principal axis (tests/body_integrate_test.cpp).
 // Angular velocity is stored in the world frame (what contacts read); the body-frame L is rebuilt
 // from it each half step, L = I R^T omega, exact to round-off.
+// Only moving bodies are integrated: fixed and removed ones (BodyMotion) keep their pose and zero
+// velocities whatever force their members feel.
 #pragma once
 
 #include <cstddef>
@@ -41,7 +43,7 @@ bool body_kick(Bodies& b, const Gravity& g, double dt);
 // skips it).
 class IntegrateBodyPositions : public SystemBase<IntegrateBodyPositions> {
  public:
-  using Reads = gf::Reads<BodyMass, BodyInertia, BodyForce, BodyTorque, Gravity>;
+  using Reads = gf::Reads<BodyMass, BodyInertia, BodyForce, BodyTorque, BodyMotion, Gravity>;
   using Writes = gf::Writes<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity>;
   std::string_view name() const override { return "integrate_body_positions"; }
   void run(World& world, const StepContext& step) override;
@@ -50,7 +52,7 @@ class IntegrateBodyPositions : public SystemBase<IntegrateBodyPositions> {
 // The closing half kick with the force and torque of the step's end.
 class IntegrateBodyVelocities : public SystemBase<IntegrateBodyVelocities> {
  public:
-  using Reads = gf::Reads<BodyOrientation, BodyMass, BodyInertia, BodyForce, BodyTorque, Gravity>;
+  using Reads = gf::Reads<BodyOrientation, BodyMass, BodyInertia, BodyForce, BodyTorque, BodyMotion, Gravity>;
   using Writes = gf::Writes<BodyVelocity, BodyAngularVelocity>;
   std::string_view name() const override { return "integrate_body_velocities"; }
   void run(World& world, const StepContext& step) override;

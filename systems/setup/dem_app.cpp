@@ -18,6 +18,7 @@
 #include "systems/output/dem_observers.hpp"
 #include "systems/output/summary_json.hpp"
 #include "systems/setup/app.hpp"
+#include "systems/setup/dem_body_app.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
 #include "systems/setup/dem_simulation.hpp"
 
@@ -62,23 +63,12 @@ std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path
                           : "run again (no checkpoint was written yet; output.checkpoint_interval sets how often one is)");
 }
 
-// Composite bodies step through the library (DemSimulation), but the command line's outputs (series,
-// frames, pictures, checkpoints, summary) know grains only: check and run refuse such a scene alike,
-// so that check never accepts what run would refuse.
-void refuse_bodies(const DemScene& s) {
-  if (!s.bodies) return;
-  throw SceneError(s.file.string() + ":" + std::to_string(s.bodies->line) +
-                   ": [[bodies]]: composite bodies are stepped by the library (DemSimulation, as "
-                   "tests/body_scene_test.cpp does), but grainflow check and run do not handle them yet: their "
-                   "outputs know grains only. Fix: drive the scene through DemSimulation, or use spheres");
-}
-
 }  // namespace
 
 int check_dem_command(const CliOptions& opt) {
   const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
   const DemScene s = load_dem_scene(doc);
-  refuse_bodies(s);
+  if (s.bodies) return check_body_command(opt, s);  // composite grains: their own outputs
   // The fills are built and the initial forces computed as `run` does, so check refuses what run
   // would (a state file's bad row, a region through a wall, an empty world, more grains than the
   // memory holds, grains that start overlapping past the limit).
@@ -122,7 +112,7 @@ int run_dem_command(const CliOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
   const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
   const DemScene s = load_dem_scene(doc);
-  refuse_bodies(s);
+  if (s.bodies) return run_body_command(opt, s);
   const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
   ensure_directory(out);
 

@@ -95,6 +95,58 @@ BodyShape read_shape(const DemScene& s, const SceneNode& t) {
   return out;
 }
 
+// A height along -gravity (m): with the default gravity, the y coordinate.
+double read_height(const SceneNode& t, const char* key) { return t.get_double(key, Range::closed(-1e6, 1e6)); }
+
+// [output], [analysis] and [sink] of a body scene (the keys are in the header). The grains' [output]
+// keys that bodies share (series_interval, frame_interval) are read by load_dem_scene.
+void read_body_outputs(const DemScene& s, const SceneNode& root, BodiesSpec& b) {
+  BodyOutputSpec& o = b.output;
+  if (const auto out = root.maybe_table("output")) {
+    for (const char* key : {"picture_angles", "picture_speed_max"})
+      if (out->has(key))
+        out->fail(key, "body pictures are drawn at times, not at drum angles, and coloured by group or layer",
+                  "remove it; use picture_interval (s) and picture_colour = \"group\" or \"layer\"");
+    o.picture_interval = out->get_double("picture_interval", 0.0, Range::closed(0, 1e12));
+    if (o.picture_interval > 0 && o.picture_interval < s.dt)
+      out->fail("picture_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no pictures");
+    if (o.picture_interval > 0 && o.picture_interval < 1e-4)
+      out->fail("picture_interval", "pictures closer than 1e-4 s would share file names (four decimals)",
+                "use an interval of at least 1e-4 s, or 0 for none");
+    o.picture_size = static_cast<int>(out->get_int("picture_size", 800, 16, 8192));
+    o.colour_by_layer = out->get_choice("picture_colour", {"group", "layer"}, "group") == "layer";
+    o.view_axis = out->get_choice("picture_view", {"z", "x"}, "z") == "z" ? 2 : 0;
+    if (out->get_bool("frame_force", false))
+      out->fail("frame_force", "body frames hold no forces", "remove frame_force, or set it false");
+    if (!out->get_bool("frame_velocity", true) || !out->get_bool("frame_angular_velocity", true))
+      out->fail(out->has("frame_velocity") ? "frame_velocity" : "frame_angular_velocity",
+                "body frames always hold velocities and angular velocities (what a restart from them needs)",
+                "remove the key");
+    if (out->get_double("checkpoint_interval", 0.0, Range::non_negative()) > 0)
+      out->fail("checkpoint_interval", "runs of composite bodies write no checkpoints yet",
+                "remove checkpoint_interval (a body run is restarted from its frames' state, not resumed)");
+    if (out->get_bool("checkpoint_keep_all", false))
+      out->fail("checkpoint_keep_all", "runs of composite bodies write no checkpoints yet", "remove the key");
+  }
+  if (const auto an = root.maybe_table("analysis")) {
+    for (const char* key : {"species", "mixing_cell", "mixing_min_grains"})
+      if (an->has(key))
+        an->fail(key, "the mixing measures compare species of grains, and a body scene has none",
+                 "remove it; bodies take outlet_height (m)");
+    o.has_outlet = an->has("outlet_height");
+    if (o.has_outlet) o.outlet_height = read_height(*an, "outlet_height");
+  }
+  if (const auto sink = root.maybe_table("sink")) {
+    o.has_sink = true;
+    o.sink_height = read_height(*sink, "height");
+    if (o.has_outlet && o.sink_height >= o.outlet_height)
+      sink->fail("height", "the sink lies at or above analysis.outlet_height: bodies still in the hopper would vanish",
+                 "give a height below the outlet (m along -gravity)");
+  }
+  o.overlap_scale = std::numeric_limits<double>::infinity();
+  for (const BodyShape& sh : b.shapes) o.overlap_scale = std::min(o.overlap_scale, smallest_edge(sh.shape));
+}
+
 std::size_t shape_index(const BodiesSpec& b, const SceneNode& t) {
   const std::string name = t.get_string("shape");
   for (std::size_t k = 0; k < b.shapes.size(); ++k)
@@ -137,10 +189,15 @@ void read_placements(const DemScene& s, const SceneNode& t, std::size_t index, B
       t.get_int("seed", static_cast<std::int64_t>(s.seed + index), 0, std::numeric_limits<std::int64_t>::max()));
   const auto xs = t.has("positions") ? t.get_vec3_list("positions") : random_positions(s, t, b, shape, seed);
   const bool random = t.get_choice("orientation", {"identity", "random"}, "identity") == "random";
+  const bool fixed = t.get_bool("fixed", false);
   const auto v = t.get_vec3("velocity", {0, 0, 0});
+  if (fixed && (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0))
+    t.fail("velocity", "a fixed body never moves", "remove velocity, or fixed = true");
+  const double remove_at = t.has("remove_at") ? t.get_double("remove_at", Range::closed(0, 1e12)) : -1.0;
+  const int group = static_cast<int>(t.get_int("group", static_cast<std::int64_t>(index), 0, 1000000));
   std::mt19937_64 rng(seed);
   for (const auto& x : xs) {
-    BodyPlacement p{shape, t.line(), x, {1.0, 0.0, 0.0, 0.0}, v};
+    BodyPlacement p{shape, t.line(), fixed, remove_at, group, x, {1.0, 0.0, 0.0, 0.0}, v};
     if (random) p.q = random_quaternion(rng);
     b.placed.push_back(p);
   }
@@ -199,7 +256,7 @@ void require_body_scene(const SceneNode& root) {
   for (const char* key : {"species", "fill"})
     if (!root.tables(key).empty())
       root.fail(key, std::string("[[") + key + "]] describes spheres: " + why, "remove it, or the [[bodies]] tables");
-  for (const char* key : {"periodic", "output", "analysis"})
+  for (const char* key : {"periodic"})
     if (root.has(key)) root.fail(key, std::string("[") + key + "]: " + why, "remove it, or the [[bodies]] tables");
   for (const SceneNode& w : root.tables("wall")) {
     const std::string type = w.get_choice("type", {"plane", "box", "cylinder", "drum"});
@@ -222,11 +279,57 @@ BodiesSpec read_bodies(const DemScene& s, const SceneNode& root) {
   const std::vector<SceneNode> tables = root.tables("bodies");
   b.line = tables.front().line();
   for (std::size_t k = 0; k < tables.size(); ++k) read_placements(s, tables[k], k, b);
+  bool moving = false;
+  for (const BodyPlacement& p : b.placed) moving = moving || !p.fixed;
+  if (!moving) tables.front().fail("fixed", "every body is fixed: nothing would move", "leave some [[bodies]] moving");
   with_law(s.law, [&]<class L>() { read_model<L>(root, shapes, b); });
+  read_body_outputs(s, root, b);
   return b;
 }
 
 namespace {
+
+// Removes the [[bodies]] with remove_at once the main stage reaches that time (never while settling
+// or priming). Idempotent, so it needs no state of its own: a resumed run finds them removed.
+class TimedBodyRemoval : public SystemBase<TimedBodyRemoval> {
+ public:
+  using Reads = gf::Reads<>;
+  using Writes = gf::Writes<BodyMotion, BodyVelocity, BodyAngularVelocity, BodyForce, BodyTorque>;
+  explicit TimedBodyRemoval(std::vector<std::pair<double, std::uint32_t>> rows) : rows_(std::move(rows)) {}
+  std::string_view name() const override { return "timed_body_removal"; }
+  void run(World& world, const StepContext& step) override {
+    if (step.prime || step.stage == "settle") return;
+    Bodies& b = world.tables.get<Bodies>();
+    // The step that starts at t >= remove_at (to half a step's round-off) runs without them.
+    for (const auto& [t, row] : rows_)
+      if (step.t >= t - 0.5 * step.dt && b.motion.state[row] != static_cast<std::uint8_t>(Motion::removed))
+        remove_body(b, row);
+  }
+
+ private:
+  std::vector<std::pair<double, std::uint32_t>> rows_;
+};
+
+// Removes moving bodies whose centre of mass fell below the sink's height (along -gravity).
+class BodySink : public SystemBase<BodySink> {
+ public:
+  using Reads = gf::Reads<BodyPosition, Gravity>;
+  using Writes = gf::Writes<BodyMotion, BodyVelocity, BodyAngularVelocity, BodyForce, BodyTorque>;
+  explicit BodySink(double height) : height_(height) {}
+  std::string_view name() const override { return "body_sink"; }
+  void run(World& world, const StepContext& step) override {
+    if (step.prime) return;
+    Bodies& b = world.tables.get<Bodies>();
+    const Gravity& g = world.resources.get<Gravity>();
+    const double gn = std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
+    if (gn == 0.0) return;
+    for (std::size_t i = 0; i < b.n; ++i)
+      if (b.moving(i) && -(g.x * b.pos.x[i] + g.y * b.pos.y[i] + g.z * b.pos.z[i]) / gn < height_) remove_body(b, i);
+  }
+
+ private:
+  double height_;
+};
 
 [[noreturn]] void body_error(const DemScene& s, const BodyPlacement& p, const std::string& what) {
   throw SceneError(s.file.string() + ":" + std::to_string(p.line) + ": " + what);
@@ -237,6 +340,7 @@ void push_body(const DemScene& s, const BodyPlacement& p, Bodies& bodies, Member
   const Eigen::Quaterniond frame(p.q[0], p.q[1], p.q[2], p.q[3]);
   BodyRow row = body_row(sh.props, to_e(p.x), frame);
   row.v = p.v;
+  if (p.fixed) row.motion = Motion::fixed;
   const auto body = static_cast<std::uint32_t>(bodies.push(row));
   for (const MemberRow& m : body_frame_members(shape_members(sh.shape), sh.props, body)) members.push(m);
 }
@@ -258,7 +362,7 @@ void build_body_world(const DemScene& s, World& world) {
   Bodies& bodies = world.tables.add<Bodies>();
   Members& members = world.tables.add<Members>();
   for (const BodyPlacement& p : s.bodies->placed) {
-    require_inside(s, p);
+    if (!p.fixed) require_inside(s, p);
     push_body(s, p, bodies, members);
   }
   place_members(bodies, members);
@@ -270,6 +374,11 @@ void build_body_world(const DemScene& s, World& world) {
 }
 
 void schedule_body_step(Schedule& step, const DemScene& s) {
+  std::vector<std::pair<double, std::uint32_t>> timed;
+  for (std::size_t i = 0; i < s.bodies->placed.size(); ++i)
+    if (s.bodies->placed[i].remove_at >= 0) timed.push_back({s.bodies->placed[i].remove_at, static_cast<std::uint32_t>(i)});
+  if (!timed.empty()) step.emplace<TimedBodyRemoval>(std::move(timed));
+  if (s.bodies->output.has_sink) step.emplace<BodySink>(s.bodies->output.sink_height);
   step.emplace<IntegrateBodyPositions>();
   step.emplace<PlaceMembers>();
   s.bodies->schedule_contacts(step);

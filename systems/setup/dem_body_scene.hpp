@@ -9,10 +9,27 @@
 //               youngs_modulus and poisson_ratio, the same for every shape (one material for all bodies).
 //   [[bodies]]  shape (a [[shape]] name); positions = [[x, y, z], ...] (centres of mass) or count with
 //               region = { shape = "box", lo, hi } or a cylinder as a random fill's (bounding spheres
-//               kept apart; optional seed); orientation = "identity" (default) or "random"; velocity.
+//               kept apart; optional seed); orientation = "identity" (default) or "random"; velocity;
+//               fixed = true (the bodies never move: walls, floors, gates built of shapes; the law's
+//               [contact.wall] parameters act between them and moving bodies); remove_at = t (s of the
+//               main stage, after [settle]: the bodies are removed then, their contact springs
+//               dropped, e.g. a hopper's gate); group = k (an integer >= 0, default the table's index:
+//               the colour of pictures by group, and a column of the frames).
+//   [output]    series_interval, frame_interval (s) as for grains; picture_interval (s, 0 = none: a
+//               side view of the bodies every interval of simulated time, pictures/time_SSSS.SSSS.png),
+//               picture_size (px, the longer side, default 800), picture_colour = "group" (default) or
+//               "layer" (five layers of equal counts by height at the start of the main stage,
+//               alternately blue and vermillion, as the seed's hopper), picture_view = "z" (default:
+//               looking along -z, x to the right) or "x" (looking along +x, z to the right).
+//               checkpoint_interval and checkpoint_keep_all are refused (body runs write no checkpoint).
+//   [analysis]  outlet_height (m, along -gravity, i.e. y under the default gravity): series.csv adds
+//               remaining_fraction, the moving bodies whose centre of mass lies above it over those
+//               moving at the start of the main stage.
+//   [sink]      height (m, along -gravity): a moving body whose centre falls below it is removed (so
+//               grains discharged from a hopper need no floor to pile on).
 // Bodies touch each other member by member and the scene's plane and box walls (static: no omega),
 // with the [contact] law. Not yet in one scene with bodies: spheres ([[species]], [[fill]]), cylinder
-// and drum walls, rotating planes, [periodic], [output] and [analysis]; such scenes are refused.
+// and drum walls, rotating planes and [periodic]; such scenes are refused.
 #pragma once
 
 #include <array>
@@ -42,15 +59,32 @@ struct BodyShape {
 struct BodyPlacement {
   std::size_t shape = 0;
   int line = 0;
+  bool fixed = false;
+  double remove_at = -1;  // s of the main stage; < 0: never
+  int group = 0;
   std::array<double, 3> x{};                    // m, centre of mass
   std::array<double, 4> q{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z), the shape frame to the world
   std::array<double, 3> v{};                    // m/s
+};
+
+// The outputs and analyses of a body scene (keys above).
+struct BodyOutputSpec {
+  double picture_interval = 0;  // s, 0 = none
+  int picture_size = 800;       // px, the longer side
+  bool colour_by_layer = false;  // else by group
+  int view_axis = 2;            // the axis looked along: 2 (z, x to the right) or 0 (x, z to the right)
+  bool has_outlet = false;
+  double outlet_height = 0;     // m along -gravity
+  bool has_sink = false;
+  double sink_height = 0;       // m along -gravity
+  double overlap_scale = 0;     // m, the thinnest shape's smallest outer dimension (max_overlap_ratio)
 };
 
 struct BodiesSpec {
   int line = 0;  // the first [[bodies]] table
   std::vector<BodyShape> shapes;
   std::vector<BodyPlacement> placed;
+  BodyOutputSpec output;
   CriticalStep critical{0.0, ""};
   std::function<void(World&)> install_model;  // emplaces BodyContactModel<L> of the scene's law
   std::function<void(Schedule&)> schedule_contacts;  // BodyContact<L>
@@ -59,6 +93,7 @@ struct BodiesSpec {
 // Whether the scene has [[bodies]] tables.
 bool scene_has_bodies(const SceneNode& root);
 // Refuses (SceneError) what bodies cannot share a scene with yet; call before the walls are read.
+// [output] and [analysis] of a body scene are read by read_bodies (the grains' readers skip them).
 void require_body_scene(const SceneNode& root);
 // Reads [[shape]] and [[bodies]] with the scene's [contact] law (s.law, s.seed, s.gravity set).
 BodiesSpec read_bodies(const DemScene& s, const SceneNode& root);

@@ -437,7 +437,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
       out->fail("series_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no series");
     if (s.output.frame_interval > 0 && s.output.frame_interval < s.dt)
       out->fail("frame_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no frames");
-    read_pictures(s, *out);
+    if (!with_bodies) read_pictures(s, *out);  // a body scene's pictures: read_bodies
   }
 
   // A binary mixture reports the segregation of its larger species.
@@ -446,7 +446,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
     s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
     for (const Wall& w : s.walls) s.pattern = s.pattern || w.kind == Wall::Kind::CylinderInner;
   }
-  read_analysis(s, root);
+  if (!with_bodies) read_analysis(s, root);  // a body scene's [analysis]: read_bodies
   doc.check_all_used();
   return s;
 }

@@ -1,0 +1,206 @@
+#include "systems/output/body_outputs.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <string>
+
+#include "engine/atomic_file.hpp"
+#include "systems/setup/dem_body_scene.hpp"
+
+namespace gf {
+
+namespace {
+
+// Due at t >= next, up to round-off of the clock (t = k dt); times stay on the grid k * interval.
+bool due(double t, double next, double dt) { return t >= next - 1e-6 * dt; }
+double next_sample(double t, double next, double interval, double dt) {
+  while (due(t, next, dt)) next += interval;
+  return next;
+}
+
+double height(const Gravity& g, double x, double y, double z) {
+  const double gn = std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
+  if (gn == 0.0) return y;  // no gravity: heights along y
+  return -(g.x * x + g.y * y + g.z * z) / gn;
+}
+
+const char* motion_name(std::uint8_t m) {
+  switch (static_cast<Motion>(m)) {
+    case Motion::moving: return "moving";
+    case Motion::fixed: return "fixed";
+    case Motion::removed: return "removed";
+  }
+  return "unknown";
+}
+
+void put(std::string& line, double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  line += buf;
+}
+
+}  // namespace
+
+BodyEnergies body_kinetic_energy(const Bodies& b) {
+  BodyEnergies e;
+  for (std::size_t i = 0; i < b.n; ++i) {
+    if (!b.moving(i)) continue;
+    e.translational += 0.5 * b.mass.m[i] * (b.vel.x[i] * b.vel.x[i] + b.vel.y[i] * b.vel.y[i] + b.vel.z[i] * b.vel.z[i]);
+    const Eigen::Quaterniond q(b.q.w[i], b.q.x[i], b.q.y[i], b.q.z[i]);
+    const Eigen::Vector3d w = q.conjugate() * Eigen::Vector3d(b.omega.x[i], b.omega.y[i], b.omega.z[i]);
+    e.rotational += 0.5 * (b.inertia.i1[i] * w.x() * w.x() + b.inertia.i2[i] * w.y() * w.y() +
+                           b.inertia.i3[i] * w.z() * w.z());
+  }
+  return e;
+}
+
+double remaining_fraction(const Bodies& b, const Gravity& g, double h, std::size_t initial) {
+  if (initial == 0) return 0.0;
+  std::size_t above = 0;
+  for (std::size_t i = 0; i < b.n; ++i) above += b.moving(i) && height(g, b.pos.x[i], b.pos.y[i], b.pos.z[i]) > h;
+  return static_cast<double>(above) / static_cast<double>(initial);
+}
+
+std::vector<int> body_layers(const Bodies& b, const Gravity& g, int layers) {
+  std::vector<int> out(b.n, -1);
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 0; i < b.n; ++i)
+    if (b.moving(i)) rows.push_back(i);
+  std::vector<double> h(b.n);
+  for (std::size_t i : rows) h[i] = height(g, b.pos.x[i], b.pos.y[i], b.pos.z[i]);
+  std::stable_sort(rows.begin(), rows.end(), [&](std::size_t a, std::size_t c) { return h[a] < h[c]; });
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    out[rows[k]] = static_cast<int>(k * static_cast<std::size_t>(layers) / rows.size());
+  return out;
+}
+
+// ---- Series --------------------------------------------------------------------------------------
+
+BodySeriesOutput::BodySeriesOutput(BodySeriesSettings s) : s_(std::move(s)) {
+  if (!s_.csv) return;
+  std::vector<std::string> columns{"time",          "ke_translational",  "ke_rotational", "contacts",
+                                   "wall_contacts", "max_overlap_ratio", "moving"};
+  if (s_.outlet_height) columns.push_back("remaining_fraction");
+  csv_ = std::make_unique<SeriesCsv>(*s_.csv, std::move(columns));
+}
+
+void BodySeriesOutput::run(World& world, const StepContext& now) {
+  if (!due(now.t, next_, now.dt)) return;
+  next_ = next_sample(now.t, next_, s_.interval, now.dt);
+  sample(world, now.t);
+}
+
+void BodySeriesOutput::finish(World& world) {
+  const BodySeriesRow& row = world.resources.get<BodySeriesRow>();
+  if (row.valid && row.time == world.clock.t) return;
+  sample(world, world.clock.t);
+}
+
+void BodySeriesOutput::sample(World& world, double t) {
+  const Bodies& b = world.tables.get<Bodies>();
+  const BodyContactReport& c = world.resources.get<BodyContactState>().last;
+  BodySeriesRow& row = world.resources.get<BodySeriesRow>();
+  const BodyEnergies e = body_kinetic_energy(b);
+  row.time = t;
+  row.ke_translational = e.translational;
+  row.ke_rotational = e.rotational;
+  row.contacts = static_cast<std::int64_t>(c.pair_contacts - c.fixed_contacts);
+  row.wall_contacts = static_cast<std::int64_t>(c.wall_contacts + c.fixed_contacts);
+  row.max_overlap_ratio = c.max_overlap / s_.overlap_scale;
+  row.moving = 0;
+  for (std::size_t i = 0; i < b.n; ++i) row.moving += b.moving(i);
+  if (s_.outlet_height)
+    row.remaining_fraction = remaining_fraction(b, world.resources.get<Gravity>(), *s_.outlet_height, s_.initial_moving);
+  row.valid = true;
+  if (!csv_) return;
+  std::vector<double> v{row.time,
+                        row.ke_translational,
+                        row.ke_rotational,
+                        static_cast<double>(row.contacts),
+                        static_cast<double>(row.wall_contacts),
+                        row.max_overlap_ratio,
+                        static_cast<double>(row.moving)};
+  if (s_.outlet_height) v.push_back(row.remaining_fraction);
+  csv_->append(v);
+}
+
+// ---- Frames --------------------------------------------------------------------------------------
+
+BodyFrameOutput::BodyFrameOutput(std::filesystem::path out_dir, double interval, std::shared_ptr<const BodiesSpec> spec,
+                                 std::vector<int> layers)
+    : dir_(out_dir / "frames"), interval_(interval), spec_(std::move(spec)), layers_(std::move(layers)) {
+  ensure_directory(dir_);
+}
+
+void BodyFrameOutput::run(World& world, const StepContext& now) {
+  if (!due(now.t, next_, now.dt)) return;
+  next_ = next_sample(now.t, next_, interval_, now.dt);
+  write(world.tables.get<Bodies>(), now.t);
+}
+
+void BodyFrameOutput::finish(World& world) {
+  if (!times_.empty() && times_.back() == world.clock.t) return;
+  write(world.tables.get<Bodies>(), world.clock.t);
+}
+
+void BodyFrameOutput::write(const Bodies& b, double t) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%06zu.csv", times_.size());
+  std::string text = "id,shape,group,layer,motion,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+  text.reserve(b.n * 260);
+  for (std::size_t i = 0; i < b.n; ++i) {
+    const BodyPlacement& p = spec_->placed[i];
+    const BodyShape& sh = spec_->shapes[p.shape];
+    // The body frame is the shape's principal frame: q_body = q_shape * quaternion(axes).
+    Eigen::Quaterniond qs = Eigen::Quaterniond(b.q.w[i], b.q.x[i], b.q.y[i], b.q.z[i]) *
+                            Eigen::Quaterniond(sh.props.axes).conjugate();
+    qs.normalize();
+    if (qs.w() < 0) qs.coeffs() *= -1.0;  // one of the two signs, for readable files
+    text += std::to_string(i) + "," + sh.name + "," + std::to_string(p.group) + "," +
+            std::to_string(i < layers_.size() ? layers_[i] : -1) + "," + motion_name(b.motion.state[i]);
+    for (double v : {b.pos.x[i], b.pos.y[i], b.pos.z[i], qs.w(), qs.x(), qs.y(), qs.z(), b.vel.x[i], b.vel.y[i],
+                     b.vel.z[i], b.omega.x[i], b.omega.y[i], b.omega.z[i]}) {
+      text += ",";
+      put(text, v);
+    }
+    text += "\n";
+  }
+  write_file_atomic(dir_ / name, text);
+  times_.push_back(t);
+  std::string index = "frame,time,file\n";
+  for (std::size_t k = 0; k < times_.size(); ++k) {
+    std::snprintf(name, sizeof name, "frame_%06zu.csv", k);
+    index += std::to_string(k) + ",";
+    put(index, times_[k]);
+    index += std::string(",") + name + "\n";
+  }
+  write_file_atomic(dir_ / "frames.csv", index);
+}
+
+// ---- Pictures ------------------------------------------------------------------------------------
+
+BodyPictureOutput::BodyPictureOutput(std::filesystem::path dir, double interval, BodyView view, std::vector<Rgb> colour,
+                                     std::string legend)
+    : dir_(std::move(dir)), interval_(interval), view_(view), colour_(std::move(colour)), legend_(std::move(legend)) {
+  ensure_directory(dir_);
+}
+
+void BodyPictureOutput::run(World& world, const StepContext& now) {
+  if (!due(now.t, next_, now.dt)) return;
+  const double target = next_;
+  next_ = next_sample(now.t, next_, interval_, now.dt);
+  const Image img = render_body_picture(world.tables.get<Bodies>(), world.tables.get<Members>(), colour_, view_);
+  last_ = dir_ / body_picture_name(target);
+  char when[64];
+  std::snprintf(when, sizeof when, "t = %.6g s", now.t);
+  write_png(last_, img,
+            {{"Comment", std::string("side view of the bodies at ") + when + "; colours: " + legend_},
+             {"Software", "grainflow"}});
+  ++written_;
+}
+
+}  // namespace gf

@@ -1,0 +1,140 @@
+// Observers of a run of composite grains, scheduled after each step (each decides itself whether it
+// is due): the time series, the state frames and the side-view pictures.
+//
+// series.csv columns:
+//   time                 s of the main stage
+//   ke_translational     J, sum of m v^2 / 2 over moving bodies
+//   ke_rotational        J, sum of w^T I w / 2 over moving bodies (I the world-frame inertia)
+//   contacts             member pairs of two moving bodies touching
+//   wall_contacts        moving members touching a plane wall or a fixed body's member
+//   max_overlap_ratio    the largest overlap of any contact over the scene's overlap scale: the thinnest
+//                        shape's smallest outer dimension (a prism's inscribed diameter is smaller; a
+//                        box's thinnest edge), the composite grain's "smaller diameter"
+//   moving               bodies moving (not fixed, not removed)
+//   remaining_fraction   (with analysis.outlet_height) moving bodies whose centre of mass lies above
+//                        the outlet height, over the bodies moving at the start of the main stage
+// frames/frame_NNNNNN.csv: one row per body (fixed and removed ones too), sorted by id:
+//   id, shape (the [[shape]] name), group, layer (-1 for bodies not moving at the start), motion
+//   (moving, fixed, removed), x, y, z (m, centre of mass), qw, qx, qy, qz (the unit quaternion that
+//   takes the [[shape]]'s own frame to the world, as a scene places shapes), vx, vy, vz (m/s),
+//   wx, wy, wz (rad/s, world frame); frames/frames.csv lists frame, time and file.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/system.hpp"
+#include "systems/bodies/bodies.hpp"
+#include "systems/bodies/body_contact.hpp"
+#include "systems/integrate/integrate.hpp"
+#include "systems/output/body_picture.hpp"
+#include "systems/output/series_csv.hpp"
+
+namespace gf {
+
+struct BodiesSpec;
+
+// The last sample of the series, for summary.json.
+struct BodySeriesRow {
+  double time = 0, ke_translational = 0, ke_rotational = 0;
+  std::int64_t contacts = 0, wall_contacts = 0, moving = 0;
+  double max_overlap_ratio = 0;
+  double remaining_fraction = std::numeric_limits<double>::quiet_NaN();
+  bool valid = false;
+};
+
+struct BodyEnergies {
+  double translational = 0, rotational = 0;  // J, moving bodies
+};
+BodyEnergies body_kinetic_energy(const Bodies& b);
+
+// Fraction of `initial` bodies that are moving with their centre of mass above `height` (m along
+// -gravity); 0 when initial is 0.
+double remaining_fraction(const Bodies& b, const Gravity& g, double height, std::size_t initial);
+
+// Five layers (0 lowest .. 4 highest) of equal counts by height along -gravity of the moving bodies
+// (ties by row); -1 for the others.
+std::vector<int> body_layers(const Bodies& b, const Gravity& g, int layers = 5);
+
+struct BodySeriesSettings {
+  std::optional<std::filesystem::path> csv;  // none: the last row only (summary.json)
+  double interval = 0;                       // s
+  double overlap_scale = 1;                  // m
+  std::optional<double> outlet_height;       // m along -gravity
+  std::size_t initial_moving = 0;            // the remaining fraction's denominator
+};
+
+class BodySeriesOutput : public SystemBase<BodySeriesOutput> {
+ public:
+  using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMass, BodyInertia,
+                          BodyMotion, BodyContactState, Gravity>;
+  using Writes = gf::Writes<BodySeriesRow>;
+  explicit BodySeriesOutput(BodySeriesSettings s);
+  std::string_view name() const override { return "body_series_output"; }
+  void run(World& world, const StepContext& now) override;
+  // Samples the last state unless the latest row already is it.
+  void finish(World& world);
+
+ private:
+  void sample(World& world, double t);
+  BodySeriesSettings s_;
+  std::unique_ptr<SeriesCsv> csv_;
+  double next_ = 0;
+};
+
+// The CSV files of a BodyFrameOutput (a tag for the schedule).
+struct BodyFrameFiles {};
+
+class BodyFrameOutput : public SystemBase<BodyFrameOutput> {
+ public:
+  using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMotion>;
+  using Writes = gf::Writes<BodyFrameFiles>;
+  // `spec` gives the shapes' names and frames; `layers` per body row.
+  BodyFrameOutput(std::filesystem::path out_dir, double interval, std::shared_ptr<const BodiesSpec> spec,
+                  std::vector<int> layers);
+  std::string_view name() const override { return "body_frame_output"; }
+  void run(World& world, const StepContext& now) override;
+  void finish(World& world);
+  std::size_t frames() const { return times_.size(); }
+
+ private:
+  void write(const Bodies& b, double t);
+  std::filesystem::path dir_;
+  double interval_;
+  std::shared_ptr<const BodiesSpec> spec_;
+  std::vector<int> layers_;
+  std::vector<double> times_;
+  double next_ = 0;
+};
+
+// The PNG files of a BodyPictureOutput (a tag for the schedule).
+struct BodyPictureFiles {};
+
+class BodyPictureOutput : public SystemBase<BodyPictureOutput> {
+ public:
+  using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyMotion, MemberBody, MemberCore, MemberDilation,
+                          MemberCentre, CoreVertices>;
+  using Writes = gf::Writes<BodyPictureFiles>;
+  // colour[i]: body row i's colour; `legend` goes to the PNG's Comment entry.
+  BodyPictureOutput(std::filesystem::path dir, double interval, BodyView view, std::vector<Rgb> colour,
+                    std::string legend);
+  std::string_view name() const override { return "body_picture_output"; }
+  void run(World& world, const StepContext& now) override;
+  std::size_t pictures() const { return written_; }
+  const std::filesystem::path& last_picture() const { return last_; }
+
+ private:
+  std::filesystem::path dir_;
+  double interval_;
+  BodyView view_;
+  std::vector<Rgb> colour_;
+  std::string legend_;
+  double next_ = 0;
+  std::size_t written_ = 0;
+  std::filesystem::path last_;
+};
+
+}  // namespace gf

@@ -1,0 +1,230 @@
+#include "systems/setup/dem_body_app.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include <tbb/global_control.h>
+
+#include "engine/atomic_file.hpp"
+#include "engine/run_loop.hpp"
+#include "systems/bodies/body_contact.hpp"
+#include "systems/output/body_outputs.hpp"
+#include "systems/output/summary_json.hpp"
+#include "systems/setup/dem_simulation.hpp"
+
+namespace gf {
+
+namespace {
+
+std::size_t threads_in_use() {
+  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+}
+
+struct BodyCounts {
+  std::size_t moving = 0, fixed = 0, timed = 0, members = 0;
+};
+
+BodyCounts count_bodies(const DemScene& s, World& w) {
+  BodyCounts c;
+  for (const BodyPlacement& p : s.bodies->placed) {
+    c.fixed += p.fixed;
+    c.moving += !p.fixed;
+    c.timed += p.remove_at >= 0;
+  }
+  c.members = w.tables.get<Members>().n;
+  return c;
+}
+
+nlohmann::json timings_json(const Schedule& sched, double total) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const SystemTiming& t : sched.timings())
+    out.push_back({{"system", t.name}, {"seconds", t.seconds}, {"calls", t.calls},
+                   {"fraction", total > 0 ? t.seconds / total : 0.0}});
+  return out;
+}
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// The pictures' colours per body row and the legend for the PNG's Comment entry.
+std::vector<Rgb> picture_colours(const DemScene& s, const std::vector<int>& layers, std::string& legend) {
+  const BodiesSpec& b = *s.bodies;
+  std::vector<Rgb> c(b.placed.size());
+  for (std::size_t i = 0; i < c.size(); ++i)
+    c[i] = b.output.colour_by_layer ? layer_colour(std::max(layers[i], 0)) : group_colour(b.placed[i].group);
+  legend = b.output.colour_by_layer
+               ? "five layers of equal counts by height at t = 0, lowest first: blue #0072B2, vermillion #D55E00, "
+                 "blue, vermillion, blue; fixed bodies grey"
+               : "by [[bodies]] group, Okabe-Ito palette from group 0: blue, vermillion, bluish green, orange, "
+                 "reddish purple, sky blue, yellow; fixed bodies grey";
+  return c;
+}
+
+}  // namespace
+
+int check_body_command(const CliOptions& opt, const DemScene& s) {
+  (void)opt;
+  DemSimulation sim(s);
+  sim.prime();
+  const BodyCounts c = count_bodies(s, sim.world());
+  std::printf("scene %s: valid\n", s.file.string().c_str());
+  std::printf("model: composite grains (rigid unions of dilated convex polyhedra); contact law %s\n", s.law.c_str());
+  std::printf("bodies: %zu moving, %zu fixed (%zu removed at a time); members: %zu; shapes: %zu; plane walls: %zu\n",
+              c.moving, c.fixed, c.timed, c.members, s.bodies->shapes.size(), s.walls.size());
+  for (const BodyShape& sh : s.bodies->shapes)
+    std::printf("  shape %s: %zu parts, r = %.4g m, mass %.6g kg, volume %.6g m^3, moments %.4g %.4g %.4g kg m^2\n",
+                sh.name.c_str(), sh.shape.parts.size(), sh.shape.radius, sh.props.mass, sh.props.volume,
+                sh.props.moments.x(), sh.props.moments.y(), sh.props.moments.z());
+  std::printf("systems per step (with the systems each waits for):\n%s", sim.step().describe().c_str());
+  std::printf("observers: body_series_output, body_frame_output, body_picture_output\n");
+  std::printf("critical step: smallest time-step term %.4g s (%s); dt = %.4g s = %.3f of it (limit %.3f)%s\n",
+              s.critical.period, s.critical.term.c_str(), s.dt, s.dt / s.critical.period, s.dt_safety,
+              s.allow_unstable_dt && s.dt > s.dt_safety * s.critical.period ? " OVERRIDDEN" : "");
+  std::printf("steps: %lld settling + %lld main (%.4g s simulated)\n", static_cast<long long>(s.settle_steps()),
+              static_cast<long long>(s.main_steps()), s.duration);
+  const BodyContactState& st = sim.world().resources.get<BodyContactState>();
+  std::printf("initial contacts: %zu member pairs (%zu with fixed bodies), %zu with plane walls; list pairs %zu\n",
+              st.last.pair_contacts, st.last.fixed_contacts, st.last.wall_contacts, st.list.pairs());
+  std::printf("checkpoints: none (body runs are not resumable yet)\n");
+  return 0;
+}
+
+int run_body_command(const CliOptions& opt, const DemScene& s) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  if (opt.resume)
+    throw std::invalid_argument("--resume: runs of composite bodies write no checkpoints and cannot be resumed yet; "
+                                "run the scene from its start (its frames hold the state of each frame time)");
+  const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
+  ensure_directory(out);
+  DemSimulation sim(s);
+  World& world = sim.world();
+  Schedule& step = sim.step();
+  const BodyCounts counts = count_bodies(s, world);
+  std::fprintf(stderr, "grainflow: %s: %zu moving and %zu fixed bodies (%zu members), dt = %.3g s (%.3f of the "
+               "critical period), %zu threads -> %s\n",
+               s.file.string().c_str(), counts.moving, counts.fixed, counts.members, s.dt, s.dt / s.critical.period,
+               threads_in_use(), out.string().c_str());
+
+  nlohmann::json summary;
+  summary["scene"] = s.file.string();
+  summary["overrides"] = opt.overrides;
+  summary["bodies"] = {{"moving", counts.moving}, {"fixed", counts.fixed}, {"members", counts.members}};
+  summary["threads"] = threads_in_use();
+  summary["dt"] = s.dt;
+  summary["critical_period"] = s.critical.period;
+  summary["critical_term"] = s.critical.term;
+  summary["status"] = "running";
+  write_summary_json(out / "summary.json", summary);
+
+  StageReport settle;
+  try {
+    settle = sim.settle(opt.quiet ? 0.0 : 2.0);
+  } catch (const StabilityError& e) {
+    summary["status"] = "failed";
+    summary["failure"] = std::string("while settling: ") + e.what();
+    summary["steps"] = 0;
+    write_summary_json(out / "summary.json", summary);
+    std::fprintf(stderr, "grainflow: failed while settling\ngrainflow: error: %s\n", e.what());
+    return 3;
+  }
+  step.reset_timings();
+
+  // The state at the start of the main stage: layers, the remaining fraction's denominator, the view.
+  const Bodies& bodies = world.tables.get<Bodies>();
+  const Gravity& g = world.resources.get<Gravity>();
+  const std::vector<int> layers = body_layers(bodies, g);
+  std::size_t initial_moving = 0;
+  for (std::size_t i = 0; i < bodies.n; ++i) initial_moving += bodies.moving(i);
+  const BodyOutputSpec& bo = s.bodies->output;
+
+  Schedule observe;
+  world.resources.emplace<BodySeriesRow>();
+  BodySeriesSettings ss;
+  if (s.output.series_interval > 0) ss.csv = out / "series.csv";
+  ss.interval = s.output.series_interval > 0 ? s.output.series_interval : 1000 * s.dt;
+  ss.overlap_scale = bo.overlap_scale;
+  if (bo.has_outlet) ss.outlet_height = bo.outlet_height;
+  ss.initial_moving = initial_moving;
+  BodySeriesOutput& series = observe.emplace<BodySeriesOutput>(ss);
+  BodyFrameOutput* frames = nullptr;
+  if (s.output.frame_interval > 0)
+    frames = &observe.emplace<BodyFrameOutput>(out, s.output.frame_interval, s.bodies, layers);
+  BodyPictureOutput* pictures = nullptr;
+  if (bo.picture_interval > 0) {
+    std::string legend;
+    std::vector<Rgb> colours = picture_colours(s, layers, legend);
+    const double lowest = bo.has_sink ? bo.sink_height : std::numeric_limits<double>::quiet_NaN();
+    const BodyView view = body_view(bodies, world.tables.get<Members>(), bo.view_axis, bo.picture_size, lowest);
+    pictures = &observe.emplace<BodyPictureOutput>(out / "pictures", bo.picture_interval, view, std::move(colours),
+                                                   std::move(legend));
+  }
+  observe.build(world);
+
+  StageOptions so;
+  so.progress_seconds = opt.quiet ? 0.0 : 2.0;
+  so.label = "run";
+  so.steps = opt.steps ? *opt.steps : s.main_steps();
+  so.observe = &observe;
+  StageReport main;
+  std::string status = "completed", failure;
+  int rc = 0;
+  const auto run0 = std::chrono::steady_clock::now();
+  try {
+    main = run_stage(world, step, so);
+    if (main.interrupted) status = "interrupted";
+  } catch (const std::exception& e) {
+    status = "failed";
+    failure = e.what();
+    main.steps = world.clock.step;
+    main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
+    rc = 3;
+  }
+  if (status != "failed") {
+    try {
+      series.finish(world);
+      if (frames) frames->finish(world);
+    } catch (const std::exception& e) {
+      status = "failed";
+      failure = e.what();
+      rc = 3;
+    }
+  }
+  const double bsps = main.wall_seconds > 0 ? static_cast<double>(main.steps) * counts.moving / main.wall_seconds : 0.0;
+  const BodySeriesRow& row = world.resources.get<BodySeriesRow>();
+  summary["status"] = status;
+  if (!failure.empty()) summary["failure"] = failure;
+  summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle.wall_seconds}};
+  summary["steps"] = world.clock.step;
+  summary["simulated_time"] = world.clock.t;
+  summary["wall_seconds"] = main.wall_seconds;
+  summary["total_wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  summary["body_steps_per_second"] = bsps;
+  summary["member_list_rebuilds"] = world.resources.get<BodyContactState>().rebuilds;
+  summary["frames"] = frames ? frames->frames() : 0;
+  summary["pictures"] = pictures ? pictures->pictures() : 0;
+  summary["final"] = {{"time", row.time},
+                      {"ke_translational", row.ke_translational},
+                      {"ke_rotational", row.ke_rotational},
+                      {"contacts", row.contacts},
+                      {"wall_contacts", row.wall_contacts},
+                      {"max_overlap_ratio", row.max_overlap_ratio},
+                      {"moving", row.moving}};
+  if (bo.has_outlet) summary["final"]["remaining_fraction"] = number_or_null(row.remaining_fraction);
+  double total = 0;
+  for (auto& t : step.timings()) total += t.seconds;
+  for (auto& t : observe.timings()) total += t.seconds;
+  nlohmann::json per = timings_json(step, total);
+  for (auto& j : timings_json(observe, total)) per.push_back(j);
+  summary["time_per_system"] = per;
+  write_summary_json(out / "summary.json", summary);
+  std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g body-steps/s\n",
+               status.c_str(), static_cast<long long>(main.steps), world.clock.t, main.wall_seconds, bsps);
+  if (!failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", failure.c_str());
+  else if (pictures && !pictures->last_picture().empty())
+    std::fprintf(stderr, "grainflow: last picture: %s\n", pictures->last_picture().string().c_str());
+  return rc;
+}
+
+}  // namespace gf

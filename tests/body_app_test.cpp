@@ -1,0 +1,214 @@
+// grainflow check and run on scenes of composite grains: the series (with the remaining fraction
+// above an outlet), the state frames, the side-view pictures and summary.json of a small gated bin
+// run through the command line; what body runs refuse (spheres in the same scene, --resume).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "systems/output/body_outputs.hpp"
+#include "tests/test_support.hpp"
+
+namespace {
+
+// Eight 20 mm cubes in a 100 mm square bin of four planes, on a fixed floor of two slabs with a
+// 40 mm gap closed by a fixed gate that is removed at t = 0.05 s of the main stage; a sink 0.1 m
+// below takes the cubes that fell through.
+const std::string kBin = R"(
+[run]
+dt = 2.0e-5
+duration = 0.35
+skin = 1.0e-3
+
+[contact]
+model = "linear_spring_dashpot"
+kn = 2.0e4
+kt = 1.0e4
+kr = 0.0
+en = 0.3
+et = 0.3
+er = 0.3
+friction = 0.3
+rolling_friction = 0.0
+
+[[wall]]
+type = "plane"
+point = [-0.05, 0.0, 0.0]
+normal = [1.0, 0.0, 0.0]
+[[wall]]
+type = "plane"
+point = [0.05, 0.0, 0.0]
+normal = [-1.0, 0.0, 0.0]
+[[wall]]
+type = "plane"
+point = [0.0, 0.0, -0.025]
+normal = [0.0, 0.0, 1.0]
+[[wall]]
+type = "plane"
+point = [0.0, 0.0, 0.025]
+normal = [0.0, 0.0, -1.0]
+
+[[shape]]
+name = "cube"
+kind = "box"
+size = [0.018, 0.018, 0.018]
+radius = 0.001
+density = 1000.0
+[[shape]]
+name = "floor"
+kind = "box"
+size = [0.03, 0.01, 0.05]
+radius = 0.001
+density = 1000.0
+[[shape]]
+name = "gate"
+kind = "box"
+size = [0.04, 0.01, 0.05]
+radius = 0.001
+density = 1000.0
+
+[[bodies]]
+shape = "floor"
+fixed = true
+positions = [[-0.035, -0.005, 0.0], [0.035, -0.005, 0.0]]
+[[bodies]]
+shape = "gate"
+fixed = true
+remove_at = 0.05
+positions = [[0.0, -0.005, 0.0]]
+[[bodies]]
+shape = "cube"
+group = 1
+count = 8
+orientation = "random"
+seed = 3
+region = { shape = "box", lo = [-0.045, 0.02, -0.02], hi = [0.045, 0.15, 0.02] }
+
+[settle]
+time = 0.3
+
+[analysis]
+outlet_height = 0.0
+
+[sink]
+height = -0.1
+
+[output]
+series_interval = 0.01
+frame_interval = 0.1
+picture_interval = 0.1
+picture_colour = "layer"
+)";
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string f;
+  while (std::getline(ss, f, ',')) out.push_back(f);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("body scene: check and run through the command line write series, frames and pictures", "[bodies][cli]") {
+  gf::test::TempDir dir("body_app_cli");
+  const auto scene = dir.write("bin.toml", kBin);
+  const gf::test::Exit check = gf::test::run_cli(dir, "check " + gf::test::quote(scene.string()));
+  INFO("check: " << check.out << check.err);
+  REQUIRE(check.code == 0);
+  CHECK_THAT(check.out, Catch::Contains("8 moving, 3 fixed (1 removed at a time)"));
+  CHECK_THAT(check.out, Catch::Contains("timed_body_removal"));
+
+  const std::filesystem::path out = dir.path / "out";
+  const gf::test::Exit run = gf::test::run_cli(
+      dir, "run " + gf::test::quote(scene.string()) + " --quiet --out " + gf::test::quote(out.string()));
+  INFO("run: " << run.err);
+  REQUIRE(run.code == 0);
+
+  const std::vector<std::string> rows = gf::test::read_lines(out / "series.csv");
+  REQUIRE(rows.size() == 37);  // the header, t = 0 .. 0.35 every 0.01 s
+  CHECK(rows[0] == "time,ke_translational,ke_rotational,contacts,wall_contacts,max_overlap_ratio,moving,"
+                   "remaining_fraction");
+  const auto first = split(rows[1]), before = split(rows[5]), last = split(rows.back());
+  // Settled on the closed gate: everything above the outlet, nearly at rest, overlaps small.
+  CHECK(std::stod(first[7]) == 1.0);
+  CHECK(std::stod(first[1]) < 1e-4);
+  CHECK(std::stod(before[7]) == 1.0);
+  CHECK(std::stod(first[5]) < 0.05);
+  CHECK(std::stod(first[6]) == 8);
+  // The gate opened at 0.05 s: cubes fell through the 40 mm gap into the sink.
+  const double remaining = std::stod(last[7]);
+  INFO("remaining fraction at the end: " << remaining);
+  CHECK(remaining < 1.0);
+  CHECK(std::stod(last[6]) < 8);  // the sink took them
+  for (std::size_t k = 2; k < rows.size(); ++k)
+    CHECK(std::stod(split(rows[k])[7]) <= std::stod(split(rows[k - 1])[7]));
+
+  // Frames: one per 0.1 s and the last state; every body, the gate removed in the later ones.
+  const std::vector<std::string> index = gf::test::read_lines(out / "frames" / "frames.csv");
+  REQUIRE(index.size() == 6);  // header, 0, 0.1, 0.2, 0.3, 0.35
+  const std::vector<std::string> f0 = gf::test::read_lines(out / "frames" / "frame_000000.csv");
+  const std::vector<std::string> f4 = gf::test::read_lines(out / "frames" / "frame_000004.csv");
+  REQUIRE(f0.size() == 12);
+  CHECK(f0[0] == "id,shape,group,layer,motion,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
+  CHECK(split(f0[3])[1] == "gate");
+  CHECK(split(f0[3])[4] == "fixed");
+  CHECK(split(f4[3])[4] == "removed");
+  CHECK(split(f0[4])[1] == "cube");
+  CHECK(split(f0[4])[2] == "1");
+  const auto q = split(f0[4]);
+  const double qn = std::hypot(std::hypot(std::stod(q[8]), std::stod(q[9])), std::hypot(std::stod(q[10]), std::stod(q[11])));
+  CHECK(std::abs(qn - 1.0) < 1e-12);
+
+  // Pictures at 0, 0.1, 0.2 and 0.3 s, PNG files with their colouring stated.
+  for (const char* name : {"time_0000.0000.png", "time_0000.1000.png", "time_0000.2000.png", "time_0000.3000.png"}) {
+    const std::string png = gf::test::read_file(out / "pictures" / name);
+    INFO(name);
+    REQUIRE(png.size() > 100);
+    CHECK(png.substr(1, 3) == "PNG");
+    CHECK(png.find("five layers") != std::string::npos);
+  }
+  const std::string summary = gf::test::read_file(out / "summary.json");
+  CHECK_THAT(summary, Catch::Contains("\"status\": \"completed\"") && Catch::Contains("remaining_fraction"));
+}
+
+TEST_CASE("body scene: spheres in the same scene and --resume are refused naming the fix", "[bodies][cli]") {
+  gf::test::TempDir dir("body_app_refused");
+  const auto mixed = dir.write("mixed.toml", kBin + "\n[[species]]\nname = \"glass\"\ndiameter = 0.002\ndensity = 2500\n");
+  const gf::test::Exit e = gf::test::run_cli(dir, "check " + gf::test::quote(mixed.string()));
+  INFO(e.err);
+  CHECK(e.code == 1);
+  CHECK_THAT(e.err, Catch::Contains("mixed.toml") && Catch::Contains("species") && Catch::Contains("spheres") &&
+                        Catch::Contains("Fix:"));
+  const auto scene = dir.write("bin.toml", kBin);
+  const gf::test::Exit r = gf::test::run_cli(dir, "run " + gf::test::quote(scene.string()) + " --resume " +
+                                                      gf::test::quote((dir.path / "none.gfc").string()));
+  CHECK(r.code != 0);
+  CHECK_THAT(r.err, Catch::Contains("--resume") && Catch::Contains("composite bodies"));
+}
+
+TEST_CASE("body layers are five equal counts by height, and the remaining fraction counts moving bodies above") {
+  gf::Bodies b;
+  for (int i = 0; i < 10; ++i) {
+    gf::BodyRow row;
+    row.x = {0.0, 0.1 * (9 - i), 0.0};
+    row.mass = 1.0;
+    row.inertia = {1.0, 1.0, 1.0};
+    b.push(row);
+  }
+  gf::BodyRow wall;
+  wall.mass = 1.0;
+  wall.inertia = {1.0, 1.0, 1.0};
+  wall.motion = gf::Motion::fixed;
+  wall.x = {0.0, 5.0, 0.0};
+  b.push(wall);
+  const gf::Gravity g{0.0, -9.81, 0.0};
+  const std::vector<int> layers = gf::body_layers(b, g);
+  CHECK(layers == std::vector<int>{4, 4, 3, 3, 2, 2, 1, 1, 0, 0, -1});
+  CHECK(gf::remaining_fraction(b, g, 0.45, 10) == Approx(0.5));
+  gf::remove_body(b, 0);
+  CHECK(gf::remaining_fraction(b, g, 0.45, 10) == Approx(0.4));
+  CHECK(gf::remaining_fraction(b, gf::Gravity{9.81, 0.0, 0.0}, -1.0, 10) == Approx(0.9));
+}
