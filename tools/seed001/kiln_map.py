@@ -3,13 +3,17 @@
 density ratio rho_L/rho_S, each case run in resumable pieces.
 
     /usr/bin/python3 tools/seed001/kiln_map.py run [--budget-minutes 30] [--threads 1] [--cases s2.0_r1.5 ...]
+    /usr/bin/python3 tools/seed001/kiln_map.py snapshot [--binary build/grainflow]
     /usr/bin/python3 tools/seed001/kiln_map.py report [--out runs/seed001] [--docs docs/seed001]
 
 Each case sets species.1 (the large grains) to d_L = ratio x 2 mm and rho_L = ratio x 2800 kg/m^3
 with --set, keeps equal solid volumes (the fill's volume fractions), and turns the kiln REVS
 revolutions. `run` gives each unfinished case (corners and centre first, so a partial map already
 spans the plane) at most --budget-minutes per invocation; a stopped case continues from its
-checkpoint the next time, and finished cases are skipped. `report` writes map.json (per case: the
+checkpoint the next time, and finished cases are skipped. `snapshot` measures each finished case's
+final state (final_state.csv) with --binary, zero steps from that state, into end_snapshot.json: the
+measures of the binary at hand for cases run before they existed (the depth index), and the radial
+index again, which must equal the series' last row (the same state and code). `report` writes map.json (per case: the
 Lacey index and the signed radial index averaged over the last AVERAGE_REVS revolutions, with their
 spread, the grains, the mean grains per Lacey cell, wall time), the heat map with the balance line
 (map.png), the mixing curves (curves.png) and the corner pictures (corners.png).
@@ -106,6 +110,47 @@ def near_zero(table):
     return sorted((c["size_ratio"], c["density_ratio"]) for c in table.values() if not resolved(c))
 
 
+def snapshot_scene(final_state):
+    """The kiln scene with its fill replaced by the grains of final_state.csv and no settling."""
+    text = SCENE.read_text()
+    start = text.index("[[fill]]")
+    end = text.index("[output]")
+    fill = ('[[fill]]\nkind = "file"\npath = ' + json.dumps(str(final_state.resolve())) +
+            '\ntypes = { 1 = "small", 2 = "large" }\n\n')
+    return text[:start] + fill + text[end:]
+
+
+def snapshot(out, binary, names):
+    """end_snapshot.json per finished case: the final state's measures by `binary`, zero steps."""
+    import tempfile
+
+    for name, (size, density) in names.items():
+        folder = out / name
+        s = load_series(folder)
+        if s is None or not done(s) or not (folder / "final_state.csv").is_file():
+            continue
+        with tempfile.TemporaryDirectory() as tmp:
+            scene = Path(tmp) / "kiln_end.toml"
+            scene.write_text(snapshot_scene(folder / "final_state.csv"))
+            sets = []
+            for o in overrides(size, density)[:3]:  # the species and the step; no rotation is run
+                sets += ["--set", o]
+            r = subprocess.run([str(binary), "run", str(scene), "--steps", "0", "--threads", "1", "--quiet",
+                                "--out", str(Path(tmp) / "out")] + sets, capture_output=True, text=True)
+            if r.returncode != 0:
+                sys.exit(f"kiln_map snapshot {name}: {r.stderr.strip()}")
+            final = json.loads((Path(tmp) / "out" / "summary.json").read_text())["final"]
+        last = float(s[-1]["radial_segregation"])
+        if not math.isclose(final["radial_segregation"], last, rel_tol=1e-9, abs_tol=1e-12):
+            sys.exit(f"kiln_map snapshot {name}: radial index {final['radial_segregation']} of the final state "
+                     f"differs from the series' last row {last}")
+        rec = {"binary": str(binary), "radial_segregation": final["radial_segregation"],
+               "depth_segregation": final["depth_segregation"], "lacey_index": final["lacey_index"],
+               "surface_angle": final["surface_angle"], "angle": float(s[-1]["angle"])}
+        (folder / "end_snapshot.json").write_text(json.dumps(rec, indent=1))
+        print(f"{name}: radial {rec['radial_segregation']:+.3f} (series {last:+.3f}), depth {rec['depth_segregation']:+.3f}")
+
+
 def report(out, docs):
     import matplotlib
 
@@ -122,6 +167,8 @@ def report(out, docs):
         st = steady(s)
         summary = json.loads((folder / "summary.json").read_text())
         ps = pieces(folder)
+        end = folder / "end_snapshot.json"
+        end = json.loads(end.read_text()) if end.is_file() else {}
         table[name] = {
             "size_ratio": size, "density_ratio": density,
             "lacey": st["lacey_index"], "radial": st["radial_segregation"],
@@ -130,6 +177,7 @@ def report(out, docs):
             "lacey_cell_grains": float(np.mean(s["lacey_cell_grains"])),
             "wall_seconds": sum((p["wall_seconds"] or 0) + p.get("settle_wall_seconds", 0.0) for p in ps),
             "threads": sorted({p["threads"] for p in ps}),
+            "depth_end": end.get("depth_segregation"), "radial_end": end.get("radial_segregation"),
         }
     line = balance_line(table)
     fit = None
@@ -210,7 +258,7 @@ def report(out, docs):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("command", choices=["run", "report"])
+    ap.add_argument("command", choices=["run", "snapshot", "report"])
     ap.add_argument("--out", type=Path, default=REPO / "runs" / "seed001")
     ap.add_argument("--docs", type=Path, default=REPO / "docs" / "seed001")
     ap.add_argument("--binary", type=Path, default=REPO / "build" / "grainflow")
@@ -230,6 +278,8 @@ def main():
             size, density = names[name]
             run_piece(name, a.binary, SCENE, a.out / name, overrides(size, density), a.threads,
                       60 * a.budget_minutes, done)
+    elif a.command == "snapshot":
+        snapshot(a.out, a.binary, {n: names[n] for n in wanted})
     else:
         report(a.out, a.docs)
 

@@ -21,12 +21,17 @@ def map_table(m):
         cells = []
         for r in DENSITY_RATIOS:
             c = cases.get((s, r))
-            cells.append("not run yet" if c is None else f"{c['lacey'][0]:.2f} / {c['radial'][0]:+.2f}")
+            if c is None:
+                cells.append("not run yet")
+                continue
+            depth = c.get("depth_end")
+            cells.append(f"{c['lacey'][0]:.2f} / {c['radial'][0]:+.2f} / " + ("—" if depth is None else f"{depth:+.2f}"))
         rows.append(f"| {s:g} | " + " | ".join(cells) + " |")
     done = list(cases.values())
     rows.append("")
-    rows.append(f"Cases finished: {m['complete']} of {m['of']}, {m['revolutions']:g} revolutions each, values the mean "
-                f"over the last {m['average_revolutions']:g}.")
+    rows.append(f"Cases finished: {m['complete']} of {m['of']}, {m['revolutions']:g} revolutions each; Lacey and radial "
+                f"index the mean over the last {m['average_revolutions']:g}, the depth index of the final state "
+                f"(kiln_map.py snapshot; — where not measured).")
     if done:
         grains = [c["grains"] for c in done]
         per_cell = [c["lacey_cell_grains"] for c in done]
