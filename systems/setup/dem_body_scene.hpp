@@ -9,7 +9,9 @@
 //               youngs_modulus and poisson_ratio, the same for every shape (one material for all bodies).
 //   [[bodies]]  shape (a [[shape]] name); positions = [[x, y, z], ...] (centres of mass) or count with
 //               region = { shape = "box", lo, hi } or a cylinder as a random fill's (bounding spheres
-//               kept apart; optional seed); orientation = "identity" (default) or "random"; velocity;
+//               kept apart; optional seed; arrangement = "random" (default) or "lattice": a cubic
+//               lattice of bounding spheres filled from the bottom of a box region, for dense starts);
+//               orientation = "identity" (default) or "random"; velocity;
 //               fixed = true (the bodies never move: walls, floors, gates built of shapes; the law's
 //               [contact.wall] parameters act between them and moving bodies); remove_at = t (s of the
 //               main stage, after [settle]: the bodies are removed then, their contact springs
