@@ -14,9 +14,15 @@ import sys
 ROW = re.compile(r"^(liggghts|grainflow)\s+(\d+)\s+(\d+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+|nan)\s+([0-9.]+)(?:\s+(-?\d+))?$")
 
 
+SKIN = re.compile(r"^# state .*, skin ([0-9.eE+-]+) m,")
+
+
 def main(path):
-    runs, builds = {}, {}
+    runs, builds, skin = {}, {}, None
     for line in open(path):
+        k = SKIN.match(line.strip())
+        if k:
+            skin = float(k.group(1))
         m = ROW.match(line.strip())
         if m:
             runs[m.group(1), int(m.group(2)), int(m.group(3))] = float(m.group(6))
@@ -39,6 +45,8 @@ def main(path):
         text = "; ".join(f"{'LIGGGHTS' if c == 'liggghts' else c} {'/'.join(map(str, sorted(v)))}"
                          for c, v in sorted(builds.items(), reverse=True))
         print(f"| neighbour-list rebuilds per run | {text} | | |")
+    if skin is not None:  # logs from before the SKIN setting ran at the scene's, 0.15 mm
+        print(f"| Verlet skin, both codes | {skin * 1e3:g} mm | | |")
 
 
 if __name__ == "__main__":

@@ -105,6 +105,8 @@ TABLES = {
     "system_benchmarks": lambda: script("tools/bench/system_table.py"),
     "liggghts": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison.log"),
     "liggghts_flowing": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison_flowing.log"),
+    "liggghts_flowing_skin": lambda: script("tools/liggghts/comparison_table.py",
+                                            "docs/liggghts/comparison_flowing_skin0.3mm.log"),
     "liggghts_flowing_grainflow": lambda: script("tools/liggghts/comparison_table.py",
                                                  "docs/liggghts/comparison_flowing_grainflow.log"),
     "pulsation": pulsation_table,
