@@ -13,6 +13,8 @@ THREADS="${THREADS:-1,2}"
 echo "# bench_scaling: $(date -u +%Y-%m-%dT%H:%M:%SZ), $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), repo $(git -C "$REPO" rev-parse --short HEAD)"
 for L in $SIZES; do
   sets=(--set="wall.0.hi=[$L,0.012,$L]" --set="fill.0.region.hi=[$L,0.012,$L]")
+  echo "L=$L m  $("$BUILD/grainflow" check "$REPO/scenes/bench/settled_layer.toml" --set "wall.0.hi=[$L,0.012,$L]" \
+    --set "fill.0.region.hi=[$L,0.012,$L]" | grep -E 'memory estimate')"
   "$BUILD/bench/end_to_end_bench" --scene="$REPO/scenes/bench/settled_layer.toml" --settle --steps="$STEPS" \
     "${sets[@]}" --threads="$THREADS" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true 2>&1 |
     grep -E "median" | sed "s/^/L=$L m  /"

@@ -102,6 +102,8 @@ TABLES = {
     "time_split": time_split_table,
     "time_split_flowing": lambda: time_split_table("docs/bench/drum_time_split_flowing.json"),
     "scaling": lambda: script("tools/bench/scaling_table.py", "docs/bench/scaling.log"),
+    "scaling_knee": lambda: script("tools/bench/scaling_knee_table.py", "docs/bench/scaling_knee.log",
+                                   "docs/bench/memory_bandwidth.json"),
     "system_benchmarks": lambda: script("tools/bench/system_table.py"),
     "liggghts": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison.log"),
     "liggghts_flowing": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison_flowing.log"),
