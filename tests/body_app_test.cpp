@@ -1,6 +1,7 @@
 // grainflow check and run on scenes of composite grains: the series (with the remaining fraction
 // above an outlet), the state frames, the side-view pictures and summary.json of a small gated bin
-// run through the command line; what body runs refuse (spheres in the same scene, --resume).
+// run through the command line; a run resumed from its checkpoint equal to the bit to one never
+// stopped; spheres in the same scene refused.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -174,7 +175,7 @@ TEST_CASE("body scene: check and run through the command line write series, fram
   CHECK_THAT(summary, Catch::Contains("\"status\": \"completed\"") && Catch::Contains("remaining_fraction"));
 }
 
-TEST_CASE("body scene: spheres in the same scene and --resume are refused naming the fix", "[bodies][cli]") {
+TEST_CASE("body scene: spheres in the same scene are refused naming the fix", "[bodies][cli]") {
   gf::test::TempDir dir("body_app_refused");
   const auto mixed = dir.write("mixed.toml", kBin + "\n[[species]]\nname = \"glass\"\ndiameter = 0.002\ndensity = 2500\n");
   const gf::test::Exit e = gf::test::run_cli(dir, "check " + gf::test::quote(mixed.string()));
@@ -182,11 +183,39 @@ TEST_CASE("body scene: spheres in the same scene and --resume are refused naming
   CHECK(e.code == 1);
   CHECK_THAT(e.err, Catch::Contains("mixed.toml") && Catch::Contains("species") && Catch::Contains("spheres") &&
                         Catch::Contains("Fix:"));
+}
+
+TEST_CASE("body scene: a run resumed from its checkpoint ends bit-identical to one never stopped", "[bodies][cli]") {
+  // The gate opens at 0.05 s; the run stops at 0.2 s (--steps), while cubes fall through the outlet,
+  // and is resumed to 0.35 s. Series, frames and pictures must equal the uninterrupted run's bytes.
+  gf::test::TempDir dir("body_app_resume");
   const auto scene = dir.write("bin.toml", kBin);
-  const gf::test::Exit r = gf::test::run_cli(dir, "run " + gf::test::quote(scene.string()) + " --resume " +
-                                                      gf::test::quote((dir.path / "none.gfc").string()));
-  CHECK(r.code != 0);
-  CHECK_THAT(r.err, Catch::Contains("--resume") && Catch::Contains("composite bodies"));
+  const std::string q = gf::test::quote(scene.string());
+  const std::filesystem::path whole = dir.path / "whole", parts = dir.path / "parts";
+  REQUIRE(gf::test::run_cli(dir, "run " + q + " --quiet --out " + gf::test::quote(whole.string())).code == 0);
+  REQUIRE(gf::test::run_cli(dir, "run " + q + " --quiet --steps 10000 --out " + gf::test::quote(parts.string())).code == 0);
+  const std::filesystem::path ckpt = parts / "checkpoints" / "checkpoint.gfc";
+  REQUIRE(std::filesystem::exists(ckpt));
+  const gf::test::Exit r = gf::test::run_cli(
+      dir, "run " + q + " --quiet --out " + gf::test::quote(parts.string()) + " --resume " + gf::test::quote(ckpt.string()));
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(gf::test::read_file(parts / "series.csv") == gf::test::read_file(whole / "series.csv"));
+  for (const char* f : {"frame_000002.csv", "frame_000003.csv", "frame_000004.csv", "frames.csv"}) {
+    INFO(f);
+    CHECK(gf::test::read_file(parts / "frames" / f) == gf::test::read_file(whole / "frames" / f));
+  }
+  CHECK(gf::test::read_file(parts / "pictures" / "time_0000.3000.png") ==
+        gf::test::read_file(whole / "pictures" / "time_0000.3000.png"));
+  // The removed gate and the sunk cubes are part of the state carried over.
+  CHECK_THAT(gf::test::read_file(parts / "frames" / "frame_000004.csv"), Catch::Contains("gate,1,-1,removed"));
+  // A checkpoint of another scene is refused naming what differs.
+  const auto other = dir.write("other.toml", kBin + "\n[[bodies]]\nshape = \"cube\"\npositions = [[0.0, 0.3, 0.0]]\n");
+  const gf::test::Exit wrong = gf::test::run_cli(dir, "run " + gf::test::quote(other.string()) + " --quiet --out " +
+                                                          gf::test::quote((dir.path / "o").string()) + " --resume " +
+                                                          gf::test::quote(ckpt.string()));
+  CHECK(wrong.code != 0);
+  CHECK_THAT(wrong.err, Catch::Contains("body count") && Catch::Contains("Fix:"));
 }
 
 TEST_CASE("body layers are five equal counts by height, and the remaining fraction counts moving bodies above") {

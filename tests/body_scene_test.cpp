@@ -193,8 +193,11 @@ TEST_CASE("bodies scene keys for fixed bodies, outputs and analysis are checked 
              Catch::Contains("bodies[0].remove_at"));
   CHECK_THAT(load_error(replaced(kScene, "positions = [[0.0, 0.04, 0.0]]", "positions = [[0.0, 0.04, 0.0]]\ngroup = -2")),
              Catch::Contains("bodies[0].group"));
-  CHECK_THAT(load_error(kScene + "\n[output]\ncheckpoint_interval = 0.1\n"),
-             Catch::Contains("output.checkpoint_interval") && Catch::Contains("no checkpoints"));
+  CHECK_THAT(load_error(kScene + "\n[output]\npicture_interval = 1.0e-6\n"), Catch::Contains("output.picture_interval"));
+  CHECK_THAT(load_error(replaced(kScene, "positions = [[0.0, 0.04, 0.0]]",
+                                 "count = 100\narrangement = \"lattice\"\n"
+                                 "region = { shape = \"box\", lo = [-0.05, 0.02, -0.05], hi = [0.05, 0.1, 0.05] }")),
+             Catch::Contains("bodies[0].count") && Catch::Contains("lattice") && Catch::Contains("hi[1]"));
   CHECK_THAT(load_error(kScene + "\n[output]\npicture_angles = [1.0]\n"), Catch::Contains("output.picture_angles"));
   CHECK_THAT(load_error(kScene + "\n[output]\npicture_colour = \"speed\"\n"), Catch::Contains("output.picture_colour"));
   CHECK_THAT(load_error(kScene + "\n[output]\nframe_force = true\n"), Catch::Contains("output.frame_force"));

@@ -85,7 +85,19 @@ BodySeriesOutput::BodySeriesOutput(BodySeriesSettings s) : s_(std::move(s)) {
   std::vector<std::string> columns{"time",          "ke_translational",  "ke_rotational", "contacts",
                                    "wall_contacts", "max_overlap_ratio", "moving"};
   if (s_.outlet_height) columns.push_back("remaining_fraction");
-  csv_ = std::make_unique<SeriesCsv>(*s_.csv, std::move(columns));
+  if (s_.resume_rows)
+    csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, std::move(columns), *s_.resume_rows));
+  else
+    csv_ = std::make_unique<SeriesCsv>(*s_.csv, std::move(columns));
+}
+
+void BodySeriesOutput::save(CheckpointWriter& out) const {
+  out.value("body_series_output.next", next_);
+  out.value("body_series_output.rows", static_cast<std::uint64_t>(rows_));
+}
+void BodySeriesOutput::restore(const CheckpointReader& in) {
+  next_ = in.value<double>("body_series_output.next");
+  rows_ = in.value<std::uint64_t>("body_series_output.rows");
 }
 
 void BodySeriesOutput::run(World& world, const StepContext& now) {
@@ -126,6 +138,7 @@ void BodySeriesOutput::sample(World& world, double t) {
                         static_cast<double>(row.moving)};
   if (s_.outlet_height) v.push_back(row.remaining_fraction);
   csv_->append(v);
+  ++rows_;
 }
 
 // ---- Frames --------------------------------------------------------------------------------------
@@ -134,6 +147,15 @@ BodyFrameOutput::BodyFrameOutput(std::filesystem::path out_dir, double interval,
                                  std::vector<int> layers)
     : dir_(out_dir / "frames"), interval_(interval), spec_(std::move(spec)), layers_(std::move(layers)) {
   ensure_directory(dir_);
+}
+
+void BodyFrameOutput::save(CheckpointWriter& out) const {
+  out.value("body_frame_output.next", next_);
+  out.vector("body_frame_output.times", times_);
+}
+void BodyFrameOutput::restore(const CheckpointReader& in) {
+  next_ = in.value<double>("body_frame_output.next");
+  in.vector("body_frame_output.times", times_);
 }
 
 void BodyFrameOutput::run(World& world, const StepContext& now) {
@@ -187,6 +209,15 @@ BodyPictureOutput::BodyPictureOutput(std::filesystem::path dir, double interval,
                                      std::string legend)
     : dir_(std::move(dir)), interval_(interval), view_(view), colour_(std::move(colour)), legend_(std::move(legend)) {
   ensure_directory(dir_);
+}
+
+void BodyPictureOutput::save(CheckpointWriter& out) const {
+  out.value("body_picture_output.next", next_);
+  out.value("body_picture_output.written", static_cast<std::uint64_t>(written_));
+}
+void BodyPictureOutput::restore(const CheckpointReader& in) {
+  next_ = in.value<double>("body_picture_output.next");
+  written_ = in.value<std::uint64_t>("body_picture_output.written");
 }
 
 void BodyPictureOutput::run(World& world, const StepContext& now) {

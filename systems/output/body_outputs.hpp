@@ -21,11 +21,13 @@
 #pragma once
 
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "engine/checkpoint_file.hpp"
 #include "engine/system.hpp"
 #include "systems/bodies/bodies.hpp"
 #include "systems/bodies/body_contact.hpp"
@@ -65,9 +67,10 @@ struct BodySeriesSettings {
   double overlap_scale = 1;                  // m
   std::optional<double> outlet_height;       // m along -gravity
   std::size_t initial_moving = 0;            // the remaining fraction's denominator
+  std::optional<std::size_t> resume_rows;    // continue an existing csv, keeping this many rows
 };
 
-class BodySeriesOutput : public SystemBase<BodySeriesOutput> {
+class BodySeriesOutput : public SystemBase<BodySeriesOutput>, public Checkpointable {
  public:
   using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMass, BodyInertia,
                           BodyMotion, BodyContactState, Gravity>;
@@ -77,18 +80,21 @@ class BodySeriesOutput : public SystemBase<BodySeriesOutput> {
   void run(World& world, const StepContext& now) override;
   // Samples the last state unless the latest row already is it.
   void finish(World& world);
+  void save(CheckpointWriter& out) const override;
+  void restore(const CheckpointReader& in) override;
 
  private:
   void sample(World& world, double t);
   BodySeriesSettings s_;
   std::unique_ptr<SeriesCsv> csv_;
   double next_ = 0;
+  std::size_t rows_ = 0;  // written to the csv by this run and the runs it continues
 };
 
 // The CSV files of a BodyFrameOutput (a tag for the schedule).
 struct BodyFrameFiles {};
 
-class BodyFrameOutput : public SystemBase<BodyFrameOutput> {
+class BodyFrameOutput : public SystemBase<BodyFrameOutput>, public Checkpointable {
  public:
   using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMotion>;
   using Writes = gf::Writes<BodyFrameFiles>;
@@ -99,6 +105,9 @@ class BodyFrameOutput : public SystemBase<BodyFrameOutput> {
   void run(World& world, const StepContext& now) override;
   void finish(World& world);
   std::size_t frames() const { return times_.size(); }
+  void save(CheckpointWriter& out) const override;
+  // Frames written after the checkpoint by the stopped run are written again under the same names.
+  void restore(const CheckpointReader& in) override;
 
  private:
   void write(const Bodies& b, double t);
@@ -113,7 +122,7 @@ class BodyFrameOutput : public SystemBase<BodyFrameOutput> {
 // The PNG files of a BodyPictureOutput (a tag for the schedule).
 struct BodyPictureFiles {};
 
-class BodyPictureOutput : public SystemBase<BodyPictureOutput> {
+class BodyPictureOutput : public SystemBase<BodyPictureOutput>, public Checkpointable {
  public:
   using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyMotion, MemberBody, MemberCore, MemberDilation,
                           MemberCentre, CoreVertices>;
@@ -125,6 +134,8 @@ class BodyPictureOutput : public SystemBase<BodyPictureOutput> {
   void run(World& world, const StepContext& now) override;
   std::size_t pictures() const { return written_; }
   const std::filesystem::path& last_picture() const { return last_; }
+  void save(CheckpointWriter& out) const override;
+  void restore(const CheckpointReader& in) override;
 
  private:
   std::filesystem::path dir_;

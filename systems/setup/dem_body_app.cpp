@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include <tbb/global_control.h>
@@ -12,7 +13,9 @@
 #include "engine/run_loop.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/output/body_outputs.hpp"
+#include "systems/output/checkpoint_output.hpp"
 #include "systems/output/summary_json.hpp"
+#include "systems/setup/dem_body_checkpoint.hpp"
 #include "systems/setup/dem_simulation.hpp"
 
 namespace gf {
@@ -87,21 +90,27 @@ int check_body_command(const CliOptions& opt, const DemScene& s) {
   const BodyContactState& st = sim.world().resources.get<BodyContactState>();
   std::printf("initial contacts: %zu member pairs (%zu with fixed bodies), %zu with plane walls; list pairs %zu\n",
               st.last.pair_contacts, st.last.fixed_contacts, st.last.wall_contacts, st.list.pairs());
-  std::printf("checkpoints: none (body runs are not resumable yet)\n");
+  if (s.output.checkpoint_interval > 0)
+    std::printf("checkpoints: every %.4g s of the main stage%s\n", s.output.checkpoint_interval,
+                s.output.checkpoint_at_end ? " and at its end" : "");
+  else
+    std::printf("checkpoints: %s\n", s.output.checkpoint_at_end ? "at the end of the run" : "none");
   return 0;
 }
 
 int run_body_command(const CliOptions& opt, const DemScene& s) {
   const auto wall0 = std::chrono::steady_clock::now();
-  if (opt.resume)
-    throw std::invalid_argument("--resume: runs of composite bodies write no checkpoints and cannot be resumed yet; "
-                                "run the scene from its start (its frames hold the state of each frame time)");
   const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
   ensure_directory(out);
   DemSimulation sim(s);
   World& world = sim.world();
   Schedule& step = sim.step();
   const BodyCounts counts = count_bodies(s, world);
+  std::optional<CheckpointReader> ckpt;
+  if (opt.resume) {
+    ckpt.emplace(*opt.resume);
+    restore_body_state(*ckpt, world, s);
+  }
   std::fprintf(stderr, "grainflow: %s: %zu moving and %zu fixed bodies (%zu members), dt = %.3g s (%.3f of the "
                "critical period), %zu threads -> %s\n",
                s.file.string().c_str(), counts.moving, counts.fixed, counts.members, s.dt, s.dt / s.critical.period,
@@ -116,11 +125,17 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
   summary["critical_period"] = s.critical.period;
   summary["critical_term"] = s.critical.term;
   summary["status"] = "running";
+  if (ckpt) {
+    summary["resumed_from"] = {{"checkpoint", ckpt->file().string()}, {"step", world.clock.step}, {"time", world.clock.t}};
+    std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", ckpt->file().string().c_str(),
+                 static_cast<long long>(world.clock.step), world.clock.t);
+  }
   write_summary_json(out / "summary.json", summary);
 
+  // A resumed run continues the main stage; its settling was done by the run that wrote the checkpoint.
   StageReport settle;
   try {
-    settle = sim.settle(opt.quiet ? 0.0 : 2.0);
+    if (!ckpt) settle = sim.settle(opt.quiet ? 0.0 : 2.0);
   } catch (const StabilityError& e) {
     summary["status"] = "failed";
     summary["failure"] = std::string("while settling: ") + e.what();
@@ -131,13 +146,25 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
   }
   step.reset_timings();
 
-  // The state at the start of the main stage: layers, the remaining fraction's denominator, the view.
+  // The state at the start of the main stage: layers, the remaining fraction's denominator, the
+  // pictures' window; a resumed run takes them from its checkpoint.
   const Bodies& bodies = world.tables.get<Bodies>();
   const Gravity& g = world.resources.get<Gravity>();
-  const std::vector<int> layers = body_layers(bodies, g);
-  std::size_t initial_moving = 0;
-  for (std::size_t i = 0; i < bodies.n; ++i) initial_moving += bodies.moving(i);
   const BodyOutputSpec& bo = s.bodies->output;
+  std::vector<int> layers;
+  std::uint64_t initial_moving = 0;
+  const double lowest = bo.has_sink ? bo.sink_height : std::numeric_limits<double>::quiet_NaN();
+  BodyView view;
+  if (ckpt) {
+    ckpt->vector("body_run.layers", layers);
+    initial_moving = ckpt->value<std::uint64_t>("body_run.initial_moving");
+    view = ckpt->value<BodyView>("body_run.view");
+    if (layers.size() != bodies.n) ckpt->fail("its layers are not one per body", "resume with the scene of the run that wrote it");
+  } else {
+    layers = body_layers(bodies, g);
+    for (std::size_t i = 0; i < bodies.n; ++i) initial_moving += bodies.moving(i);
+    view = body_view(bodies, world.tables.get<Members>(), bo.view_axis, bo.picture_size, lowest);
+  }
 
   Schedule observe;
   world.resources.emplace<BodySeriesRow>();
@@ -147,6 +174,7 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
   ss.overlap_scale = bo.overlap_scale;
   if (bo.has_outlet) ss.outlet_height = bo.outlet_height;
   ss.initial_moving = initial_moving;
+  if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("body_series_output.rows");
   BodySeriesOutput& series = observe.emplace<BodySeriesOutput>(ss);
   BodyFrameOutput* frames = nullptr;
   if (s.output.frame_interval > 0)
@@ -155,21 +183,48 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
   if (bo.picture_interval > 0) {
     std::string legend;
     std::vector<Rgb> colours = picture_colours(s, layers, legend);
-    const double lowest = bo.has_sink ? bo.sink_height : std::numeric_limits<double>::quiet_NaN();
-    const BodyView view = body_view(bodies, world.tables.get<Members>(), bo.view_axis, bo.picture_size, lowest);
     pictures = &observe.emplace<BodyPictureOutput>(out / "pictures", bo.picture_interval, view, std::move(colours),
                                                    std::move(legend));
   }
+  std::vector<const Checkpointable*> parts{&series};
+  if (frames) parts.push_back(frames);
+  if (pictures) parts.push_back(pictures);
+  CheckpointOutput& checkpoints = observe.emplace<CheckpointOutput>(
+      CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
+      [&s, layers, initial_moving, view](CheckpointWriter& w, World& wd) {
+        save_body_state(w, wd, s);
+        w.vector("body_run.layers", layers);
+        w.value("body_run.initial_moving", initial_moving);
+        w.value("body_run.view", view);
+      },
+      parts);
   observe.build(world);
+  if (ckpt) {
+    series.restore(*ckpt);
+    if (frames) {
+      if (!ckpt->has("body_frame_output.next"))
+        ckpt->fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
+      frames->restore(*ckpt);
+    }
+    if (pictures) {
+      if (!ckpt->has("body_picture_output.next"))
+        ckpt->fail("the run that wrote it drew no pictures", "resume with output.picture_interval = 0, as that run had");
+      pictures->restore(*ckpt);
+    }
+    checkpoints.restore(*ckpt);
+  }
 
   StageOptions so;
   so.progress_seconds = opt.quiet ? 0.0 : 2.0;
   so.label = "run";
-  so.steps = opt.steps ? *opt.steps : s.main_steps();
+  // --steps and the scene's duration count the whole main stage, so a resumed run ends where the
+  // uninterrupted one would.
+  so.steps = std::max<std::int64_t>(0, (opt.steps ? *opt.steps : s.main_steps()) - world.clock.step);
   so.observe = &observe;
   StageReport main;
-  std::string status = "completed", failure;
+  std::string status = "completed", failure, checkpoint_file;
   int rc = 0;
+  const std::int64_t first_step = world.clock.step;
   const auto run0 = std::chrono::steady_clock::now();
   try {
     main = run_stage(world, step, so);
@@ -177,9 +232,18 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
   } catch (const std::exception& e) {
     status = "failed";
     failure = e.what();
-    main.steps = world.clock.step;
+    main.steps = world.clock.step - first_step;
     main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
     rc = 3;
+  }
+  if (status != "failed" && s.output.checkpoint_at_end) {
+    try {
+      checkpoint_file = checkpoints.write(world).string();
+    } catch (const std::exception& e) {
+      status = "failed";
+      failure = e.what();
+      rc = 3;
+    }
   }
   if (status != "failed") {
     try {
@@ -201,6 +265,9 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
   summary["wall_seconds"] = main.wall_seconds;
   summary["total_wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   summary["body_steps_per_second"] = bsps;
+  summary["steps_this_run"] = main.steps;
+  summary["checkpoints_written"] = checkpoints.written();
+  if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
   summary["member_list_rebuilds"] = world.resources.get<BodyContactState>().rebuilds;
   summary["frames"] = frames ? frames->frames() : 0;
   summary["pictures"] = pictures ? pictures->pictures() : 0;

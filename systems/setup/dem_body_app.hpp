@@ -1,7 +1,7 @@
 // `grainflow check` and `grainflow run` for scenes of composite grains ([[shape]], [[bodies]]): the
 // same stages as for grains (validate, prime, settle, run with observers, summary.json), with the
-// bodies' outputs (systems/output/body_outputs.hpp, body_picture.hpp). Body runs write no
-// checkpoints yet: checkpoint keys and --resume are refused with the reason.
+// bodies' outputs (systems/output/body_outputs.hpp, body_picture.hpp) and checkpoints of the
+// bodies' state (dem_body_checkpoint.hpp) that --resume continues bit for bit.
 #pragma once
 
 #include "engine/cli.hpp"

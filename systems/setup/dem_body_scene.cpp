@@ -124,11 +124,6 @@ void read_body_outputs(const DemScene& s, const SceneNode& root, BodiesSpec& b) 
       out->fail(out->has("frame_velocity") ? "frame_velocity" : "frame_angular_velocity",
                 "body frames always hold velocities and angular velocities (what a restart from them needs)",
                 "remove the key");
-    if (out->get_double("checkpoint_interval", 0.0, Range::non_negative()) > 0)
-      out->fail("checkpoint_interval", "runs of composite bodies write no checkpoints yet",
-                "remove checkpoint_interval (a body run is restarted from its frames' state, not resumed)");
-    if (out->get_bool("checkpoint_keep_all", false))
-      out->fail("checkpoint_keep_all", "runs of composite bodies write no checkpoints yet", "remove the key");
   }
   if (const auto an = root.maybe_table("analysis")) {
     for (const char* key : {"species", "mixing_cell", "mixing_min_grains"})

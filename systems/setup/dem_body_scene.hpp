@@ -23,7 +23,8 @@
 //               "layer" (five layers of equal counts by height at the start of the main stage,
 //               alternately blue and vermillion, as the seed's hopper), picture_view = "z" (default:
 //               looking along -z, x to the right) or "x" (looking along +x, z to the right).
-//               checkpoint_interval and checkpoint_keep_all are refused (body runs write no checkpoint).
+//               checkpoint_interval, checkpoint_keep_all, checkpoint_at_end as for grains
+//               (dem_body_checkpoint.hpp: a resumed run is bit-identical).
 //   [analysis]  outlet_height (m, along -gravity, i.e. y under the default gravity): series.csv adds
 //               remaining_fraction, the moving bodies whose centre of mass lies above it over those
 //               moving at the start of the main stage.

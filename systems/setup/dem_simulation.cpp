@@ -5,6 +5,7 @@
 
 #include "systems/bodies/body_contact.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
+#include "systems/setup/dem_body_checkpoint.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
 #include "systems/walls/walls.hpp"
 
@@ -66,7 +67,10 @@ StageReport DemSimulation::settle(double progress_seconds) {
 }
 
 void DemSimulation::resume(const CheckpointReader& in) {
-  restore_dem_state(in, *world_, scene_);
+  if (scene_.bodies)
+    restore_body_state(in, *world_, scene_);
+  else
+    restore_dem_state(in, *world_, scene_);
   primed_ = true;
 }
 
