@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,7 @@
 
 #include <Eigen/Geometry>
 
+#include "engine/run_loop.hpp"
 #include "systems/bodies/member_geometry.hpp"
 #include "systems/contact/laws.hpp"
 
@@ -385,6 +387,17 @@ BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, 
   sum_walls(bodies, members, walls, state, report);
   state.last = report;
   return report;
+}
+
+void check_body_overlap(const BodyContactState& state, const StepContext& step) {
+  if (!(state.last.max_overlap > state.overlap_limit)) return;
+  char what[256];
+  std::snprintf(what, sizeof what, "step %lld (%s): a member contact overlaps by %.4g m, past the limit of %.4g m",
+                static_cast<long long>(step.step), std::string(step.stage).c_str(), state.last.max_overlap,
+                state.overlap_limit);
+  throw StabilityError(std::string(what) +
+                       " (run.max_overlap of the thinnest shape's smallest dimension): the contacts are too soft for "
+                       "the loads or the step too long; raise kn, lower run.dt, or raise run.max_overlap");
 }
 
 // The driver for every registered law: the table's external linkage makes the compiler emit them.

@@ -56,6 +56,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string_view>
 #include <vector>
 
@@ -131,7 +132,14 @@ struct BodyContactState {
   // body's springs are dropped and a fixed body's pairs take the wall's constants.
   std::vector<std::uint8_t> motion;
   BodyContactReport last;     // the last evaluation's counts, for the outputs
+  // m: an overlap beyond it stops the run (BodyContact throws StabilityError); a scene sets it to
+  // run.max_overlap times its thinnest moving shape's smallest outer dimension.
+  double overlap_limit = std::numeric_limits<double>::infinity();
 };
+
+// Throws StabilityError naming the step and the limit when the last evaluation's largest overlap
+// passed state.overlap_limit.
+void check_body_overlap(const BodyContactState& state, const StepContext& step);
 
 // True when the list must be rebuilt: none yet, the member count changed, or some member's centre
 // moved more than skin / 2 since the last rebuild.
@@ -160,9 +168,11 @@ class BodyContact : public SystemBase<BodyContact<L>> {
   using Writes = gf::Writes<BodyForce, BodyTorque, BodyContactState>;
   std::string_view name() const override { return "body_contact"; }
   void run(World& world, const StepContext& step) override {
+    BodyContactState& state = world.resources.get<BodyContactState>();
     compute_body_contacts<L>(world.tables.get<Bodies>(), world.tables.get<Members>(),
-                             world.resources.get<BodyPlanes>(), world.resources.get<BodyContactModel<L>>(),
-                             world.resources.get<BodyContactState>(), step.dt);
+                             world.resources.get<BodyPlanes>(), world.resources.get<BodyContactModel<L>>(), state,
+                             step.dt);
+    if (state.last.max_overlap > state.overlap_limit) check_body_overlap(state, step);
   }
 };
 

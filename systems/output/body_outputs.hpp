@@ -7,9 +7,9 @@
 //   ke_rotational        J, sum of w^T I w / 2 over moving bodies (I the world-frame inertia)
 //   contacts             member pairs of two moving bodies touching
 //   wall_contacts        moving members touching a plane wall or a fixed body's member
-//   max_overlap_ratio    the largest overlap of any contact over the scene's overlap scale: the thinnest
-//                        shape's smallest outer dimension (a prism's inscribed diameter is smaller; a
-//                        box's thinnest edge), the composite grain's "smaller diameter"
+//   max_overlap_ratio    the largest overlap of any contact over the scene's overlap scale: the
+//                        smallest outer dimension (bounding-box edge) of the thinnest shape that a moving
+//                        body has, the composite grain's "smaller diameter"
 //   moving               bodies moving (not fixed, not removed)
 //   remaining_fraction   (with analysis.outlet_height) moving bodies whose centre of mass lies above
 //                        the outlet height, over the bodies moving at the start of the main stage

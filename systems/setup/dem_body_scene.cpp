@@ -140,8 +140,11 @@ void read_body_outputs(const DemScene& s, const SceneNode& root, BodiesSpec& b) 
       sink->fail("height", "the sink lies at or above analysis.outlet_height: bodies still in the hopper would vanish",
                  "give a height below the outlet (m along -gravity)");
   }
+  // The overlap scale: the thinnest moving shape's smallest outer dimension (fixed walls and gates
+  // may be thinner than any grain without tightening the grains' limit).
   o.overlap_scale = std::numeric_limits<double>::infinity();
-  for (const BodyShape& sh : b.shapes) o.overlap_scale = std::min(o.overlap_scale, smallest_edge(sh.shape));
+  for (const BodyPlacement& p : b.placed)
+    if (!p.fixed) o.overlap_scale = std::min(o.overlap_scale, smallest_edge(b.shapes[p.shape].shape));
 }
 
 std::size_t shape_index(const BodiesSpec& b, const SceneNode& t) {
@@ -408,7 +411,9 @@ void build_body_world(const DemScene& s, World& world) {
   BodyPlanes& planes = world.resources.emplace<BodyPlanes>();
   for (const Wall& w : s.walls)
     planes.list.push_back({{w.point.x, w.point.y, w.point.z}, {w.normal.x, w.normal.y, w.normal.z}});
-  world.resources.emplace<BodyContactState>().skin = s.skin;
+  BodyContactState& state = world.resources.emplace<BodyContactState>();
+  state.skin = s.skin;
+  state.overlap_limit = s.max_overlap * s.bodies->output.overlap_scale;
   s.bodies->install_model(world);
 }
 

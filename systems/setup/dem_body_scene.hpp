@@ -30,6 +30,8 @@
 //               moving at the start of the main stage.
 //   [sink]      height (m, along -gravity): a moving body whose centre falls below it is removed (so
 //               grains discharged from a hopper need no floor to pile on).
+// run.max_overlap is a fraction of the thinnest moving shape's smallest outer dimension: a member
+// contact overlapping more stops the run (exit status 3), as for grains.
 // Bodies touch each other member by member and the scene's plane and box walls (static: no omega),
 // with the [contact] law. Not yet in one scene with bodies: spheres ([[species]], [[fill]]), cylinder
 // and drum walls, rotating planes and [periodic]; such scenes are refused.
@@ -80,7 +82,7 @@ struct BodyOutputSpec {
   double outlet_height = 0;     // m along -gravity
   bool has_sink = false;
   double sink_height = 0;       // m along -gravity
-  double overlap_scale = 0;     // m, the thinnest shape's smallest outer dimension (max_overlap_ratio)
+  double overlap_scale = 0;     // m, the thinnest moving shape's smallest outer dimension
 };
 
 struct BodiesSpec {

@@ -14,6 +14,7 @@
 #include "systems/contact/pair_contact.hpp"
 #include "systems/fill/random_fill.hpp"
 #include "systems/fill/state_csv.hpp"
+#include "systems/walls/mesh_wall_scene.hpp"
 #include "systems/walls/wall_contact.hpp"
 
 namespace gf {
@@ -107,10 +108,26 @@ void read_periodic(DemScene& s, const SceneNode& root) {
     root.fail("periodic", "the [periodic] table names no axis", "give x, y or z = [min, max] (m), or remove the table");
 }
 
+// A [[wall]] of type "mesh": a triangle mesh, for spherical grains only.
+void add_mesh_wall(DemScene& s, const SceneNode& w, const std::string& name) {
+  if (s.bodies || s.species.empty())
+    w.fail("type", "mesh walls act on spherical grains ([[species]]), not on composite bodies",
+           "use plane, box, cylinder or drum walls in a scene of [[bodies]]");
+  double largest = 0.0, smallest = s.species.front().diameter;
+  for (const SpeciesSpec& sp : s.species)
+    largest = std::max(largest, sp.diameter), smallest = std::min(smallest, sp.diameter);
+  const double reach = 0.5 * largest + mesh_wall_reach(*s.contacts);
+  s.mesh_walls.list.push_back(read_mesh_wall(w, name, reach, smallest, s.dt));
+}
+
 void read_walls(DemScene& s, const SceneNode& root) {
   for (const SceneNode& w : root.tables("wall")) {
-    const std::string type = w.get_choice("type", {"plane", "box", "cylinder", "drum"});
+    const std::string type = w.get_choice("type", {"plane", "box", "cylinder", "drum", "mesh"});
     const std::string name = w.get_string("name", type);
+    if (type == "mesh") {
+      add_mesh_wall(s, w, name);
+      continue;
+    }
     if (type == "plane") {
       Wall p;
       p.kind = Wall::Kind::Plane;
@@ -416,6 +433,8 @@ DemScene load_dem_scene(const SceneDoc& doc) {
         omega = std::abs(w.omega);
         break;
       }
+    for (const MeshWall& w : s.mesh_walls.list)
+      if (omega == 0.0) omega = std::abs(w.omega);
     if (omega == 0.0)
       run.fail("end_angle", "no wall rotates, so a rotation angle does not define a duration",
                "give duration (s) instead, or a wall with omega != 0");
@@ -454,6 +473,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
 ForceTerms dem_force_terms(const DemScene& scene) {
   ForceTerms terms{{pair_force_term()}};
   if (!scene.walls.empty()) terms.list.push_back(wall_force_term());
+  if (!scene.mesh_walls.list.empty()) terms.list.push_back(mesh_wall_force_term());
   return terms;
 }
 
@@ -469,6 +489,7 @@ void schedule_dem_step(Schedule& step, const DemScene& scene) {
   const bool known = with_law(law, [&]<class Law>() {
     step.emplace<PairContact<Law>>();
     if (!scene.walls.empty()) step.emplace<WallContact<Law>>();
+    if (!scene.mesh_walls.list.empty()) step.emplace<MeshWallContact<Law>>();
   });
   if (scene.periodic.any()) step.emplace<PeriodicFold>();
   if (!known) throw std::invalid_argument("schedule_dem_step: no contact law is named '" + std::string(law) + "'");
@@ -523,7 +544,8 @@ std::size_t estimate_memory_bytes(const DemScene& scene, std::size_t n) {
   // 3.4 list pairs and 1.7 contacts per grain; a list pair keeps rows, 32-bit lanes, type pair, key,
   // flag, two slot maps, the carried index and search scratch (50 bytes), a contact its indices
   // and force (48 bytes) and two generations of the law's history doubles.
-  const std::size_t per_grain = (scene.spin() ? 25 : 16) * 8 + 4 + 8 + 3 * 8 + 65 * scene.walls.size();
+  const std::size_t per_grain = (scene.spin() ? 25 : 16) * 8 + 4 + 8 + 3 * 8 + 65 * scene.walls.size() +
+                                (scene.mesh_walls.list.empty() ? 0 : sizeof(MeshSlots) + 6 * 8);
   std::size_t width = 0;
   with_law(scene.law, [&]<class Law>() { width = Law::kHistory; });
   const std::size_t per_pair = 50, per_contact = 48 + 2 * 8 * width;
@@ -610,6 +632,11 @@ void build_dem_world(const DemScene& s, World& world) {
                            short_number(p.x[1]) + ", " + short_number(p.x[2]) + ") m overlaps it). Fix: shrink the region to lie "
                            "inside the walls by at least the largest radius");
         }
+        if (const MeshWall* m = overlapped_mesh_wall(s.mesh_walls, to_v(p.x), p.radius))
+          fill_error(s, f,
+                     "the region reaches through mesh wall '" + m->name + "' (a grain at (" + short_number(p.x[0]) + ", " +
+                         short_number(p.x[1]) + ", " + short_number(p.x[2]) + ") m overlaps it). Fix: shrink the region "
+                         "to clear the mesh by at least the largest radius");
       }
       placed.insert(placed.end(), added.begin(), added.end());
     } else {
@@ -697,6 +724,7 @@ void build_dem_world(const DemScene& s, World& world) {
   world.resources.emplace<NeighborList>();
   with_law(s.law, [&]<class Law>() { set_layout(world.resources.emplace<PairHistory>(), Law::history()); });
   world.resources.emplace<PairForces>();
+  if (!s.mesh_walls.list.empty()) attach_mesh_walls(world, s.mesh_walls);
 }
 
 }  // namespace gf

@@ -19,6 +19,7 @@
 #include "systems/output/vtk_frames.hpp"
 #include "systems/periodic/periodic_images.hpp"
 #include "systems/setup/dem_body_scene.hpp"
+#include "systems/walls/mesh_wall_contact.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -76,6 +77,7 @@ struct DemScene {
   std::shared_ptr<ContactTable> contacts;
   CriticalStep critical;
   std::vector<Wall> walls;
+  MeshWalls mesh_walls;  // [[wall]] of type "mesh" (systems/walls/mesh_wall_scene.hpp)
   PeriodicBox periodic;  // [periodic]: axes whose faces wrap
   std::vector<FillSpec> fills;
   OutputSpec output;
