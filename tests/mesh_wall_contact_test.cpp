@@ -2,18 +2,21 @@
 // the force history of the analytic plane of the same law (both laws, still and rotating, along a path that runs
 // exactly along shared edges and through shared vertices and along a generic one); one contact on a convex edge and
 // at a convex corner, two in a concave corner; the tangential spring carried from a triangle to its coplanar
-// neighbour and over a shallow convex fold.
+// neighbour and over a shallow convex fold; the scene keys' errors; the mesh drum scene through the command line.
 #include "systems/walls/mesh_wall_contact.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <string>
 #include <vector>
 
 #include "systems/contact/laws.hpp"
+#include "systems/setup/dem_simulation.hpp"
 #include "systems/walls/wall_contact.hpp"
+#include "tests/test_support.hpp"
 
 using gf::Grains;
 using gf::Vec3d;
@@ -339,4 +342,144 @@ TEST_CASE("mesh wall: the tangential spring is carried over a shallow convex fol
   // passed from one slot key to the next by the nearness of the normals.
   REQUIRE(keys >= 2);
   REQUIRE(keys <= 3);
+}
+
+// ---- Scenes --------------------------------------------------------------------------------------------------
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kMeshDrum = fs::path(GRAINFLOW_SOURCE_DIR) / "scenes/tests/mesh_drum.toml";
+
+// A small scene around one mesh wall given by `wall` (the lines of its [[wall]] table).
+std::string scene_with(const std::string& wall) {
+  return "[run]\ndt = 3.0e-5\nduration = 0.001\nskin = 3.0e-4\ngravity = [0.0, -9.81, 0.0]\n\n"
+         "[[species]]\nname = \"glass\"\ndiameter = 2.0e-3\ndensity = 2500.0\n\n"
+         "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nen = 0.3\net = 0.3\nfriction = 0.3\n\n"
+         "[[wall]]\ntype = \"mesh\"\n" +
+         wall +
+         "\n[[fill]]\nkind = \"random\"\n"
+         "region = { shape = \"box\", lo = [-0.01, 0.005, -0.01], hi = [0.01, 0.015, 0.01] }\ncount = { glass = 20 }\n";
+}
+
+std::string load_error(const fs::path& scene) {
+  try {
+    gf::DemSimulation::from_file(scene);
+  } catch (const gf::SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// "<scene>:<line>:" of the first line holding `key =`, or for a missing key of its table, [[wall]].
+std::string at_key(const fs::path& scene, const std::string& text, const std::string& key) {
+  const auto lines = gf::test::lines_of(text);
+  for (const std::string& k : {key + " =", std::string("[[wall]]")})
+    for (std::size_t n = 0; n < lines.size(); ++n)
+      if (lines[n].rfind(k, 0) == 0) return scene.string() + ":" + std::to_string(n + 1) + ":";
+  return "no line holds " + key;
+}
+
+const std::string kFloor = "primitive = \"plate\"\ncenter = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n"
+                           "axis = [1.0, 0.0, 0.0]\nhalf_widths = [0.02, 0.02]\ncells = [4, 4]\n";
+
+}  // namespace
+
+TEST_CASE("mesh wall scene: bad mesh input is refused naming the scene line, the key, the mesh's place and the fix",
+          "[mesh][scene]") {
+  gf::test::TempDir dir("mesh_scene_errors");
+  auto check = [&](const std::string& wall, const std::string& key, const std::vector<std::string>& parts) {
+    const std::string text = scene_with(wall);
+    const fs::path scene = dir.write("scene.toml", text);
+    const std::string m = load_error(scene);
+    INFO(m);
+    CHECK_THAT(m, Catch::Contains(at_key(scene, text, key)));
+    CHECK_THAT(m, Catch::Contains("key 'wall[0]." + key + "'"));
+    CHECK_THAT(m, Catch::Contains("Fix:"));
+    for (const std::string& p : parts) CHECK_THAT(m, Catch::Contains(p));
+  };
+  SECTION("missing file") { check("file = \"nowhere.stl\"\n", "file", {"nowhere.stl"}); }
+  SECTION("truncated binary file") {
+    const gf::TriangleSoup plate = gf::plate_triangles({0, 0, 0}, {0, 1, 0}, {1, 0, 0}, 0.01, 0.01, 2, 2);
+    gf::write_stl_binary(dir.path / "cut.stl", plate);
+    const std::string bytes = gf::test::read_file(dir.path / "cut.stl");
+    dir.write("cut.stl", bytes.substr(0, bytes.size() - 7));
+    check("file = \"cut.stl\"\n", "file", {"cut.stl", "truncated"});
+  }
+  SECTION("degenerate triangle, with its line in the STL file") {
+    dir.write("flat.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 2 0 0\n"
+                          "endloop\nendfacet\nendsolid s\n");
+    check("file = \"flat.stl\"\n", "file", {"flat.stl:2:", "degenerate"});
+  }
+  SECTION("no triangles") {
+    dir.write("empty.stl", "solid s\nendsolid s\n");
+    check("file = \"empty.stl\"\n", "file", {"empty.stl", "no triangles"});
+  }
+  SECTION("a NaN in the file") {
+    dir.write("nan.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 NaN\nvertex 0 1 0\n"
+                         "endloop\nendfacet\nendsolid s\n");
+    check("file = \"nan.stl\"\n", "file", {"nan.stl:5:", "finite"});
+  }
+  SECTION("neither file nor primitive") { check("name = \"x\"\nomega = 0.0\n", "file", {"exactly one of"}); }
+  SECTION("a turning file without its axis") {
+    gf::write_stl_ascii(dir.path / "plate.stl", gf::plate_triangles({0, 0, 0}, {0, 1, 0}, {1, 0, 0}, 0.01, 0.01, 1, 1));
+    check("file = \"plate.stl\"\nomega = 1.0\n", "rotation_axis", {"rotation axis"});
+  }
+  SECTION("a mesh turning so fast it would pass through grains") {
+    check(kFloor + "omega = 1.0e4\n", "omega", {"per step"});
+  }
+  SECTION("a plate whose axis is its normal") {
+    check("primitive = \"plate\"\ncenter = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\naxis = [0.0, 2.0, 0.0]\n"
+          "half_widths = [0.02, 0.02]\n",
+          "axis", {"normal"});
+  }
+  SECTION("a fill reaching through a mesh wall") {
+    const std::string text = scene_with("primitive = \"plate\"\ncenter = [0.0, 0.01, 0.0]\nnormal = [0.0, 1.0, 0.0]\n"
+                                        "axis = [1.0, 0.0, 0.0]\nhalf_widths = [0.02, 0.02]\n");
+    const fs::path scene = dir.write("scene.toml", text);
+    const std::string m = load_error(scene);
+    CHECK_THAT(m, Catch::Contains("mesh wall 'mesh'"));
+    CHECK_THAT(m, Catch::Contains("Fix:"));
+  }
+}
+
+TEST_CASE("mesh wall scene: grainflow check and run accept the mesh drum and refuse a bad mesh", "[mesh][scene][cli]") {
+  gf::test::TempDir dir("mesh_scene_cli");
+  const gf::test::Exit check = gf::test::run_cli(dir, "check " + gf::test::quote(kMeshDrum.string()));
+  INFO(check.err);
+  REQUIRE(check.code == 0);
+  CHECK_THAT(check.out + check.err, Catch::Contains("mesh_wall_contact"));
+  const fs::path out = dir.path / "out";
+  const gf::test::Exit run = gf::test::run_cli(
+      dir, "run " + gf::test::quote(kMeshDrum.string()) + " --out " + gf::test::quote(out.string()) + " --quiet");
+  INFO(run.err);
+  REQUIRE(run.code == 0);
+  REQUIRE(fs::exists(out / "summary.json"));
+  // Poured and settled for 0.15 s (the grains fall at most 3 cm onto the mantle and come to rest on it), then
+  // turned: every grain stays inside the drum's mesh surfaces and the bed lies on the mantle.
+  gf::DemSimulation sim = gf::DemSimulation::from_file(kMeshDrum, {"settle.time=0.15"});
+  sim.settle(0.0);
+  sim.advance(300);
+  const Grains& g = sim.grains();
+  double worst = -1.0;
+  std::size_t on_mantle = 0;
+  for (std::size_t i = 0; i < g.n_owned; ++i) {
+    const double rho = std::hypot(g.pos.x[i], g.pos.y[i]);
+    worst = std::max({worst, rho + g.radius.r[i] - 0.04, std::abs(g.pos.z[i]) + g.radius.r[i] - 0.008});
+    on_mantle += rho + g.radius.r[i] > 0.04 - 1e-4;
+  }
+  INFO("largest reach past the drum's surfaces " << worst << " m, " << on_mantle << " grains on the mantle");
+  // Overlaps under a few grain layers are ~ m g / k_n times the layers, 1e-6 m; 0.1 mm would be a grain through.
+  CHECK(worst < 1e-4);
+  CHECK(on_mantle >= 20);
+
+  // A bad mesh file under check: exit 1 with the scene's line, the key and the file.
+  const std::string text = scene_with("file = \"missing.stl\"\n");
+  const fs::path bad = dir.write("bad.toml", text);
+  const gf::test::Exit e = gf::test::run_cli(dir, "check " + gf::test::quote(bad.string()));
+  REQUIRE(e.exited);
+  CHECK(e.code == 1);
+  CHECK_THAT(e.err, Catch::Contains(at_key(bad, text, "file")) && Catch::Contains("key 'wall[0].file'") &&
+                        Catch::Contains("missing.stl"));
 }

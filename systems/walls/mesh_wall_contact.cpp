@@ -85,8 +85,8 @@ struct Hit {
   double d;
 };
 
-// The merged contacts of a sphere (centre p, radius r, world frame) with every mesh; `turn` holds
-// each mesh's rotation. Returns their number; more than kMeshSlots is an error.
+// The merged contacts of a sphere (centre p, radius r, world frame; r includes a law's reach) with
+// every mesh; `turn` holds each mesh's rotation. Returns their number; more than kMeshSlots is an error.
 std::size_t find_hits(const MeshWalls& walls, const Turn* turn, const Vec3d& p, double r, Hit* hits) {
   std::size_t nh = 0;
   const double r2 = r * r, merge2 = (kMergeTol * r) * (kMergeTol * r);
@@ -116,8 +116,9 @@ std::size_t find_hits(const MeshWalls& walls, const Turn* turn, const Vec3d& p, 
         throw StabilityError("a grain at (" + short_number(p.x) + ", " + short_number(p.y) + ", " + short_number(p.z) +
                              ") m touches more than " + std::to_string(kMeshSlots) +
                              " separate features of the mesh walls at once (mesh '" + mw.name +
-                             "'). Fix: a mesh with folds or slivers finer than a grain; remesh it with triangles no "
-                             "smaller than a grain's radius, or remove overlapping copies of surfaces");
+                             "'). Fix: the mesh has a hole, a slot or folds narrower than a grain (a grain in a "
+                             "polygonal hole touches every side of it), or overlapping copies of a surface: widen "
+                             "or close the hole, remove the copies, or remesh with coarser triangles there");
       hits[nh++] = {static_cast<std::uint32_t>(w), t, cp.feature, cp.q, u, d};
     }
   }
@@ -126,7 +127,7 @@ std::size_t find_hits(const MeshWalls& walls, const Turn* turn, const Vec3d& p, 
 
 template <class Law>
 bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const ContactTable& table, double dt,
-                 double t_contact, double overlap_limit) {
+                 double t_contact, double overlap_limit, bool keep_history) {
   constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
   static_assert(H <= 8, "a wall contact's history fits a slot");
   const std::size_t nw = walls.list.size();
@@ -141,17 +142,20 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const Vec3d p{g.pos.x[i], g.pos.y[i], g.pos.z[i]};
       const double ri = g.radius.r[i];
-      const std::size_t nh = find_hits(walls, turn.data(), p, ri, hits);
+      const double* kc = table.wall(static_cast<std::size_t>(g.species.type[i]));
+      std::array<double, K> c;
+      std::copy(kc, kc + K, c.begin());
+      // A law that acts before touching (one declaring kReach) reaches the wall from r + reach.
+      double reach = 0.0;
+      if constexpr (requires { Law::kReach; }) reach = c[static_cast<std::size_t>(Law::kReach)];
+      const std::size_t nh = find_hits(walls, turn.data(), p, ri + reach, hits);
       MeshSlots& old = hist[i];
       Vec3d f{0, 0, 0}, tq{0, 0, 0};
       if (nh == 0) {
-        if (old.key[0] != 0) std::fill(std::begin(old.key), std::end(old.key), std::uint64_t{0});
+        if (old.key[0] != 0 && keep_history) std::fill(std::begin(old.key), std::end(old.key), std::uint64_t{0});
       } else {
         const Vec3d vi{g.vel.x[i], g.vel.y[i], g.vel.z[i]};
         const Vec3d wi = g.spin ? Vec3d{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : Vec3d{0.0, 0.0, 0.0};
-        const double* kc = table.wall(static_cast<std::size_t>(g.species.type[i]));
-        std::array<double, K> c;
-        std::copy(kc, kc + K, c.begin());
         MeshSlots now{};
         int from[kMeshSlots];
         bool claimed[kMeshSlots] = {};
@@ -195,7 +199,7 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
           f = f + res.force;
           tq = tq + sc.li * cross(n, res.force_t) + res.torque_i;
         }
-        old = now;
+        if (keep_history) old = now;
       }
       force.x[i] = f.x;
       force.y[i] = f.y;
@@ -214,6 +218,16 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
 
 }  // namespace
 
+double mesh_wall_reach(const ContactTable& table) {
+  double reach = 0.0;
+  with_law(table.law(), [&]<class Law>() {
+    if constexpr (requires { Law::kReach; })
+      for (std::size_t a = 0; a < table.types(); ++a)
+        reach = std::max(reach, table.wall(a)[static_cast<std::size_t>(Law::kReach)]);
+  });
+  return reach;
+}
+
 MeshWall make_mesh_wall(std::string name, TriangleMesh mesh, double largest_radius) {
   MeshWall w;
   w.name = std::move(name);
@@ -223,18 +237,18 @@ MeshWall make_mesh_wall(std::string name, TriangleMesh mesh, double largest_radi
   return w;
 }
 
-void attach_mesh_walls(World& world, const std::vector<MeshWall>& walls) {
+void attach_mesh_walls(World& world, const MeshWalls& walls) {
   Grains& g = world.grains;
   g.extras.attach<MeshWallForce>(g.n);
   g.extras.attach<MeshWallTorque>(g.n);
   g.extras.attach<MeshContactHistory>(g.n);
-  world.resources.emplace<MeshWalls>().list = walls;
+  world.resources.emplace<MeshWalls>(walls);
 }
 
 template <class L>
 bool compute_mesh_wall_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const ContactTable& table,
-                              double dt, double t_contact, double overlap_limit) {
-  return mesh_forces<L>(g, walls, rotation_enabled, table, dt, t_contact, overlap_limit);
+                              double dt, double t_contact, double overlap_limit, bool keep_history) {
+  return mesh_forces<L>(g, walls, rotation_enabled, table, dt, t_contact, overlap_limit, keep_history);
 }
 
 std::vector<MeshContactPoint> mesh_contacts_of(const MeshWalls& walls, const Vec3d& p, double radius, double t,

@@ -33,7 +33,7 @@
 //
 // Cost. Per grain and mesh: a rotation, one grid cell lookup, and a closest-point test (about 30
 // flops, no square root) for every triangle the cell lists, i.e. every triangle within the largest
-// grain radius plus 0.87 of a cell edge (the cell edge is that radius) of the cell's centre; a square
+// grain radius (plus a law's reach) and 0.87 of a cell edge (the cell edge is that) of the cell's centre; a square
 // root and the cone test only for the few within the grain's radius. Grains away from every mesh cost
 // the lookup. The grid costs one 32-bit entry per (cell, triangle near it) and is built at load.
 //
@@ -65,8 +65,11 @@ struct MeshWall {
   double omega = 0.0;  // rad/s
 };
 
-// The grid's reach: the largest grain radius of the scene (m).
+// The grid's reach: the largest grain radius of the scene plus mesh_wall_reach (m).
 MeshWall make_mesh_wall(std::string name, TriangleMesh mesh, double largest_radius);
+// How far beyond touching the scene's law acts against a wall (its kReach constant, if it declares
+// one; 0 for laws that act in contact only), m.
+double mesh_wall_reach(const ContactTable& table);
 
 struct MeshWalls {
   std::vector<MeshWall> list;
@@ -98,14 +101,15 @@ struct MeshContactHistory {
 };
 
 // Attaches the force, torque and history columns to the grains and the walls as a resource.
-void attach_mesh_walls(World& world, const std::vector<MeshWall>& walls);
+void attach_mesh_walls(World& world, const MeshWalls& walls);
 
 // Sums every mesh wall's force and torque on each owned row into MeshWallForce/MeshWallTorque, the
 // meshes at their angle for time t_contact. Returns whether some overlap passed overlap_limit of the
-// grain's diameter. Instantiated for every law of ContactLaws.
+// grain's diameter. With keep_history false the springs are evaluated but not stored (the priming
+// evaluation of a new state, in which no time passes). Instantiated for every law of ContactLaws.
 template <class L>
 bool compute_mesh_wall_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const ContactTable& table,
-                              double dt, double t_contact, double overlap_limit = 1.0);
+                              double dt, double t_contact, double overlap_limit = 1.0, bool keep_history = true);
 
 // The contacts of one grain as the kernel finds them (for tests): with the meshes at angle omega t.
 struct MeshContactPoint {
@@ -139,7 +143,7 @@ class MeshWallContact : public SystemBase<MeshWallContact<L>> {
     const Walls* analytic = world.resources.find<Walls>();
     const bool rotating = analytic == nullptr || analytic->rotation_enabled;
     if (compute_mesh_wall_forces<L>(world.grains, walls, rotating, world.resources.get<ContactTable>(), step.dt, t,
-                                    limit))
+                                    limit, !step.prime))
       report_mesh_overlap(world.grains, walls, limit, step, t, rotating);
   }
 };
