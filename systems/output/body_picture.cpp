@@ -53,7 +53,8 @@ double segment_distance(const P2& q, const P2& a, const P2& b) {
   return std::hypot(q.x - a.x - t * ex, q.y - a.y - t * ey);
 }
 
-// Distance from q to the convex polygon h (counter-clockwise in a y-up frame; 0 inside).
+// Signed distance from q to the convex polygon h (counter-clockwise in a y-up frame): negative
+// inside, minus the distance to the nearest edge.
 double polygon_distance(const P2& q, const std::vector<P2>& h) {
   if (h.size() == 1) return std::hypot(q.x - h[0].x, q.y - h[0].y);
   bool inside = h.size() >= 3;
@@ -64,7 +65,7 @@ double polygon_distance(const P2& q, const std::vector<P2>& h) {
     if (cross(a, b, q) < 0) inside = false;
     d = std::min(d, segment_distance(q, a, b));
   }
-  return inside ? 0.0 : d;
+  return inside ? -d : d;
 }
 
 Rgb scaled(const Rgb& c, double f) {
