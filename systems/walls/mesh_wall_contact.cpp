@@ -143,11 +143,9 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
       const Vec3d p{g.pos.x[i], g.pos.y[i], g.pos.z[i]};
       const double ri = g.radius.r[i];
       const double* kc = table.wall(static_cast<std::size_t>(g.species.type[i]));
-      std::array<double, K> c;
-      std::copy(kc, kc + K, c.begin());
       // A law that acts before touching (one declaring kReach) reaches the wall from r + reach.
       double reach = 0.0;
-      if constexpr (requires { Law::kReach; }) reach = c[static_cast<std::size_t>(Law::kReach)];
+      if constexpr (requires { Law::kReach; }) reach = kc[static_cast<std::size_t>(Law::kReach)];
       const std::size_t nh = find_hits(walls, turn.data(), p, ri + reach, hits);
       MeshSlots& old = hist[i];
       Vec3d f{0, 0, 0}, tq{0, 0, 0};
@@ -156,6 +154,8 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
       } else {
         const Vec3d vi{g.vel.x[i], g.vel.y[i], g.vel.z[i]};
         const Vec3d wi = g.spin ? Vec3d{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : Vec3d{0.0, 0.0, 0.0};
+        std::array<double, K> c;
+        std::copy(kc, kc + K, c.begin());
         MeshSlots now{};
         int from[kMeshSlots];
         bool claimed[kMeshSlots] = {};

@@ -543,6 +543,9 @@ TriangleGrid build_triangle_grid(const TriangleMesh& m, double reach, std::size_
   if (total >= (std::uint64_t{1} << 32))
     fail(m.name, "the contact grid of the mesh would list " + std::to_string(total) + " cell entries",
          "use fewer, smaller triangles for large flat areas, or a coarser mesh");
+  g.occupied.assign((nc + 63) / 64, 0);
+  for (std::size_t c = 0; c < nc; ++c)
+    if (g.start[c + 1] > 0) g.occupied[c >> 6] |= std::uint64_t{1} << (c & 63);
   for (std::size_t c = 0; c < nc; ++c) g.start[c + 1] += g.start[c];
   g.items.resize(total);
   std::vector<std::uint32_t> next(g.start.begin(), g.start.end() - 1);
