@@ -405,6 +405,63 @@ TEST_CASE("depth segregation: a random bed gives about 0, and no surface gives N
 }
 
 // ---------------------------------------------------------------------------------------------------------------------
+// Seed 004's inhomogeneity coefficient Vc of a transverse layer
+
+TEST_CASE("layer mixing: a layer split between the species gives Vc = sqrt((1 - c) / c) and Lacey 0", "[mixing]") {
+  // 40^3 grains of one size, A where y < 12 mm (30 %), the axis along x: the layer at x = 20 mm,
+  // 2 mm thick, holds two lattice planes; 4 mm cells in the (y, z) plane, aligned with the inlet,
+  // meet the interface on a cell face, so every cell holds one species and s^2 = c (1 - c) exactly.
+  const auto g =
+      table_of(lattice_box(40, 0.5e-3, 0.5e-3, [](double, double y, double) { return y < 0.012 ? kA : kB; }));
+  const gf::LayerMixing m = gf::layer_mixing(g, kA, {0, 0, 0}, {1, 0, 0}, 0.02, 2e-3, 4e-3);
+  CHECK(m.cells == 100);
+  CHECK(m.grains_per_cell == 32.0);
+  CHECK(m.fraction_a == Approx(0.3).epsilon(1e-12));
+  CHECK(m.vc == Approx(std::sqrt(0.7 / 0.3)).epsilon(1e-12));
+  CHECK(std::abs(m.lacey) < 1e-12);
+}
+
+TEST_CASE("layer mixing: a random layer gives Vc near its binomial floor and Lacey near 1", "[mixing]") {
+  // Labels at random with q = 0.3 in one size: s^2 of the cells is q (1 - q) / n in expectation,
+  // n = 32 grains per cell, so Vc = sqrt((1 - q) / (q n)) = 0.27 in expectation; over 100 cells the
+  // spread of s^2 is sqrt(2 / 99) of it (chi-square), 14 %: Vc within 30 % of that floor holds at
+  // over 4 standard deviations of s^2 (Vc moves half as much as s^2). Lacey's index within 0.3 of 1
+  // is the same bound.
+  const auto g = table_of(lattice_box(40, 0.5e-3, 0.5e-3, random_labels(0.3, 11)));
+  const gf::LayerMixing m = gf::layer_mixing(g, kA, {0, 0, 0}, {1, 0, 0}, 0.02, 2e-3, 4e-3);
+  const double floor_vc = std::sqrt((1.0 - m.fraction_a) / (m.fraction_a * m.grains_per_cell));
+  INFO("Vc " << m.vc << ", binomial floor " << floor_vc << ", Lacey " << m.lacey << ", c " << m.fraction_a);
+  CHECK(m.vc == Approx(floor_vc).epsilon(0.3));
+  CHECK(m.lacey == Approx(1.0).margin(0.3));
+}
+
+TEST_CASE("layer mixing: only the layer counts, and its frame follows the axis", "[mixing]") {
+  // A everywhere outside the slab 18-22 mm along x, mixed in it: the layer at 20 mm sees only
+  // its own grains. The same bed read along -x from the far end gives the same numbers.
+  auto label = random_labels(0.5, 3);
+  const auto list = lattice_box(40, 0.5e-3, 0.5e-3, [&](double x, double y, double z) {
+    const std::int32_t t = label(x, y, z);
+    return std::abs(x - 0.02) <= 2e-3 ? t : kA;
+  });
+  const gf::Grains g = table_of(list);
+  const gf::LayerMixing m = gf::layer_mixing(g, kA, {0, 0, 0}, {1, 0, 0}, 0.02, 2e-3, 4e-3);
+  CHECK(m.fraction_a < 0.7);
+  const gf::LayerMixing back = gf::layer_mixing(g, kA, {0.04, 0, 0}, {-2.0, 0, 0}, 0.02, 2e-3, 4e-3);
+  CHECK(back.grains == m.grains);
+  CHECK(back.fraction_a == Approx(m.fraction_a).epsilon(1e-12));
+  // Cells of one species only in the layer: NaN Lacey (c = 1), Vc = 0.
+  const gf::LayerMixing pure = gf::layer_mixing(g, kA, {0, 0, 0}, {1, 0, 0}, 0.035, 2e-3, 4e-3);
+  CHECK(pure.fraction_a == 1.0);
+  CHECK(pure.vc == 0.0);
+  CHECK(std::isnan(pure.lacey));
+  // An empty layer, and bad arguments.
+  CHECK(std::isnan(gf::layer_mixing(g, kA, {0, 0, 0}, {1, 0, 0}, 1.0, 2e-3, 4e-3).vc));
+  CHECK_THROWS_AS(gf::layer_mixing(g, kA, {0, 0, 0}, {0, 0, 0}, 0.02, 2e-3, 4e-3), std::invalid_argument);
+  CHECK_THROWS_AS(gf::layer_mixing(g, kA, {0, 0, 0}, {1, 0, 0}, 0.02, 0.0, 4e-3), std::invalid_argument);
+  CHECK_THROWS_AS(gf::layer_mixing(g, kA, {0, 0, 0}, {1, 0, 0}, 0.02, 2e-3, -1.0), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------------------------------------
 // The scene's [analysis] keys, and the measures in series.csv and summary.json
 
 namespace {

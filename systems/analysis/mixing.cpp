@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "systems/analysis/sample_cells.hpp"
@@ -147,6 +149,63 @@ DepthSegregation depth_segregation(const Grains& g, std::int32_t type_a, const D
   out.deep_fraction = h.first;
   out.shallow_fraction = h.second;
   if (std::isfinite(h.second)) out.index = contrast_index(h.second, h.first);
+  return out;
+}
+
+LayerMixing layer_mixing(const Grains& g, std::int32_t type_a, const V3<double>& inlet, const V3<double>& axis,
+                         double distance, double thickness, double cell, int min_grains) {
+  const double len = std::sqrt(dot(axis, axis));
+  if (!(len > 0.0) || !std::isfinite(len) || !(thickness > 0.0) || !std::isfinite(thickness) || !(cell > 0.0) ||
+      !std::isfinite(cell) || min_grains < 1 || !std::isfinite(distance))
+    throw std::invalid_argument("layer_mixing: the axis must be a non-zero vector, thickness and cell positive and "
+                                "finite, min_grains at least 1");
+  // An orthonormal frame (e1, e2) of the layer's plane.
+  const V3<double> a = (1.0 / len) * axis;
+  const V3<double> helper = std::abs(a.x) < 0.9 ? V3<double>{1, 0, 0} : V3<double>{0, 1, 0};
+  V3<double> e1 = cross(a, helper);
+  e1 = (1.0 / std::sqrt(dot(e1, e1))) * e1;
+  const V3<double> e2 = cross(a, e1);
+  // The layer's grains in square cells, ordered by their integer coordinates.
+  std::map<std::pair<std::int64_t, std::int64_t>, CellComposition> binned;
+  CellBinning b;
+  for (std::size_t i = 0; i < g.n_owned; ++i) {
+    const V3<double> d{g.pos.x[i] - inlet.x, g.pos.y[i] - inlet.y, g.pos.z[i] - inlet.z};
+    if (!(std::abs(dot(d, a) - distance) <= 0.5 * thickness)) continue;
+    const double v = grain_volume(g.radius.r[i]);
+    const bool is_a = g.species.type[i] == type_a;
+    const auto key = std::make_pair(static_cast<std::int64_t>(std::floor(dot(d, e1) / cell)),
+                                    static_cast<std::int64_t>(std::floor(dot(d, e2) / cell)));
+    CellComposition& c = binned[key];
+    c.volume += v;
+    c.volume_a += is_a ? v : 0.0;
+    ++c.grains;
+    b.volume += v;
+    b.volume_sq += v * v;
+    b.volume_a += is_a ? v : 0.0;
+    b.volume_sq_a += is_a ? v * v : 0.0;
+  }
+  for (const auto& [key, c] : binned) b.cells.push_back(c);
+  LayerMixing out;
+  // The mean over the counted cells only: the cells left out are left out of V as well.
+  double counted = 0.0, counted_a = 0.0;
+  for (const CellComposition& c : b.cells)
+    if (c.grains >= min_grains) {
+      counted += c.volume;
+      counted_a += c.volume_a;
+    }
+  if (!(counted > 0.0)) return out;
+  const double p = counted_a / counted;
+  const CellSpread sp = cell_spread(b, p, min_grains);
+  out.fraction_a = p;
+  out.cells = sp.cells;
+  out.grains = sp.grains;
+  out.grains_per_cell = static_cast<double>(sp.grains) / static_cast<double>(sp.cells);
+  if (!(p > 0.0)) return out;
+  out.vc = std::sqrt(sp.variance) / p;
+  if (p < 1.0 && b.volume_a > 0.0 && b.volume_a < b.volume) {
+    const double s0 = p * (1.0 - p), sr = random_variance(b, p, sp.volume / static_cast<double>(sp.cells));
+    if (sr < s0) out.lacey = (s0 - sp.variance) / (s0 - sr);
+  }
   return out;
 }
 

@@ -11,6 +11,7 @@
 
 #include "engine/grains.hpp"
 #include "systems/analysis/drum_section.hpp"
+#include "systems/contact/vec3.hpp"
 
 namespace gf {
 
@@ -99,5 +100,30 @@ struct DepthSegregation {
 };
 DepthSegregation depth_segregation(const Grains& g, std::int32_t type_a, const DrumSection& drum,
                                    double surface_angle, double surface_level);
+
+// Mixture quality of a transverse layer of a continuous mixer (seed 004): the grains whose centres
+// lie within thickness / 2 of the plane at `distance` (m) from `inlet` along the unit `axis` (the
+// seed takes the largest grain diameter as the thickness), binned into square sample cells of edge
+// `cell` in that plane, their corners on a grid through `inlet` (a grain belongs whole to the cell
+// holding its centre). Over the cells with
+// at least `min_grains` grains, with c_i the volume fraction of A in cell i and v_i its solid volume:
+//   c       the layer's mean fraction of A, sum v_i c_i / V, V = sum v_i
+//   Vc      the inhomogeneity coefficient, (1 / c) sqrt(sum v_i (c_i - c)^2 / V): 0 when every cell
+//           holds the mean, sqrt((1 - c) / c) when every cell holds one species
+//   lacey   Lacey's index of the same cells, (s0^2 - s^2) / (s0^2 - sr^2) as lacey_index() defines it
+//           (s^2 = (Vc c)^2, s0^2 = c (1 - c), sr^2 from the layer's grain volumes)
+// NaN (the counts as known) when no cell is counted or the layer holds no A.
+// std::invalid_argument for an axis that is not a non-zero finite vector, a thickness or a cell
+// that is not positive and finite, or min_grains < 1.
+struct LayerMixing {
+  double vc = std::numeric_limits<double>::quiet_NaN();
+  double lacey = std::numeric_limits<double>::quiet_NaN();
+  double fraction_a = std::numeric_limits<double>::quiet_NaN();  // c
+  std::size_t cells = 0;                                         // cells counted
+  std::int64_t grains = 0;                                       // grains in the counted cells
+  double grains_per_cell = 0.0;
+};
+LayerMixing layer_mixing(const Grains& g, std::int32_t type_a, const V3<double>& inlet, const V3<double>& axis,
+                         double distance, double thickness, double cell, int min_grains = 10);
 
 }  // namespace gf
