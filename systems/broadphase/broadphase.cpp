@@ -128,7 +128,10 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   // size class, PairSearch, finds the large partners in a coarser grid of their own).
   double rmin = n ? g.radius.r[0] : 0.0;
   for (std::size_t i = 0; i < n; ++i) rmin = std::min(rmin, g.radius.r[i]);
-  s.grid.build(g.pos.x.span(), g.pos.y.span(), g.pos.z.span(), 2.0 * rmin + s.skin, std::size_t(1) << 24, true);
+  // A law acting before touching (reach > 0) interacts out to r_i + r_j + reach: the search takes
+  // reach + skin where the others take the skin.
+  const double search = s.skin + s.reach;
+  s.grid.build(g.pos.x.span(), g.pos.y.span(), g.pos.z.span(), 2.0 * rmin + search, std::size_t(1) << 24, true);
   CellGrid& grid = s.grid;
 
   // Cell order, ties by id: the row order becomes a function of positions alone.
@@ -157,7 +160,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   // Periodic images of the sorted rows, within the reach of the largest pair past the faces.
   double rmax = 0.0;
   for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, g.radius.r[i]);
-  make_images(g, im, 2.0 * rmax + s.skin);
+  make_images(g, im, 2.0 * rmax + search);
 
   // Candidate pairs: count per row, prefix, fill. Each row owns pairs with higher rows only.
   const std::size_t nown = g.n_owned;
@@ -179,7 +182,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
                           " per grain), half of this machine's memory: grains are piled far closer than a "
                           "packing. Fix: a state file's positions, or reduce run.dt if the run blew up");
   };
-  if (!s.search.prepare(g, grid, s.skin, most_pairs)) throw too_many();
+  if (!s.search.prepare(g, grid, search, most_pairs)) throw too_many();
   std::atomic<std::size_t> listed{0};
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
     std::vector<std::uint32_t>& out = s.partners[blk];
@@ -287,7 +290,7 @@ void Broadphase::run(World& world, const StepContext&) {
   const bool periodic = im && im->box.any();
   // The check that keeps the list sweeps owned rows only: with periodic images it is not made.
   if (!list_invalid(g, s) && !periodic &&
-      list_covers_contacts(g, s.ref_x.data(), s.ref_y.data(), s.ref_z.data(), s.skin, list, s.cover)) {
+      list_covers_contacts(g, s.ref_x.data(), s.ref_y.data(), s.ref_z.data(), s.skin, list, s.cover, s.reach)) {
     ++s.cover.kept;
     return;
   }

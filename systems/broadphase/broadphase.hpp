@@ -25,6 +25,7 @@ namespace gf {
 
 struct BroadphaseState {
   double skin = 0.0;  // m
+  double reach = 0.0;  // m, the contact law's largest reach beyond touching (ContactTable::reach; 0 for most)
   bool valid = false;
   bool force_rebuild = false;
   std::int64_t rebuilds = 0;
@@ -39,7 +40,7 @@ struct BroadphaseState {
 };
 
 // One full rebuild: apply the table's queued row inserts and removals, sort rows, find pairs within
-// r_i + r_j + skin, carry history over (a removed grain's springs are dropped, new grains start
+// r_i + r_j + reach + skin (reach: the law's, beyond touching), carry history over (a removed grain's springs are dropped, new grains start
 // with none).
 void rebuild_neighbors(Grains& g, BroadphaseState& state, NeighborList& list, PairHistory& history);
 // The same with periodic boundaries: owned rows wrapped into the box, then their images made

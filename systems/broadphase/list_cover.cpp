@@ -29,7 +29,7 @@ double nan_max(double a, double b) { return a != a ? a : (b != b ? b : std::max(
 }  // namespace
 
 bool list_covers_contacts(const Grains& g, const double* rx, const double* ry, const double* rz, double skin,
-                          const NeighborList& list, ListCover& scratch) {
+                          const NeighborList& list, ListCover& scratch, double law_reach) {
   const std::size_t n = g.n_owned;
   if (list.offsets.size() != n + 1) return false;
   // Whole batches: the columns are padded with zeros in both tables (a padding row never moves).
@@ -107,11 +107,11 @@ bool list_covers_contacts(const Grains& g, const double* rx, const double* ry, c
   constexpr double kMargin = 1.0 + 1e-9;  // a pair at the kernel's own touching bound counts as touching
   for (std::size_t p = 0; p < m.size(); ++p) {
     const std::uint32_t a = m[p];
-    const double reach = (g.radius.r[a] + rmax) * kMargin;
+    const double reach = (g.radius.r[a] + rmax + law_reach) * kMargin;
     for (std::size_t q = p + 1; q < m.size() && c[m[q]] - c[a] < reach; ++q) {
       const std::uint32_t b = m[q];
       const double dx = g.pos.x[b] - g.pos.x[a], dy = g.pos.y[b] - g.pos.y[a], dz = g.pos.z[b] - g.pos.z[a];
-      const double rs = (g.radius.r[a] + g.radius.r[b]) * kMargin;
+      const double rs = (g.radius.r[a] + g.radius.r[b] + law_reach) * kMargin;
       if (dx * dx + dy * dy + dz * dz < rs * rs && !listed(list, std::min(a, b), std::max(a, b))) return false;
     }
   }

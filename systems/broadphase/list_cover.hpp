@@ -24,11 +24,12 @@ struct ListCover {
   std::int64_t kept = 0;              // checks where some row moved past skin/2 and the list was kept
 };
 
-// True when every pair of rows touching now (distance below r_i + r_j, with a relative margin of
-// 1e-9) is in `list`, built at the reference positions ref_* with `skin`. False also when the
+// True when every pair of rows touching now (distance below r_i + r_j + reach, with a relative margin
+// of 1e-9; reach: the contact law's beyond touching) is in `list`, built at the reference positions
+// ref_* with `skin` (pairs within r_i + r_j + reach + skin). False also when the
 // movers are too many to check cheaply (more than an eighth of the rows), or D reaches the skin
 // (within 1e-9 of it, the margin that keeps the movers' bound safe from round-off).
 bool list_covers_contacts(const Grains& g, const double* ref_x, const double* ref_y, const double* ref_z,
-                          double skin, const NeighborList& list, ListCover& scratch);
+                          double skin, const NeighborList& list, ListCover& scratch, double reach = 0.0);
 
 }  // namespace gf
