@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "systems/bodies/bodies.hpp"
 #include "systems/output/body_outputs.hpp"
+#include "systems/setup/dem_simulation.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -240,4 +242,60 @@ TEST_CASE("body layers are five equal counts by height, and the remaining fracti
   gf::remove_body(b, 0);
   CHECK(gf::remaining_fraction(b, g, 0.45, 10) == Approx(0.4));
   CHECK(gf::remaining_fraction(b, gf::Gravity{9.81, 0.0, 0.0}, -1.0, 10) == Approx(0.9));
+}
+
+TEST_CASE("body scene: a [[bodies]] file restarts the moving bodies of its shape from a frame's state", "[bodies][cli]") {
+  gf::test::TempDir dir("body_app_frame_restart");
+  const auto scene = dir.write("bin.toml", kBin);
+  const std::filesystem::path out = dir.path / "out";
+  REQUIRE(gf::test::run_cli(dir, "run " + gf::test::quote(scene.string()) + " --quiet --steps 5000 --out " +
+                                     gf::test::quote(out.string())).code == 0);
+  const std::filesystem::path frame = out / "frames" / "frame_000001.csv";  // t = 0.1 s, the gate open
+  std::string text = kBin;
+  const std::string table = "count = 8\norientation = \"random\"\nseed = 3\n"
+                            "region = { shape = \"box\", lo = [-0.045, 0.02, -0.02], hi = [0.045, 0.15, 0.02] }";
+  const auto at = text.find(table);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, table.size(), "file = \"" + frame.string() + "\"");
+  // The gate was open at 0.1 s, with cubes in the outlet: the restart keeps it out of their way.
+  const std::string gate = "remove_at = 0.05\npositions = [[0.0, -0.005, 0.0]]";
+  REQUIRE(text.find(gate) != std::string::npos);
+  text.replace(text.find(gate), gate.size(), "remove_at = 0.05\npositions = [[0.0, -0.5, 0.0]]");
+  gf::DemSimulation sim = gf::DemSimulation::from_text(text);
+  const gf::Bodies& b = sim.world().tables.get<gf::Bodies>();
+  const std::vector<std::string> rows = gf::test::read_lines(frame);
+  std::size_t moving_cubes = 0;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const auto f = split(rows[k]);
+    if (f[1] != "cube" || f[4] != "moving") continue;
+    const std::size_t i = 3 + moving_cubes++;  // after the two floors and the gate
+    REQUIRE(i < b.n);
+    INFO("frame row " << k);
+    CHECK(b.pos.x[i] == std::stod(f[5]));
+    CHECK(b.pos.y[i] == std::stod(f[6]));
+    CHECK(b.pos.z[i] == std::stod(f[7]));
+    CHECK(b.vel.y[i] == std::stod(f[13]));
+    CHECK(b.omega.z[i] == std::stod(f[17]));
+    CHECK(b.moving(i));
+  }
+  CHECK(moving_cubes >= 1);
+  CHECK(b.n == 3 + moving_cubes);
+  // Its own frame at t = 0 repeats the loaded state: the orientation to round-off, the rest exactly.
+  const std::filesystem::path again = dir.path / "again";
+  const auto restart = dir.write("restart.toml", text);
+  REQUIRE(gf::test::run_cli(dir, "run " + gf::test::quote(restart.string()) + " --quiet --steps 1 --set settle.time=0"
+                                     " --out " + gf::test::quote(again.string())).code == 0);
+  const std::vector<std::string> first = gf::test::read_lines(again / "frames" / "frame_000000.csv");
+  std::size_t r = 1;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const auto f = split(rows[k]);
+    if (f[1] != "cube" || f[4] != "moving") continue;
+    const auto g = split(first[3 + r++]);
+    for (std::size_t c : {5, 6, 7, 12, 13, 14, 15, 16, 17}) CHECK(g[c] == f[c]);
+    for (std::size_t c : {8, 9, 10, 11}) CHECK(std::abs(std::stod(g[c]) - std::stod(f[c])) < 1e-14);
+  }
+  // A file without the header is refused naming the key.
+  const auto junk = dir.write("junk.csv", "x,y,z\n1,2,3\n");
+  text.replace(text.find(frame.string()), frame.string().size(), junk.string());
+  CHECK_THROWS_WITH(gf::DemSimulation::from_text(text), Catch::Contains("bodies[2].file") && Catch::Contains("header"));
 }

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <cstring>
+#include <cstdlib>
 #include <random>
+#include <sstream>
 #include <type_traits>
 
+#include "engine/read_file.hpp"
 #include "systems/analysis/metrics.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/bodies/body_integrate.hpp"
@@ -222,10 +225,74 @@ std::vector<std::array<double, 3>> random_positions(const DemScene& s, const Sce
   }
 }
 
+// The moving bodies of shape `name` in a body frame file (body_outputs.hpp: the CSV a run writes per
+// frame), each with its centre of mass, orientation of the shape's frame, velocity and angular
+// velocity: a run restarted from a frame's state.
+std::vector<BodyPlacement> frame_file_placements(const SceneNode& t, std::size_t shape, const std::string& name) {
+  const std::filesystem::path file = t.doc().resolve(t.get_string("file"));
+  std::string text;
+  FileProblem why;
+  if (!read_regular_file(file, std::size_t(1) << 30, text, why)) t.fail("file", why.problem, why.fix);
+  const std::string header = "id,shape,group,layer,motion,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line) || line != header)
+    t.fail("file", file.string() + " does not start with the body frame header '" + header + "'",
+           "give a frames/frame_NNNNNN.csv that grainflow run wrote");
+  std::vector<BodyPlacement> out;
+  int number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty()) continue;
+    std::vector<std::string> f;
+    std::istringstream fields(line);
+    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
+    auto bad = [&](const std::string& what) {
+      t.fail("file", file.string() + ":" + std::to_string(number) + ": " + what,
+             "give a frame file that grainflow run wrote, unchanged");
+    };
+    if (f.size() != 18) bad("expected 18 fields, found " + std::to_string(f.size()));
+    if (f[1] != name || f[4] != "moving") continue;
+    double v[13];
+    for (int k = 0; k < 13; ++k) {
+      const std::string& x = f[static_cast<std::size_t>(5 + k)];
+      char* end = nullptr;
+      v[k] = std::strtod(x.c_str(), &end);
+      if (x.empty() || *end != '\0' || !std::isfinite(v[k])) bad("field " + std::to_string(6 + k) + " is not a finite number");
+    }
+    const double qq = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5] + v[6] * v[6]);
+    if (std::abs(qq - 1.0) > 1e-6) bad("the quaternion is not of unit length");
+    BodyPlacement p;
+    p.shape = shape;
+    p.line = t.line();
+    p.x = {v[0], v[1], v[2]};
+    p.q = {v[3], v[4], v[5], v[6]};
+    p.v = {v[7], v[8], v[9]};
+    p.w = {v[10], v[11], v[12]};
+    out.push_back(p);
+  }
+  if (out.empty())
+    t.fail("file", file.string() + " holds no moving body of shape '" + name + "'",
+           "give the frame of a run with this shape, or another [[shape]]");
+  return out;
+}
+
 void read_placements(const DemScene& s, const SceneNode& t, std::size_t index, BodiesSpec& b) {
   const std::size_t shape = shape_index(b, t);
+  const int group = static_cast<int>(t.get_int("group", static_cast<std::int64_t>(index), 0, 1000000));
+  if (t.has("file")) {
+    for (const char* key : {"positions", "count", "orientation", "velocity", "fixed"})
+      if (t.has(key))
+        t.fail(key, "the bodies of a frame file take their state from it", std::string("remove ") + key + ", or file");
+    for (BodyPlacement p : frame_file_placements(t, shape, b.shapes[shape].name)) {
+      p.group = group;
+      p.remove_at = t.has("remove_at") ? t.get_double("remove_at", Range::closed(0, 1e12)) : -1.0;
+      b.placed.push_back(p);
+    }
+    return;
+  }
   if (t.has("positions") == t.has("count"))
-    t.fail("positions", "give exactly one of 'positions' and 'count' (with a region)",
+    t.fail("positions", "give exactly one of 'positions', 'count' (with a region) and 'file' (a body frame)",
            "e.g. positions = [[0, 0.1, 0]] or count = 10 with region = { shape = \"box\", lo, hi }");
   const auto seed = static_cast<std::uint64_t>(
       t.get_int("seed", static_cast<std::int64_t>(s.seed + index), 0, std::numeric_limits<std::int64_t>::max()));
@@ -236,10 +303,9 @@ void read_placements(const DemScene& s, const SceneNode& t, std::size_t index, B
   if (fixed && (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0))
     t.fail("velocity", "a fixed body never moves", "remove velocity, or fixed = true");
   const double remove_at = t.has("remove_at") ? t.get_double("remove_at", Range::closed(0, 1e12)) : -1.0;
-  const int group = static_cast<int>(t.get_int("group", static_cast<std::int64_t>(index), 0, 1000000));
   std::mt19937_64 rng(seed);
   for (const auto& x : xs) {
-    BodyPlacement p{shape, t.line(), fixed, remove_at, group, x, {1.0, 0.0, 0.0, 0.0}, v};
+    BodyPlacement p{shape, t.line(), fixed, remove_at, group, x, {1.0, 0.0, 0.0, 0.0}, v, {0.0, 0.0, 0.0}};
     if (random) p.q = random_quaternion(rng);
     b.placed.push_back(p);
   }
@@ -382,6 +448,7 @@ void push_body(const DemScene& s, const BodyPlacement& p, Bodies& bodies, Member
   const Eigen::Quaterniond frame(p.q[0], p.q[1], p.q[2], p.q[3]);
   BodyRow row = body_row(sh.props, to_e(p.x), frame);
   row.v = p.v;
+  row.w = p.w;
   if (p.fixed) row.motion = Motion::fixed;
   const auto body = static_cast<std::uint32_t>(bodies.push(row));
   for (const MemberRow& m : body_frame_members(shape_members(sh.shape), sh.props, body)) members.push(m);

@@ -7,7 +7,9 @@
 //               hertz_mindlin); density (kg/m^3); grid (voxel edge of the mass properties, m, default a
 //               tenth of the shape's smallest bounding-box edge); under hertz_mindlin also
 //               youngs_modulus and poisson_ratio, the same for every shape (one material for all bodies).
-//   [[bodies]]  shape (a [[shape]] name); positions = [[x, y, z], ...] (centres of mass) or count with
+//   [[bodies]]  shape (a [[shape]] name); file = a body frame CSV that a run wrote (its moving
+//               bodies of this shape, with their pose, velocity and spin: a restart from that frame),
+//               or positions = [[x, y, z], ...] (centres of mass) or count with
 //               region = { shape = "box", lo, hi } or a cylinder as a random fill's (bounding spheres
 //               kept apart; optional seed; arrangement = "random" (default) or "lattice": a cubic
 //               lattice of bounding spheres filled from the bottom of a box region, for dense starts);
@@ -70,6 +72,7 @@ struct BodyPlacement {
   std::array<double, 3> x{};                    // m, centre of mass
   std::array<double, 4> q{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z), the shape frame to the world
   std::array<double, 3> v{};                    // m/s
+  std::array<double, 3> w{};                    // rad/s, world frame
 };
 
 // The outputs and analyses of a body scene (keys above).

@@ -33,7 +33,7 @@ void DemSimulation::prime() {
     step_->run_step(now);
   } catch (const StabilityError& e) {
     // Nothing has moved yet: the fills placed the grains past the overlap limit, a scene error.
-    const int line = scene_.fills.empty() ? 0 : scene_.fills.front().line;
+    const int line = !scene_.fills.empty() ? scene_.fills.front().line : scene_.bodies ? scene_.bodies->line : 0;
     throw SceneError(scene_.file.string() + ":" + std::to_string(line) + ": the fills' initial state: " + e.what());
   }
   primed_ = true;
