@@ -9,10 +9,12 @@
 //                               it without knowing what it is
 //   critical_terms()            the time-step terms (s) of one pair of bodies, each with its name
 //   evaluate()                  the force, written once for double and for xsimd batches
+//   kReach (optional)           for a law that acts before touching: its constant holding the reach
 // Drivers (pair_contact, wall_contact) are templates on the law; laws.hpp registers them.
 #pragma once
 
 #include <array>
+#include <concepts>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -59,6 +61,19 @@ struct ContactBody {
   double radius = 0;   // m
   Material material{};
   bool wall = false;
+  // m/s^2: the magnitude of the scene's gravity, filled in by the scene for laws whose forces are
+  // multiples of a weight (representative_volume.hpp); 0 where no scene states one (and for walls).
+  double gravity = 0;
+};
+
+// A law whose force acts before touching declares kReach, the index of its per type-pair constant
+// that holds the reach (m): a pair within r_i + r_j + reach (a wall within r_i + reach) interacts,
+// with a negative overlap. The drivers test it with `if constexpr`, so the laws that act only in
+// contact compile to the code they had; the neighbour search looks the largest reach further
+// (ContactTable::reach).
+template <class L>
+concept ReachingLaw = requires {
+  { L::kReach } -> std::convertible_to<std::size_t>;
 };
 
 // A time-step term of a law: a time (s) that dt must stay a `dt_safety` fraction of, and its name.

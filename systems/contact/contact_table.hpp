@@ -4,6 +4,7 @@
 // template below builds it from a law's declarations (contact_law.hpp).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -24,7 +25,7 @@ class ContactTable {
   ContactTable() = default;
   // pair: types*types*width doubles (symmetric), wall: types*width.
   ContactTable(std::string law, std::size_t types, std::size_t width, std::vector<double> pair,
-               std::vector<double> wall, CriticalStep critical);
+               std::vector<double> wall, CriticalStep critical, double reach = 0.0);
 
   const std::string& law() const { return law_; }
   std::size_t types() const { return n_; }
@@ -33,12 +34,16 @@ class ContactTable {
   const double* pair(std::size_t a, std::size_t b) const { return &pp_[(a * n_ + b) * width_]; }
   const double* wall(std::size_t a) const { return &wall_[a * width_]; }
   const CriticalStep& critical_period() const { return critical_; }
+  // m: the largest reach of a pair beyond touching (a ReachingLaw's; 0 for laws acting in contact),
+  // how much further than r_i + r_j + skin the neighbour search must look.
+  double reach() const { return reach_; }
 
  private:
   std::string law_;
   std::size_t n_ = 0, width_ = 0;
   std::vector<double> pp_, wall_;
   CriticalStep critical_{std::numeric_limits<double>::infinity(), ""};
+  double reach_ = 0.0;
 };
 
 // The table of law L for species `bodies` (named `names`), with the scene's parameters per pair
@@ -69,7 +74,10 @@ ContactTable make_contact_table(const std::vector<ContactBody<typename L::Materi
     std::copy(c.begin(), c.end(), pw.begin() + static_cast<std::ptrdiff_t>(a * K));
     consider(L::critical_terms(bodies[a], wall, params_wall[a]), names[a] + "-wall");
   }
-  return ContactTable(std::string(L::name), n, K, std::move(pp), std::move(pw), best);
+  double reach = 0.0;
+  if constexpr (ReachingLaw<L>)
+    for (std::size_t q = 0; q < n * n; ++q) reach = std::max(reach, pp[q * K + L::kReach]);
+  return ContactTable(std::string(L::name), n, K, std::move(pp), std::move(pw), best, reach);
 }
 
 }  // namespace gf

@@ -4,16 +4,40 @@
 
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include "systems/contact/hertz_mindlin.hpp"
 #include "systems/contact/linear_spring_dashpot.hpp"
+#include "systems/contact/representative_volume.hpp"
 
 namespace gf {
 
 template <class... L>
 struct LawList {};
 
-using ContactLaws = LawList<LinearSpringDashpot, HertzMindlin>;
+using ContactLaws = LawList<LinearSpringDashpot, HertzMindlin, RepresentativeVolume>;
+
+// The registered laws that act in contact only (TouchingLaws) and those that act before touching
+// (ReachingLaws, contact_law.hpp). The drivers instantiate the two kinds in separate translation
+// units: instantiated beside a reaching law, the others' kernels were inlined differently by GCC (its
+// budget of growth is per unit), and they are to compile to the code they had.
+template <class A, class B>
+struct JoinLaws;
+template <class... A, class... B>
+struct JoinLaws<LawList<A...>, LawList<B...>> {
+  using type = LawList<A..., B...>;
+};
+template <bool Reaching, class List>
+struct FilterLaws {
+  using type = LawList<>;
+};
+template <bool Reaching, class H, class... T>
+struct FilterLaws<Reaching, LawList<H, T...>> {
+  using rest = typename FilterLaws<Reaching, LawList<T...>>::type;
+  using type = std::conditional_t<ReachingLaw<H> == Reaching, typename JoinLaws<LawList<H>, rest>::type, rest>;
+};
+using TouchingLaws = FilterLaws<false, ContactLaws>::type;
+using ReachingLaws = FilterLaws<true, ContactLaws>::type;
 
 // Calls f.template operator()<Law>() for the registered law named `name`; false when none is.
 template <class F, class... L>

@@ -1,7 +1,8 @@
 // Particle-particle contact driver, a template on the contact law (laws.hpp lists them). The driver
 // owns the iteration, the geometry stage (sphere_geometry.hpp) the contact, the law the physics.
 // Per step:
-//   1. prefilter: the overlap test over every pair of the Verlet list, in xsimd batches;
+//   1. prefilter: the overlap test over every pair of the Verlet list, in xsimd batches (for a law
+//      that acts before touching, ReachingLaw, within r_i + r_j + its reach: a negative overlap);
 //   2. compaction of the touching pairs into a packed contact list, in list order, merged with the
 //      packed history of the last evaluation (pairs that separated drop theirs);
 //   3. geometry and law over the packed contacts in xsimd batches (a scalar tail), history read and
@@ -58,6 +59,7 @@ struct PairForces {
   };
   std::vector<std::vector<Spill>> spill;
   std::vector<std::uint8_t> block_over;  // per prefilter block: some pair overlaps past the limit
+  std::vector<double> reach;  // a law acting before touching: its reach (m) per type pair (NeighborList::type_pair)
 
   std::size_t contacts() const { return ci.size() - 1; }
   // Force on the owner of list pair k at the last evaluation (zero when apart), given the springs

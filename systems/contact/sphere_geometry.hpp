@@ -48,4 +48,23 @@ template <class T>
   return c;
 }
 
+// The same for a law that acts before touching (contact_law.hpp, ReachingLaw): the contact point is
+// the wall's closest point p + gap n, whose velocity the law takes (omega x r of a turning wall),
+// since the mid-overlap point of sphere_wall lies in the gap when the sphere is apart; the lever arm
+// is the gap.
+template <class T>
+[[gnu::always_inline]] inline SphereContact<T> sphere_wall_surface(const V3<T>& p, const V3<T>& n, const T& gap,
+                                                                   const T& ri, const V3<T>& vi, const V3<T>& wi,
+                                                                   const V3<T>& wall_w, const V3<T>& wall_o) {
+  SphereContact<T> c;
+  c.g.n = n;
+  c.g.delta = ri - gap;
+  c.li = gap;
+  c.lj = T(0.0);
+  const V3<T> wall_v = cross(wall_w, p + gap * n - wall_o);
+  c.g.v = vi + cross(gap * wi, n) - wall_v;
+  c.g.w = wi - wall_w;
+  return c;
+}
+
 }  // namespace gf

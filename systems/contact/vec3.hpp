@@ -48,6 +48,17 @@ template <class T, class C>
 inline V3<T> choose(const C& c, const V3<T>& a, const V3<T>& b) {
   return {choose(c, a.x, b.x), choose(c, a.y, b.y), choose(c, a.z, b.z)};
 }
+// Both masks (a lane, or the scalar, set in each).
+inline bool both(bool a, bool b) { return a && b; }
+template <class A>
+inline xsimd::batch_bool<double, A> both(const xsimd::batch_bool<double, A>& a, const xsimd::batch_bool<double, A>& b) {
+  return a & b;
+}
+inline double exp_of(double v) { return std::exp(v); }
+template <class A>
+inline xsimd::batch<double, A> exp_of(const xsimd::batch<double, A>& v) {
+  return xsimd::exp(v);
+}
 inline double sqrt_of(double v) { return std::sqrt(v); }
 template <class A>
 inline xsimd::batch<double, A> sqrt_of(const xsimd::batch<double, A>& v) {

@@ -82,9 +82,16 @@ int check_dem_command(const CliOptions& opt) {
     std::string fields;
     for (std::string_view f : h.fields) fields += (fields.empty() ? "" : ", ") + std::string(f);
     std::printf("model: dry soft-sphere DEM; contact law %s: %s\n", s.law.c_str(), std::string(Law::title).c_str());
-    std::printf("contact history: %s (%s; %zu doubles per contact)\n", std::string(h.component).c_str(),
-                fields.c_str(), h.fields.size());
+    if (h.fields.empty())
+      std::printf("contact history: none (the law keeps no state per contact)\n");
+    else
+      std::printf("contact history: %s (%s; %zu doubles per contact)\n", std::string(h.component).c_str(),
+                  fields.c_str(), h.fields.size());
   });
+  if (s.contacts->reach() > 0.0)
+    std::printf("reach beyond touching: %.4g m (pairs closer than r_i + r_j + reach interact; the neighbour search "
+                "looks reach + skin past touching)\n",
+                s.contacts->reach());
   std::printf("grains: %zu in %zu species; walls: %zu; fills: %zu\n", n, s.species.size(), s.walls.size(),
               s.fills.size());
   std::size_t rotating = 0;

@@ -50,8 +50,12 @@ void read_contacts(DemScene& s, const SceneNode& root, const SceneNode& ct) {
   for (std::size_t k = 0; k < n; ++k) {
     const SpeciesSpec& sp = s.species[k];
     bodies.push_back({sp.mass, sp.inertia, 0.5 * sp.diameter, Law::read_material(species_nodes[k]), false});
+    bodies.back().gravity = std::hypot(s.gravity.x, s.gravity.y, s.gravity.z);
     names.push_back(sp.name);
   }
+  // A law that needs more of the scene (no rotation, a weight) says so at the scene's keys.
+  if constexpr (requires { Law::check_scene(root, 1.0); })
+    Law::check_scene(root, std::hypot(s.gravity.x, s.gravity.y, s.gravity.z));
   const Params base = Law::read_params(ct, nullptr, false);
   std::vector<Params> pp(n * n, base);
   const auto wall = ct.maybe_table("wall");
@@ -720,6 +724,7 @@ void build_dem_world(const DemScene& s, World& world) {
   walls.list = s.walls;
   BroadphaseState& bp = world.resources.emplace<BroadphaseState>();
   bp.skin = s.skin;
+  bp.reach = s.contacts->reach();
   world.resources.emplace<PeriodicImages>().box = s.periodic;
   world.resources.emplace<NeighborList>();
   with_law(s.law, [&]<class Law>() { set_layout(world.resources.emplace<PairHistory>(), Law::history()); });
