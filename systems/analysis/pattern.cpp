@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "systems/analysis/line_fit.hpp"
+
 namespace gf {
 
 namespace {
@@ -29,21 +31,15 @@ SurfaceLine surface_line(const std::vector<std::array<double, 3>>& tops, const s
     }
   if (lo < 0) return {};
   const double span = (hi - lo + 1) * width, a = u0 + lo * width + 0.2 * span, b = u0 + (hi + 1) * width - 0.2 * span;
-  double n = 0, su = 0, sv = 0, suu = 0, suv = 0;
+  LineFit fit;
   for (int c = lo; c <= hi; ++c) {
     const double uc = u0 + (c + 0.5) * width;
     if (counts[c] < 3 || uc - 0.5 * width < a || uc + 0.5 * width > b) continue;
-    const double v = tops[c][2];
-    n += 1;
-    su += uc;
-    sv += v;
-    suu += uc * uc;
-    suv += uc * v;
+    fit.add(uc, tops[c][2]);
   }
-  const double den = n * suu - su * su;
-  if (n < 3 || !(den > 0)) return {};
-  const double slope = (n * suv - su * sv) / den;
-  return {std::atan(slope), (sv - slope * su) / n};
+  const double slope = fit.slope();
+  if (fit.points() < 3 || std::isnan(slope)) return {};
+  return {std::atan(slope), fit.intercept()};
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "systems/analysis/line_fit.hpp"
+
 namespace gf {
 
 namespace {
@@ -71,7 +73,7 @@ ReposeFlank fit_flank(const Profile& p, std::size_t from, std::size_t to, double
   }
   const double range = extreme - foot;
   if (!std::isfinite(range) || range == 0.0) return f;
-  double n = 0, ss = 0, sh = 0, sss = 0, ssh = 0;
+  LineFit fit;
   for (std::size_t c = from; c < to; ++c) {
     const double h = p.height[c];
     if (std::isnan(h)) continue;
@@ -81,15 +83,10 @@ ReposeFlank fit_flank(const Profile& p, std::size_t from, std::size_t to, double
     if (f.columns == 0) f.s_from = x;
     f.s_to = x;
     ++f.columns;
-    n += 1;
-    ss += x;
-    sh += h;
-    sss += x * x;
-    ssh += x * h;
+    fit.add(x, h);
   }
-  const double den = n * sss - ss * ss;
-  if (f.columns < static_cast<std::size_t>(set.min_columns) || !(den > 0.0)) return f;
-  f.slope = (n * ssh - ss * sh) / den;
+  if (f.columns < static_cast<std::size_t>(set.min_columns) || std::isnan(fit.slope())) return f;
+  f.slope = fit.slope();
   f.angle = std::atan(std::abs(f.slope));
   return f;
 }
