@@ -531,13 +531,15 @@ void require_memory(const DemScene& scene, std::size_t n) {
 }
 
 // Neighbour-list pairs per grain: 3.4 in a dense pack of the seed drum with its skin (0.15 of the
-// small diameter); for a larger skin, the grains of the smallest size within reach d + skin of one,
-// at the random-close-packing fraction, counted once per pair, and never more than the other grains.
+// small diameter); for a larger skin, the grains of the smallest size within reach d + skin of one
+// (+ the law's reach beyond touching, for a law acting apart), at the random-close-packing fraction,
+// counted once per pair, and never more than the other grains.
 std::size_t list_pairs_per_grain(const DemScene& scene, std::size_t n) {
   if (scene.species.empty()) return 0;  // a scene of composite grains only
   double d_min = scene.species.front().diameter;
   for (const SpeciesSpec& sp : scene.species) d_min = std::min(d_min, sp.diameter);
-  const double reach = (d_min + scene.skin) / d_min;
+  const double law_reach = scene.contacts ? scene.contacts->reach() : 0.0;
+  const double reach = (d_min + scene.skin + law_reach) / d_min;
   const double most = std::min(0.64 * 8.0 * reach * reach * reach / 2.0, n > 0 ? static_cast<double>(n - 1) : 0.0);
   return static_cast<std::size_t>(std::ceil(std::max(3.4, most)));
 }
