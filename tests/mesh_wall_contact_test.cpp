@@ -1,8 +1,9 @@
 // Sphere contacts with triangle-mesh walls: a sphere sliding and rolling across a finely triangulated plate feels
-// the force history of the analytic plane of the same law (both laws, still and rotating, along a path that runs
-// exactly along shared edges and through shared vertices and along a generic one); one contact on a convex edge and
-// at a convex corner, two in a concave corner; the tangential spring carried from a triangle to its coplanar
-// neighbour and over a shallow convex fold; the scene keys' errors; the mesh drum scene through the command line.
+// the force history of the analytic plane of the same law (the linear and Hertz laws and the representative-volume
+// law that acts before touching; still and rotating; along a path that runs exactly along shared edges and through
+// shared vertices, and along a generic one); one contact on a convex edge and at a convex corner, two in a concave
+// corner; the tangential spring carried from a triangle to its coplanar neighbour and over a shallow convex fold;
+// the scene keys' errors; the mesh drum scene through the command line; a bit-identical checkpoint resume.
 #include "systems/walls/mesh_wall_contact.hpp"
 
 #include <catch2/catch.hpp>
@@ -53,6 +54,14 @@ gf::ContactTable table_of<gf::HertzMindlin>(double friction) {
   return gf::make_contact_table<gf::HertzMindlin>({b}, {"glass"}, {p}, {p});
 }
 
+// The representative-volume law acts before touching (it declares kReach): its wall constants with the defaults.
+template <>
+gf::ContactTable table_of<gf::RepresentativeVolume>(double) {
+  gf::RepresentativeVolume::Params p;
+  gf::ContactBody<gf::RepresentativeVolume::Material> b{kM, kI, kR, {}, false, kG};
+  return gf::make_contact_table<gf::RepresentativeVolume>({b}, {"glass"}, {p}, {p});
+}
+
 // One spinning grain (row 0) with the columns both wall kinds use.
 Grains one_grain() {
   Grains g;
@@ -78,10 +87,11 @@ void place(Grains& g, const Vec3d& x, const Vec3d& v, const Vec3d& w) {
 }
 Vec3d pos(const Grains& g) { return {g.pos.x[0], g.pos.y[0], g.pos.z[0]}; }
 
+// The grid reaches the grain's radius and a law's reach beyond it (`beyond`, m).
 gf::MeshWalls walls_of(gf::TriangleSoup soup, const Vec3d& rot_point = {0, 0, 0}, const Vec3d& rot_axis = {0, 0, 1},
-                       double omega = 0.0) {
+                       double omega = 0.0, double beyond = 0.0) {
   gf::MeshWalls w;
-  w.list.push_back(gf::make_mesh_wall("test mesh", gf::build_mesh(soup), kR));
+  w.list.push_back(gf::make_mesh_wall("test mesh", gf::build_mesh(soup), kR + beyond));
   w.list.back().rot_point = rot_point;
   w.list.back().rot_axis = rot_axis;
   w.list.back().omega = omega;
@@ -124,8 +134,9 @@ Comparison plane_versus_plate(const Vec3d& start, const Vec3d& v0, double omega,
   w.rot_axis = {0, 0, 1};
   w.omega = omega;
   plane.list = {w};
-  const gf::MeshWalls plate =
-      walls_of(gf::plate_triangles({0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 0.02, 0.02, 40, 40), axis_point, {0, 0, 1}, omega);
+  const double reach = gf::mesh_wall_reach(table);
+  const gf::MeshWalls plate = walls_of(gf::plate_triangles({0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 0.02, 0.02, 40, 40),
+                                       axis_point, {0, 0, 1}, omega, reach);
   Grains a = one_grain(), b = one_grain();
   place(a, start, v0, {0, 0, 0});
   place(b, start, v0, {0, 0, 0});
@@ -141,7 +152,7 @@ Comparison plane_versus_plate(const Vec3d& start, const Vec3d& v0, double omega,
     const Vec3d fb{mf.x[0], mf.y[0], mf.z[0]}, tb{mt.x[0], mt.y[0], mt.z[0]};
     c.force = std::max(c.force, len(fa - fb));
     c.force_scale = std::max(c.force_scale, len(fa));
-    c.one_contact_steps += gf::mesh_contacts_of(plate, pos(b), kR, t).size() == 1;
+    c.one_contact_steps += gf::mesh_contacts_of(plate, pos(b), kR + reach, t).size() == 1;
     ++c.steps;
     step(a, fa, ta, dt);
     step(b, fb, tb, dt);
@@ -184,7 +195,10 @@ TEST_CASE("mesh wall: a sphere sliding and rolling across a fine plate feels the
   for (const Case& cs : cases) {
     const Comparison lsd = plane_versus_plate<gf::LinearSpringDashpot>(cs.start, cs.v0, cs.omega, 6000, dt);
     const Comparison hm = plane_versus_plate<gf::HertzMindlin>(cs.start, cs.v0, cs.omega, 6000, dt);
-    for (const auto& [law, c] : {std::pair{"linear_spring_dashpot", lsd}, std::pair{"hertz_mindlin", hm}}) {
+    // The law acting before touching: from its wall reach, at the plane's closest point (sphere_wall_surface).
+    const Comparison rv = plane_versus_plate<gf::RepresentativeVolume>(cs.start, cs.v0, cs.omega, 6000, dt);
+    for (const auto& [law, c] : {std::pair{"linear_spring_dashpot", lsd}, std::pair{"hertz_mindlin", hm},
+                                 std::pair{"representative_volume", rv}}) {
       INFO(cs.what << ", " << law << ": force difference " << c.force << " N of " << c.force_scale
                    << " N, path difference " << c.position << " m over " << c.travelled << " m, spin difference "
                    << c.spin << " rad/s, one contact at " << c.one_contact_steps << " of " << c.steps << " steps");

@@ -145,7 +145,7 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
       const double* kc = table.wall(static_cast<std::size_t>(g.species.type[i]));
       // A law that acts before touching (one declaring kReach) reaches the wall from r + reach.
       double reach = 0.0;
-      if constexpr (requires { Law::kReach; }) reach = kc[static_cast<std::size_t>(Law::kReach)];
+      if constexpr (ReachingLaw<Law>) reach = kc[static_cast<std::size_t>(Law::kReach)];
       const std::size_t nh = find_hits(walls, turn.data(), p, ri + reach, hits);
       MeshSlots& old = hist[i];
       Vec3d f{0, 0, 0}, tq{0, 0, 0};
@@ -189,7 +189,12 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
           const MeshWall& mw = walls.list[x.wall];
           const Vec3d n = nrm[h];
           const double om = rotation_enabled ? mw.omega : 0.0;
-          const SphereContact<double> sc = sphere_wall(p, n, x.d, ri, vi, wi, om * mw.rot_axis, mw.rot_point);
+          // A law acting before touching takes the wall's closest point as the contact point (sphere_geometry.hpp).
+          SphereContact<double> sc;
+          if constexpr (ReachingLaw<Law>)
+            sc = sphere_wall_surface(p, n, x.d, ri, vi, wi, om * mw.rot_axis, mw.rot_point);
+          else
+            sc = sphere_wall(p, n, x.d, ri, vi, wi, om * mw.rot_axis, mw.rot_point);
           worst = std::max(worst, (ri - x.d) - lim2 * ri);
           std::array<double, H> s{};
           if (from[h] >= 0) std::copy(old.s[from[h]], old.s[from[h]] + H, s.begin());
@@ -221,7 +226,7 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
 double mesh_wall_reach(const ContactTable& table) {
   double reach = 0.0;
   with_law(table.law(), [&]<class Law>() {
-    if constexpr (requires { Law::kReach; })
+    if constexpr (ReachingLaw<Law>)
       for (std::size_t a = 0; a < table.types(); ++a)
         reach = std::max(reach, table.wall(a)[static_cast<std::size_t>(Law::kReach)]);
   });
