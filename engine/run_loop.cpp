@@ -58,6 +58,7 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
     world.clock.t = stage_t0 + static_cast<double>(step_start + k + 1) * world.clock.dt;
     if (opt.observe) opt.observe->run_step(context());
     ++rep.steps;
+    rep.particle_steps += static_cast<double>(world.grains.n_owned);
     if (opt.progress_seconds > 0) {
       const auto now = clock::now();
       if (std::chrono::duration<double>(now - last_print).count() >= opt.progress_seconds || k + 1 == opt.steps) {

@@ -21,6 +21,7 @@ class StabilityError : public std::runtime_error {
 
 struct StageReport {
   std::int64_t steps = 0;     // steps completed in this stage
+  double particle_steps = 0;  // grains in the table summed over those steps (rows change in continuous scenes)
   double wall_seconds = 0.0;  // s
   bool interrupted = false;   // stopped early by SIGINT/SIGTERM (results so far are on disk)
 };

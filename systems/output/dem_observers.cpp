@@ -38,6 +38,8 @@ SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
     for (const char* c : {"pattern", "petals", "pattern_contrast", "surface_angle", "radial_segregation",
                           "depth_segregation"})
       columns.push_back(c);
+  if (s_.flow)
+    for (const char* c : {"grains", "holdup_mass", "fed_mass", "discharged_mass", "feed_backlog"}) columns.push_back(c);
   if (s_.resume_rows)
     csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, std::move(columns), *s_.resume_rows));
   else
@@ -83,6 +85,7 @@ void SeriesOutput::sample(World& world, double t) {
       s_.segregation_type >= 0 ? segregation_index(g, s_.segregation_type, s_.segregation_cell) : 0.0;
   if (mixing()) sample_mixing(g, row);
   if (s_.pattern) sample_pattern(world, row);
+  if (s_.flow) sample_flow(world, row);
   row.valid = true;
   if (csv_) write(row);
 }
@@ -116,9 +119,22 @@ void SeriesOutput::sample_pattern(World& world, SeriesRow& row) const {
       depth_segregation(g, s_.segregation_type, section, p.surface_angle, p.surface_level).index;
 }
 
+void SeriesOutput::sample_flow(World& world, SeriesRow& row) {
+  const Grains& g = world.grains;
+  const FlowState& f = world.resources.get<FlowState>();
+  double kg = 0.0;
+  for (std::size_t i = 0; i < g.n_owned; ++i) kg += g.mass.m[i];
+  row.has_flow = true;
+  row.grains = static_cast<std::int64_t>(g.n_owned);
+  row.holdup_mass = kg;
+  row.fed_mass = f.fed_mass();
+  row.discharged_mass = f.discharged_mass();
+  row.feed_backlog = f.backlog();
+}
+
 // One csv row in the order of the constructor's columns.
 void SeriesOutput::write(const SeriesRow& row) {
-  std::array<double, 16> v{};
+  std::array<double, 24> v{};
   std::size_t k = 0;
   for (const double x : {row.time, row.angle, row.ke_translational, row.ke_rotational,
                          static_cast<double>(row.pair_contacts), static_cast<double>(row.wall_contacts),
@@ -129,6 +145,10 @@ void SeriesOutput::write(const SeriesRow& row) {
   if (s_.pattern)
     for (const double x : {static_cast<double>(row.pattern), static_cast<double>(row.petals), row.pattern_contrast,
                            row.surface_angle, row.radial_segregation, row.depth_segregation})
+      v[k++] = x;
+  if (s_.flow)
+    for (const double x : {static_cast<double>(row.grains), row.holdup_mass, row.fed_mass, row.discharged_mass,
+                           row.feed_backlog})
       v[k++] = x;
   csv_->append(std::span<const double>(v.data(), k));
   ++rows_;

@@ -17,6 +17,7 @@
 #include "systems/analysis/mixing.hpp"
 #include "systems/analysis/pattern.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
+#include "systems/flow/flow_systems.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/output/drum_picture.hpp"
 #include "systems/output/series_csv.hpp"
@@ -45,6 +46,11 @@ struct SeriesRow {
   double lacey_cell = std::numeric_limits<double>::quiet_NaN();
   double radial_segregation = std::numeric_limits<double>::quiet_NaN();
   double depth_segregation = std::numeric_limits<double>::quiet_NaN();
+  // Continuous scenes (has_flow): the grains and their mass in the table (the hold-up), the mass fed
+  // and discharged so far, and the feeds' backlog (kg owed but not yet placed).
+  bool has_flow = false;
+  std::int64_t grains = 0;
+  double holdup_mass = 0, fed_mass = 0, discharged_mass = 0, feed_backlog = 0;
   bool valid = false;
 };
 
@@ -58,12 +64,13 @@ struct SeriesSettings {
   PatternSettings pattern_settings;
   double mixing_cell = 0;      // m; > 0: Lacey's index of segregation_type over cells of this edge
   int mixing_min_grains = 10;  // cells with fewer grains are left out of it
+  bool flow = false;           // hold-up columns from the FlowState resource (a scene with feeds or outlets)
 };
 
 class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
  public:
   using Reads =
-      gf::Reads<Position, Velocity, AngularVelocity, Radius, Mass, Species, NeighborList, Walls, Gravity>;
+      gf::Reads<Position, Velocity, AngularVelocity, Radius, Mass, Species, NeighborList, Walls, Gravity, FlowState>;
   using Writes = gf::Writes<SeriesRow>;
   explicit SeriesOutput(SeriesSettings s);
   std::string_view name() const override { return "series_output"; }
@@ -77,6 +84,7 @@ class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
   void sample(World& world, double t);
   void sample_mixing(const Grains& g, SeriesRow& row) const;
   void sample_pattern(World& world, SeriesRow& row) const;
+  static void sample_flow(World& world, SeriesRow& row);
   void write(const SeriesRow& row);
   bool mixing() const { return s_.mixing_cell > 0; }
   SeriesSettings s_;

@@ -16,11 +16,13 @@
 #include "systems/fill/state_csv.hpp"
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
+#include "systems/output/residence_csv.hpp"
 #include "systems/output/summary_json.hpp"
 #include "systems/setup/app.hpp"
 #include "systems/setup/dem_body_app.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "systems/setup/flow_scene.hpp"
 
 namespace gf {
 
@@ -61,6 +63,34 @@ std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path
          "' (or write less: output.frame_interval, output.series_interval), then " +
          (have_checkpoint ? "resume: " + again + " --resume " + (out / "checkpoints" / "checkpoint.gfc").string()
                           : "run again (no checkpoint was written yet; output.checkpoint_interval sets how often one is)");
+}
+
+nlohmann::json flow_json(const FlowState& f, const Grains& g, const ResidenceOutput* residence) {
+  double kg = 0.0;
+  for (std::size_t i = 0; i < g.n_owned; ++i) kg += g.mass.m[i];
+  nlohmann::json j = {{"grains", g.n_owned},          {"holdup_mass", kg},
+                      {"fed_grains", f.fed_grains()}, {"fed_mass", f.fed_mass()},
+                      {"discharged", f.discharged()}, {"discharged_mass", f.discharged_mass()},
+                      {"feed_backlog", f.backlog()}};
+  if (residence) j["residence_rows"] = residence->rows();
+  return j;
+}
+
+void print_flow(const DemScene& s) {
+  for (std::size_t k = 0; k < s.flow.feeds.size(); ++k) {
+    const FeedSpec& f = s.flow.feeds[k];
+    std::string mix;
+    for (const FeedSpecies& sp : f.species)
+      mix += (mix.empty() ? "" : ", ") + s.species[sp.type].name + " " + short_number(sp.fraction);
+    std::printf("feed[%zu]: %.4g kg/s (%s by mass) every %.4g s from %.4g s%s\n", k, f.mass_rate, mix.c_str(),
+                f.interval, f.start, std::isfinite(f.stop) ? (" to " + short_number(f.stop) + " s").c_str() : "");
+  }
+  for (std::size_t k = 0; k < s.flow.outlets.size(); ++k)
+    std::printf("outlet[%zu]: grains leave when their centre is inside its region, checked every %.4g s; "
+                "residence.csv records each\n", k, s.flow.outlets[k].interval);
+  if (!s.flow.feeds.empty())
+    std::printf("feeds insert at most %zu grains over the run (the memory allows %zu in the table)\n",
+                max_fed_grains(s), memory_grain_limit(s));
 }
 
 }  // namespace
@@ -104,14 +134,18 @@ int check_dem_command(const CliOptions& opt) {
     std::printf("rotation: %zu of %zu species rotate (the others have zero inverse inertia)\n", rotating,
                 s.species.size());
   std::printf("systems per step (with the systems each waits for):\n%s", step.describe().c_str());
-  std::printf("observers: series_output, frame_output, picture_output\n");
+  std::printf("observers: series_output, frame_output, picture_output%s\n",
+              s.flow.outlets.empty() ? "" : ", residence_output");
+  print_flow(s);
   std::printf("critical step: smallest time-step term %.4g s (%s); dt = %.4g s = %.3f of it (limit %.3f)%s\n",
               s.critical.period, s.critical.term.c_str(), s.dt, s.dt / s.critical.period, s.dt_safety,
               s.allow_unstable_dt && s.dt > s.dt_safety * s.critical.period ? " OVERRIDDEN" : "");
   std::printf("steps: %lld settling + %lld main (%.4g s simulated)\n", static_cast<long long>(s.settle_steps()),
               static_cast<long long>(s.main_steps()), s.duration);
-  const double mb = static_cast<double>(estimate_memory_bytes(s, n)) / 1048576.0;
-  std::printf("memory estimate, simulation arrays: %.1f MiB (%.0f bytes per grain; the process adds its code and buffers)\n", mb, n ? mb * 1048576.0 / n : 0.0);
+  // A continuous scene grows as its feeds insert grains: the estimate counts the most they can insert.
+  const std::size_t n_most = s.flow.feeds.empty() ? n : n + std::min(max_fed_grains(s), memory_grain_limit(s));
+  const double mb = static_cast<double>(estimate_memory_bytes(s, n_most)) / 1048576.0;
+  std::printf("memory estimate, simulation arrays: %.1f MiB (%.0f bytes per grain; the process adds its code and buffers)\n", mb, n_most ? mb * 1048576.0 / n_most : 0.0);
   return 0;
 }
 
@@ -175,6 +209,7 @@ int run_dem_command(const CliOptions& opt) {
   ss.pattern_settings.large_type = s.segregation_type;
   ss.mixing_cell = s.mixing_cell;
   ss.mixing_min_grains = s.mixing_min_grains;
+  ss.flow = s.flow.any();
   if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");
   SeriesOutput& series = observe.emplace<SeriesOutput>(ss);
   FrameOutput* frames = nullptr;
@@ -194,9 +229,16 @@ int run_dem_command(const CliOptions& opt) {
     }
     pictures = &observe.emplace<PictureOutput>(std::move(ps));
   }
+  ResidenceOutput* residence = nullptr;
+  if (!s.flow.outlets.empty()) {
+    std::optional<std::size_t> keep;
+    if (ckpt) keep = ckpt->value<std::uint64_t>("residence_output.rows");
+    residence = &observe.emplace<ResidenceOutput>(out / "residence.csv", keep);
+  }
   std::vector<const Checkpointable*> parts{&series};
   if (frames) parts.push_back(frames);
   if (pictures) parts.push_back(pictures);
+  if (residence) parts.push_back(residence);
   CheckpointOutput& checkpoints = observe.emplace<CheckpointOutput>(
       CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
       [&s](CheckpointWriter& w, World& wd) { save_dem_state(w, wd, s); }, parts);
@@ -214,6 +256,7 @@ int run_dem_command(const CliOptions& opt) {
                    "resume without output.picture_angles and output.picture_interval, as that run had");
       pictures->restore(*ckpt);
     }
+    if (residence) residence->restore(*ckpt);
     checkpoints.restore(*ckpt);
   }
 
@@ -274,7 +317,9 @@ int run_dem_command(const CliOptions& opt) {
       rc = 3;
     }
   }
-  const double psps = main.wall_seconds > 0 ? static_cast<double>(main.steps) * n / main.wall_seconds : 0.0;
+  // A stage that threw reports its steps but not the grains stepped: those of the start, then.
+  const double stepped = main.particle_steps > 0 ? main.particle_steps : static_cast<double>(main.steps) * n;
+  const double psps = main.wall_seconds > 0 ? stepped / main.wall_seconds : 0.0;
   const auto& row = world.resources.get<SeriesRow>();
   summary["status"] = status;
   if (!failure.empty()) summary["failure"] = failure;
@@ -314,6 +359,7 @@ int run_dem_command(const CliOptions& opt) {
     summary["final"]["radial_segregation"] = number_or_null(row.radial_segregation);
     summary["final"]["depth_segregation"] = number_or_null(row.depth_segregation);
   }
+  if (const FlowState* f = world.resources.find<FlowState>()) summary["flow"] = flow_json(*f, world.grains, residence);
   double step_total = 0;
   for (auto& t : step.timings()) step_total += t.seconds;
   for (auto& t : observe.timings()) step_total += t.seconds;

@@ -158,6 +158,7 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) 
     out.vector("periodic.shift_y", im.sy);
     out.vector("periodic.shift_z", im.sz);
   }
+  if (const FlowState* f = world.resources.find<FlowState>()) save_flow_state(out, *f);
 }
 
 void restore_dem_state(const CheckpointReader& in, World& world, const DemScene& scene) {
@@ -228,6 +229,10 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
   walls.place(world.clock.t);
   list_sections(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp);
   restore_images(in, world.resources.get<PeriodicImages>(), gr);
+  if (scene.flow.any())
+    restore_flow_state(in, world.resources.get<FlowState>(), scene.flow);
+  else if (in.has("flow.feeds"))
+    in.fail("it was written by a run with [[feed]] or [[outlet]] tables, the scene now has none", same_scene);
   check_grains(in, gr, scene.species.size(), walls);
   check_list(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, gr);
 }

@@ -14,6 +14,7 @@
 #include "systems/contact/pair_contact.hpp"
 #include "systems/fill/random_fill.hpp"
 #include "systems/fill/state_csv.hpp"
+#include "systems/setup/flow_scene.hpp"
 #include "systems/walls/mesh_wall_scene.hpp"
 #include "systems/walls/wall_contact.hpp"
 
@@ -28,14 +29,6 @@ Vec3d unit_vector(const SceneNode& node, std::string_view key, std::array<double
   const double len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
   if (!(len > 0.0)) node.fail(key, "a direction must not be the zero vector", "give a non-zero vector, e.g. [0, 0, 1]");
   return {a[0] / len, a[1] / len, a[2] / len};
-}
-
-std::int32_t species_index(const DemScene& s, const SceneNode& node, std::string_view key, const std::string& name) {
-  for (std::size_t i = 0; i < s.species.size(); ++i)
-    if (s.species[i].name == name) return static_cast<std::int32_t>(i);
-  std::string names;
-  for (auto& sp : s.species) names += (names.empty() ? "'" : ", '") + sp.name + "'";
-  node.fail(key, "no species is named '" + name + "'", "use one of the [[species]] names: " + names);
 }
 
 // [contact] for every pair; [contact.wall] and [[contact.pair]] override single keys. The law
@@ -224,7 +217,7 @@ Region read_region(const SceneNode& f, const Gravity& g) {
 
 void read_fills(DemScene& s, const SceneNode& root) {
   const auto fills = root.tables("fill");
-  if (fills.empty())
+  if (fills.empty() && root.tables("feed").empty())
     root.fail("fill", "the scene places no grains",
               "add a [[fill]] table: kind = \"random\" with a region and counts, or kind = \"file\" with a path");
   int index = 0;
@@ -359,6 +352,14 @@ void read_analysis(DemScene& s, const SceneNode& root) {
 
 Region read_fill_region(const SceneNode& node, const Gravity& g) { return read_region(node, g); }
 
+std::int32_t species_index(const DemScene& s, const SceneNode& node, std::string_view key, const std::string& name) {
+  for (std::size_t i = 0; i < s.species.size(); ++i)
+    if (s.species[i].name == name) return static_cast<std::int32_t>(i);
+  std::string names;
+  for (auto& sp : s.species) names += (names.empty() ? "'" : ", '") + sp.name + "'";
+  node.fail(key, "no species is named '" + name + "'", "use one of the [[species]] names: " + names);
+}
+
 std::int64_t DemScene::main_steps() const { return static_cast<std::int64_t>(std::llround(duration / dt)); }
 std::int64_t DemScene::settle_steps() const { return static_cast<std::int64_t>(std::llround(settle_time / dt)); }
 
@@ -421,7 +422,10 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   read_periodic(s, root);
 
   if (auto settle = root.maybe_table("settle")) s.settle_time = settle->get_double("time", Range::non_negative());
-  if (!with_bodies) read_fills(s, root);
+  if (!with_bodies) {
+    read_fills(s, root);
+    read_flow(s, root);
+  }
 
   const bool has_duration = run.has("duration"), has_angle = run.has("end_angle");
   if (has_duration == has_angle)
@@ -487,6 +491,7 @@ void schedule_dem_step(Schedule& step, const DemScene& scene) {
     return;
   }
   const std::string& law = scene.law;
+  if (!scene.flow.feeds.empty()) step.emplace<FeedSystem>(scene.flow.feeds, memory_grain_limit(scene));
   step.emplace<IntegratePositions>(dem_force_terms(scene));
   step.emplace<Broadphase>();
   if (scene.periodic.any()) step.emplace<PeriodicRefresh>();
@@ -498,6 +503,7 @@ void schedule_dem_step(Schedule& step, const DemScene& scene) {
   if (scene.periodic.any()) step.emplace<PeriodicFold>();
   if (!known) throw std::invalid_argument("schedule_dem_step: no contact law is named '" + std::string(law) + "'");
   step.emplace<IntegrateVelocities>(dem_force_terms(scene));
+  if (!scene.flow.outlets.empty()) step.emplace<OutletSystem>(scene.flow.outlets);
 }
 
 std::size_t planned_grain_count(const DemScene& scene) {
@@ -528,6 +534,13 @@ void require_memory(const DemScene& scene, std::size_t n) {
                    short_number(scene.skin) + " m), more than 80 % of this machine's " +
                    short_number(have / 1073741824.0) + " GiB. Fix: lower the fills' counts or volume fractions, or "
                    "run.skin (0.1 to 0.3 of the smallest diameter)");
+}
+
+std::size_t memory_grain_limit(const DemScene& scene) {
+  const double have = static_cast<double>(machine_memory());
+  if (!(have > 0)) return std::numeric_limits<std::size_t>::max();
+  const double per_grain = static_cast<double>(estimate_memory_bytes(scene, 1000000)) / 1e6;
+  return static_cast<std::size_t>(0.8 * have / per_grain);
 }
 
 // Neighbour-list pairs per grain: 3.4 in a dense pack of the seed drum with its skin (0.15 of the
@@ -687,7 +700,7 @@ void build_dem_world(const DemScene& s, World& world) {
   // Again with the state files' rows counted, before the grain arrays and the neighbour list exist.
   require_memory(s, placed.size());
   const std::size_t n = placed.size();
-  if (n == 0)
+  if (n == 0 && s.flow.feeds.empty())
     throw SceneError(s.file.string() + ":" + std::to_string(s.fills.empty() ? 0 : s.fills.front().line) +
                      ": the scene's fills place no grains. Fix: give a [[fill]] a count or a volume fraction above 0, "
                      "or a state file with rows");
@@ -732,6 +745,13 @@ void build_dem_world(const DemScene& s, World& world) {
   with_law(s.law, [&]<class Law>() { set_layout(world.resources.emplace<PairHistory>(), Law::history()); });
   world.resources.emplace<PairForces>();
   if (!s.mesh_walls.list.empty()) attach_mesh_walls(world, s.mesh_walls);
+  if (s.flow.any()) {
+    try {
+      world.resources.emplace<FlowState>(start_flow(s.flow));
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(s.file.string() + ": " + e.what());
+    }
+  }
 }
 
 }  // namespace gf

@@ -13,6 +13,7 @@
 #include "engine/world.hpp"
 #include "systems/contact/contact_table.hpp"
 #include "systems/fill/region.hpp"
+#include "systems/flow/flow_systems.hpp"
 #include "systems/integrate/force_terms.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/output/drum_picture.hpp"
@@ -80,6 +81,7 @@ struct DemScene {
   MeshWalls mesh_walls;  // [[wall]] of type "mesh" (systems/walls/mesh_wall_scene.hpp)
   PeriodicBox periodic;  // [periodic]: axes whose faces wrap
   std::vector<FillSpec> fills;
+  FlowSpec flow;  // [[feed]] and [[outlet]] (systems/setup/flow_scene.hpp)
   OutputSpec output;
   int segregation_type = -1;  // the larger species of a binary mixture, else -1
   double segregation_cell = 0;  // m
@@ -105,6 +107,9 @@ DemScene load_dem_scene(const SceneDoc& doc);
 
 // A [[fill]]'s region table (box or cylinder; a cylinder's max_height measured against gravity).
 Region read_fill_region(const SceneNode& node, const Gravity& g);
+// The index of the species called `name` (the value of `key` in `node`); a SceneError listing the
+// scene's species if there is none.
+std::int32_t species_index(const DemScene& s, const SceneNode& node, std::string_view key, const std::string& name);
 
 // The DEM systems of one step in phase order, with the drivers of the scene's contact law.
 // The force terms the DEM step's integrator sums: pair contacts, then walls (when the scene has any).
@@ -125,5 +130,7 @@ std::size_t list_pairs_per_grain(const DemScene& scene, std::size_t n);
 std::size_t planned_grain_count(const DemScene& scene);
 // Refuses (SceneError) n grains whose arrays would need more than 80 % of this machine's memory.
 void require_memory(const DemScene& scene, std::size_t n);
+// The most grains the table may hold by that rule (a feed stops the run with an error past it).
+std::size_t memory_grain_limit(const DemScene& scene);
 
 }  // namespace gf
