@@ -58,7 +58,7 @@ std::vector<std::int64_t> Grains::apply_pending() {
     const std::size_t r = kept + k;
     pos.x[r] = g.x[0], pos.y[r] = g.x[1], pos.z[r] = g.x[2];
     vel.x[r] = g.v[0], vel.y[r] = g.v[1], vel.z[r] = g.v[2];
-    omega.x[r] = g.w[0], omega.y[r] = g.w[1], omega.z[r] = g.w[2];
+    if (spin) omega.x[r] = g.w[0], omega.y[r] = g.w[1], omega.z[r] = g.w[2];  // no spin columns without rotation
     radius.r[r] = g.radius;
     mass.m[r] = g.mass;
     mass.inv_m[r] = 1.0 / g.mass;
