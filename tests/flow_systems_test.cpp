@@ -41,7 +41,11 @@ std::string free_fall_scene(const std::string& duration = "0.3") {
          "[[feed]]\nmass_rate = 0.01\nfractions = { a = 0.5, b = 0.5 }\nvelocity = [0.0, -0.5, 0.0]\ninterval = 0.01\n"
          "region = { shape = \"box\", lo = [-0.02, 0.1, -0.02], hi = [0.02, 0.1032, 0.02] }\n"
          "[[outlet]]\ninterval = 0.001\nregion = { shape = \"box\", lo = [-1.0, -1.0, -1.0], hi = [1.0, 0.0, 1.0] }\n"
-         "[output]\nseries_interval = 0.01\n";
+         "[output]\nseries_interval = 0.01\n"
+         // Layers across the fall, sampled off the checkpoint grid and pooled in threes, so that a
+         // checkpoint falls inside a pool.
+         "[analysis]\nspecies = \"a\"\n[analysis.layers]\ninlet = [0.0, 0.1, 0.0]\naxis = [0.0, -1.0, 0.0]\n"
+         "distances = [0.02, 0.05]\ncell = 0.01\nmin_grains = 1\ninterval = 0.007\npool = 3\n";
 }
 
 // Time for a grain starting at height y0 with speed kV0 downwards to fall to y = 0.
@@ -127,12 +131,14 @@ TEST_CASE("flow: a continuous run in two pieces writes the same files as one run
   REQUIRE(c.code == 0);
   CHECK(read_lines(one / "residence.csv").size() > 20);
   CHECK(read_file(one / "residence.csv") == read_file(two / "residence.csv"));
+  CHECK(read_lines(one / "layers.csv").size() > 10);
+  CHECK(read_file(one / "layers.csv") == read_file(two / "layers.csv"));
   CHECK(read_file(one / "final_state.csv") == read_file(two / "final_state.csv"));
   CHECK(read_file(one / "series.csv") == read_file(two / "series.csv"));
   CHECK(read_file(one / "checkpoints" / "checkpoint.gfc") == read_file(two / "checkpoints" / "checkpoint.gfc"));
   // The checkpoint of a continuous run does not resume a scene without its feed.
   const std::string s = free_fall_scene();
-  const fs::path plain = dir.write("plain.toml", s.substr(0, s.find("[[feed]]")) + s.substr(s.find("[output]")) +
+  const fs::path plain = dir.write("plain.toml", s.substr(0, s.find("[[feed]]")) + "[output]\nseries_interval = 0.01\n" +
                                                      "[[fill]]\nkind = \"random\"\ncount = { a = 5 }\n"
                                                      "region = { shape = \"box\", lo = [0, 0.2, 0], "
                                                      "hi = [0.01, 0.21, 0.01] }\n");

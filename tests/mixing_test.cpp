@@ -461,6 +461,31 @@ TEST_CASE("layer mixing: only the layer counts, and its frame follows the axis",
   CHECK_THROWS_AS(gf::layer_mixing(g, kA, {0, 0, 0}, {1, 0, 0}, 0.02, 2e-3, -1.0), std::invalid_argument);
 }
 
+TEST_CASE("layer mixing: pooled samples count as one sample of all their grains, and lower the binomial floor",
+          "[mixing]") {
+  // Four samples of the same lattice with independent random labels (q = 0.5): pooling their cells
+  // must give exactly what one table holding all four samples' grains gives (the sums per cell are
+  // the same sums), and Vc falls to the floor of four times the grains per cell, sqrt((1 - q) / (q 4n)),
+  // within the 30 % of the single-sample test above.
+  gf::LayerCells pooled;
+  std::vector<Grain> all;
+  for (std::uint64_t seed = 21; seed < 25; ++seed) {
+    const auto list = lattice_box(40, 0.5e-3, 0.5e-3, random_labels(0.5, seed));
+    pooled.add(gf::layer_cells(table_of(list), kA, {0, 0, 0}, {1, 0, 0}, 0.02, 2e-3, 4e-3));
+    all.insert(all.end(), list.begin(), list.end());
+  }
+  const gf::LayerMixing p = gf::layer_quality(pooled, 10);
+  const gf::LayerMixing u = gf::layer_mixing(table_of(all), kA, {0, 0, 0}, {1, 0, 0}, 0.02, 2e-3, 4e-3, 10);
+  CHECK(p.cells == u.cells);
+  CHECK(p.grains == u.grains);
+  CHECK(p.grains_per_cell == 128.0);
+  CHECK(p.vc == Approx(u.vc).epsilon(1e-12));
+  CHECK(p.lacey == Approx(u.lacey).epsilon(1e-12));
+  const double floor_vc = std::sqrt((1.0 - p.fraction_a) / (p.fraction_a * p.grains_per_cell));
+  INFO("pooled Vc " << p.vc << ", binomial floor " << floor_vc);
+  CHECK(p.vc == Approx(floor_vc).epsilon(0.3));
+}
+
 // ---------------------------------------------------------------------------------------------------------------------
 // The scene's [analysis] keys, and the measures in series.csv and summary.json
 

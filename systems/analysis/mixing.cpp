@@ -152,22 +152,20 @@ DepthSegregation depth_segregation(const Grains& g, std::int32_t type_a, const D
   return out;
 }
 
-LayerMixing layer_mixing(const Grains& g, std::int32_t type_a, const V3<double>& inlet, const V3<double>& axis,
-                         double distance, double thickness, double cell, int min_grains) {
+LayerCells layer_cells(const Grains& g, std::int32_t type_a, const V3<double>& inlet, const V3<double>& axis,
+                       double distance, double thickness, double cell) {
   const double len = std::sqrt(dot(axis, axis));
   if (!(len > 0.0) || !std::isfinite(len) || !(thickness > 0.0) || !std::isfinite(thickness) || !(cell > 0.0) ||
-      !std::isfinite(cell) || min_grains < 1 || !std::isfinite(distance))
+      !std::isfinite(cell) || !std::isfinite(distance))
     throw std::invalid_argument("layer_mixing: the axis must be a non-zero vector, thickness and cell positive and "
-                                "finite, min_grains at least 1");
+                                "finite");
   // An orthonormal frame (e1, e2) of the layer's plane.
   const V3<double> a = (1.0 / len) * axis;
   const V3<double> helper = std::abs(a.x) < 0.9 ? V3<double>{1, 0, 0} : V3<double>{0, 1, 0};
   V3<double> e1 = cross(a, helper);
   e1 = (1.0 / std::sqrt(dot(e1, e1))) * e1;
   const V3<double> e2 = cross(a, e1);
-  // The layer's grains in square cells, ordered by their integer coordinates.
-  std::map<std::pair<std::int64_t, std::int64_t>, CellComposition> binned;
-  CellBinning b;
+  LayerCells out;
   for (std::size_t i = 0; i < g.n_owned; ++i) {
     const V3<double> d{g.pos.x[i] - inlet.x, g.pos.y[i] - inlet.y, g.pos.z[i] - inlet.z};
     if (!(std::abs(dot(d, a) - distance) <= 0.5 * thickness)) continue;
@@ -175,16 +173,39 @@ LayerMixing layer_mixing(const Grains& g, std::int32_t type_a, const V3<double>&
     const bool is_a = g.species.type[i] == type_a;
     const auto key = std::make_pair(static_cast<std::int64_t>(std::floor(dot(d, e1) / cell)),
                                     static_cast<std::int64_t>(std::floor(dot(d, e2) / cell)));
-    CellComposition& c = binned[key];
+    CellComposition& c = out.cells[key];
     c.volume += v;
     c.volume_a += is_a ? v : 0.0;
     ++c.grains;
-    b.volume += v;
-    b.volume_sq += v * v;
-    b.volume_a += is_a ? v : 0.0;
-    b.volume_sq_a += is_a ? v * v : 0.0;
+    out.volume += v;
+    out.volume_sq += v * v;
+    out.volume_a += is_a ? v : 0.0;
+    out.volume_sq_a += is_a ? v * v : 0.0;
   }
-  for (const auto& [key, c] : binned) b.cells.push_back(c);
+  return out;
+}
+
+void LayerCells::add(const LayerCells& more) {
+  for (const auto& [key, c] : more.cells) {
+    CellComposition& to = cells[key];
+    to.volume += c.volume;
+    to.volume_a += c.volume_a;
+    to.grains += c.grains;
+  }
+  volume += more.volume;
+  volume_a += more.volume_a;
+  volume_sq += more.volume_sq;
+  volume_sq_a += more.volume_sq_a;
+}
+
+LayerMixing layer_quality(const LayerCells& cells, int min_grains) {
+  if (min_grains < 1) throw std::invalid_argument("layer_quality: min_grains must be at least 1");
+  CellBinning b;
+  for (const auto& [key, c] : cells.cells) b.cells.push_back(c);
+  b.volume = cells.volume;
+  b.volume_a = cells.volume_a;
+  b.volume_sq = cells.volume_sq;
+  b.volume_sq_a = cells.volume_sq_a;
   LayerMixing out;
   // The mean over the counted cells only: the cells left out are left out of V as well.
   double counted = 0.0, counted_a = 0.0;
@@ -207,6 +228,12 @@ LayerMixing layer_mixing(const Grains& g, std::int32_t type_a, const V3<double>&
     if (sr < s0) out.lacey = (s0 - sp.variance) / (s0 - sr);
   }
   return out;
+}
+
+LayerMixing layer_mixing(const Grains& g, std::int32_t type_a, const V3<double>& inlet, const V3<double>& axis,
+                         double distance, double thickness, double cell, int min_grains) {
+  if (min_grains < 1) throw std::invalid_argument("layer_mixing: min_grains must be at least 1");
+  return layer_quality(layer_cells(g, type_a, inlet, axis, distance, thickness, cell), min_grains);
 }
 
 }  // namespace gf

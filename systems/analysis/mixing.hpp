@@ -8,9 +8,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include "engine/grains.hpp"
 #include "systems/analysis/drum_section.hpp"
+#include "systems/analysis/sample_cells.hpp"
 #include "systems/contact/vec3.hpp"
 
 namespace gf {
@@ -125,5 +128,18 @@ struct LayerMixing {
 };
 LayerMixing layer_mixing(const Grains& g, std::int32_t type_a, const V3<double>& inlet, const V3<double>& axis,
                          double distance, double thickness, double cell, int min_grains = 10);
+
+// The same in two parts, so that the cells of several samples can be pooled: the layer's grains
+// binned into its cells (keyed by integer cell coordinates), and the quality of binned cells. Pooling
+// samples taken over a steady state (LayerCells::add) counts each cell's contents summed over time,
+// as a measurement of the grains that pass through a cross-section does.
+struct LayerCells {
+  std::map<std::pair<std::int64_t, std::int64_t>, CellComposition> cells;
+  double volume_a = 0.0, volume = 0.0, volume_sq_a = 0.0, volume_sq = 0.0;  // totals of the layer's grains
+  void add(const LayerCells& more);
+};
+LayerCells layer_cells(const Grains& g, std::int32_t type_a, const V3<double>& inlet, const V3<double>& axis,
+                       double distance, double thickness, double cell);
+LayerMixing layer_quality(const LayerCells& cells, int min_grains);
 
 }  // namespace gf

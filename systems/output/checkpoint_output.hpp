@@ -12,6 +12,7 @@
 #include "engine/grains.hpp"
 #include "engine/system.hpp"
 #include "systems/output/dem_observers.hpp"
+#include "systems/output/layer_output.hpp"
 #include "systems/output/residence_csv.hpp"
 
 namespace gf {
@@ -26,7 +27,7 @@ class CheckpointOutput : public SystemBase<CheckpointOutput>, public Checkpointa
  public:
   // Reads everything a checkpoint holds; the output resources order it after the other observers.
   using Reads = gf::Reads<Position, Velocity, AngularVelocity, Force, Torque, WallForce, WallTorque, Radius, Mass,
-                          Species, ParticleId, SeriesRow, FrameSeries, DrumPictures, FlowState, ResidenceFile>;
+                          Species, ParticleId, SeriesRow, FrameSeries, DrumPictures, FlowState, ResidenceFile, LayerFile>;
   using Writes = gf::Writes<>;
   using SaveWorld = std::function<void(CheckpointWriter&, World&)>;
 

@@ -16,6 +16,7 @@
 #include "systems/fill/state_csv.hpp"
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
+#include "systems/output/layer_output.hpp"
 #include "systems/output/residence_csv.hpp"
 #include "systems/output/summary_json.hpp"
 #include "systems/setup/app.hpp"
@@ -136,6 +137,11 @@ int check_dem_command(const CliOptions& opt) {
   std::printf("systems per step (with the systems each waits for):\n%s", step.describe().c_str());
   std::printf("observers: series_output, frame_output, picture_output%s\n",
               s.flow.outlets.empty() ? "" : ", residence_output");
+  if (s.layers)
+    std::printf("layers: %zu transverse layers %.4g m thick, cells of %.4g m (at least %d grains), every %.4g s -> "
+                "layers.csv\n",
+                s.layers->distances.size(), s.layers->thickness, s.layers->cell, s.layers->min_grains,
+                s.layers->interval);
   print_flow(s);
   std::printf("critical step: smallest time-step term %.4g s (%s); dt = %.4g s = %.3f of it (limit %.3f)%s\n",
               s.critical.period, s.critical.term.c_str(), s.dt, s.dt / s.critical.period, s.dt_safety,
@@ -235,7 +241,14 @@ int run_dem_command(const CliOptions& opt) {
     if (ckpt) keep = ckpt->value<std::uint64_t>("residence_output.rows");
     residence = &observe.emplace<ResidenceOutput>(out / "residence.csv", keep);
   }
+  LayerOutput* layers = nullptr;
+  if (s.layers) {
+    std::optional<std::size_t> keep;
+    if (ckpt) keep = ckpt->value<std::uint64_t>("layer_output.rows");
+    layers = &observe.emplace<LayerOutput>(out / "layers.csv", *s.layers, keep);
+  }
   std::vector<const Checkpointable*> parts{&series};
+  if (layers) parts.push_back(layers);
   if (frames) parts.push_back(frames);
   if (pictures) parts.push_back(pictures);
   if (residence) parts.push_back(residence);
@@ -257,6 +270,7 @@ int run_dem_command(const CliOptions& opt) {
       pictures->restore(*ckpt);
     }
     if (residence) residence->restore(*ckpt);
+    if (layers) layers->restore(*ckpt);
     checkpoints.restore(*ckpt);
   }
 

@@ -318,6 +318,29 @@ void read_pictures(DemScene& s, const SceneNode& out) {
              "give a wall an omega, or use picture_angles = [0] for one picture of the start");
 }
 
+// [analysis.layers]: the transverse layers of a continuous mixer (layer_output.hpp), for the
+// species the [analysis] table follows.
+void read_layers(DemScene& s, const SceneNode& n) {
+  LayerSettings l;
+  l.type_a = s.segregation_type;
+  const Vec3d axis = unit_vector(n, "axis", {1, 0, 0}, true);
+  l.axis = {axis.x, axis.y, axis.z};
+  const auto inlet = n.get_vec3("inlet");
+  l.inlet = {inlet[0], inlet[1], inlet[2]};
+  l.distances = n.get_doubles("distances");
+  if (l.distances.empty() || l.distances.size() > 10000)
+    n.fail("distances", "give between 1 and 10,000 distances from the inlet", "e.g. distances = [0.05, 0.1, 0.15]");
+  double largest = 0.0;
+  for (const SpeciesSpec& sp : s.species) largest = std::max(largest, sp.diameter);
+  l.thickness = n.get_double("thickness", largest, Range::open_closed(0, 1e3));
+  l.cell = n.get_double("cell", Range::open_closed(0, 1e3));
+  l.min_grains = static_cast<int>(n.get_int("min_grains", 5, 1, 1000000));
+  l.interval = n.get_double("interval", Range::positive());
+  l.pool = static_cast<int>(n.get_int("pool", 1, 1, 1000000));
+  if (l.interval < s.dt) n.fail("interval", "shorter than the time step", "use at least run.dt");
+  s.layers = l;
+}
+
 // [analysis]: the cells of Lacey's index for a binary mixture (after its species are known). The
 // default edge is the Danckwerts index's, three large diameters; a cell must at least hold a large
 // grain, and a count of 1 would let in single-grain cells, whose fraction is 0 or 1 however mixed
@@ -346,6 +369,7 @@ void read_analysis(DemScene& s, const SceneNode& root) {
                "give at least " + short_number(d) + " m; the default is three large diameters, " +
                    short_number(3.0 * d) + " m");
   s.mixing_min_grains = static_cast<int>(node->get_int("mixing_min_grains", 10, 2, 1000000));
+  if (auto layers = node->maybe_table("layers")) read_layers(s, *layers);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "systems/integrate/force_terms.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/output/drum_picture.hpp"
+#include "systems/output/layer_output.hpp"
 #include "systems/output/vtk_frames.hpp"
 #include "systems/periodic/periodic_images.hpp"
 #include "systems/setup/dem_body_scene.hpp"
@@ -89,6 +90,7 @@ struct DemScene {
   // least this many grains (systems/analysis/mixing.hpp).
   double mixing_cell = 0;  // m
   int mixing_min_grains = 10;
+  std::optional<LayerSettings> layers;  // [analysis.layers]: layers.csv of a continuous mixer
   std::shared_ptr<const BodiesSpec> bodies;  // [[shape]] and [[bodies]]; null when the scene has none
   bool pattern = false;  // moon/petal classifier and free-surface angle: a drum and two species
 
