@@ -1,11 +1,13 @@
 // `grainflow run` and `grainflow check` for MPS liquid scenes, with the DEM side's conventions: series.csv
 // flushed per row, VTK frames with a .pvd index, summary.json rewritten atomically at start and end, exit code 3
-// and status "failed" when a stability detector stops the run.
-#include <stdexcept>
+// and status "failed" when a stability detector stops the run, checkpoints in checkpoints/checkpoint.gfc
+// (output.checkpoint_interval, at the end unless output.checkpoint_at_end = false) and `--resume` continuing a
+// run bit-identically to the same end step.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <memory>
+#include <optional>
+#include <string>
 
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
@@ -13,19 +15,26 @@
 #include "engine/atomic_file.hpp"
 #include "engine/cli.hpp"
 #include "engine/run_loop.hpp"
+#include "systems/mps/liquid_checkpoint.hpp"
 #include "systems/mps/liquid_observables.hpp"
+#include "systems/mps/liquid_outputs.hpp"
 #include "systems/mps/liquid_simulation.hpp"
-#include "systems/output/series_csv.hpp"
+#include "systems/output/checkpoint_output.hpp"
 #include "systems/output/summary_json.hpp"
-#include "systems/output/vtk_frames.hpp"
 #include "systems/setup/app.hpp"
 
 namespace gf {
 
 namespace {
 
+using WallClock = std::chrono::steady_clock;
+
 std::size_t threads_in_use() {
   return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+}
+
+double seconds_since(WallClock::time_point t0) {
+  return std::chrono::duration<double>(WallClock::now() - t0).count();
 }
 
 const char* geometry_name(LiquidGeometry::Kind k) {
@@ -38,20 +47,148 @@ const char* geometry_name(LiquidGeometry::Kind k) {
   return "?";
 }
 
-// Frames reuse the DEM frame writer: nodes as points of radius l0/2, "type" = kind + 1 (1 fluid, 2 wall, 3 dummy).
-void to_grains(const FluidNodes& f, double l0, Grains& g) {
-  if (g.n != f.size()) g.resize(f.size());
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    g.pos.x[i] = f.x[i];
-    g.pos.y[i] = f.y[i];
-    g.pos.z[i] = f.z[i];
-    g.vel.x[i] = f.u[i];
-    g.vel.y[i] = f.v[i];
-    g.vel.z[i] = f.w[i];
-    g.radius.r[i] = 0.5 * l0;
-    g.species.type[i] = f.kind[i];
-    g.pid.id[i] = static_cast<std::int64_t>(i);
+std::string every_or_none(double interval) {
+  return interval > 0 ? "every " + short_number(interval) + " s" : "none";
+}
+
+void print_outputs(const LiquidOutput& o) {
+  std::printf("outputs: series.csv %s; VTK frames %s%s; summary.json\n", every_or_none(o.series_interval).c_str(),
+              every_or_none(o.frame_interval).c_str(),
+              o.frame_interval > 0 ? " (velocity, pressure and number density per node)" : "");
+  std::string when = o.checkpoint_interval > 0 ? every_or_none(o.checkpoint_interval) : "";
+  if (o.checkpoint_at_end) when += (when.empty() ? "" : " and ") + std::string("at the end");
+  if (when.empty())
+    std::printf("checkpoints: none (output.checkpoint_interval = 0, output.checkpoint_at_end = false)\n");
+  else
+    std::printf("checkpoints: checkpoints/checkpoint.gfc %s%s; run --resume continues from one\n", when.c_str(),
+                o.checkpoint_keep_all ? ", each also kept as checkpoint_<step>.gfc" : "");
+}
+
+// The fix for a run stopped by an output it could not write (a full disk, a file-size limit).
+std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path& out, bool have_checkpoint) {
+  const std::string again = "grainflow run " + opt.scene.string() + " --out " + out.string();
+  return ". Every file written before is complete. Fix: free space on the disk that holds '" + out.string() +
+         "' (or write less: output.frame_interval, output.series_interval), then " +
+         (have_checkpoint ? "resume: " + again + " --resume " + (out / "checkpoints" / "checkpoint.gfc").string()
+                          : "run again (no checkpoint was written yet; output.checkpoint_interval sets how often one is)");
+}
+
+nlohmann::json start_summary(const CliOptions& opt, const LiquidScene& s, LiquidSimulation& sim,
+                             const CheckpointReader* ckpt) {
+  const FluidNodes& f = sim.nodes();
+  const auto& c = sim.world().clock;
+  nlohmann::json j;
+  j["scene"] = s.file.string();
+  j["overrides"] = opt.overrides;
+  j["model"] = "mps";
+  j["fluid_nodes"] = f.count(kFluid);
+  j["nodes"] = f.size();
+  j["threads"] = threads_in_use();
+  j["dt"] = s.dt;
+  j["l0"] = s.params.k.l0;
+  j["cfl_at_load"] = s.cfl;
+  j["diffusion_number"] = s.diffusion;
+  j["status"] = "running";
+  if (ckpt) j["resumed_from"] = {{"checkpoint", ckpt->file().string()}, {"step", c.step}, {"time", c.t}};
+  return j;
+}
+
+// What the stepping loop did.
+struct LiquidRun {
+  std::string status = "completed", failure;
+  int rc = 0;
+  std::int64_t steps = 0;  // this run's
+  double wall = 0;         // s, this run's stepping
+  double ppe_iterations = 0;
+};
+
+void print_progress(const World& w, std::int64_t done, std::int64_t end, double elapsed, std::size_t n_fluid) {
+  const double sps = static_cast<double>(done) / elapsed;
+  std::fprintf(stderr, "[run] t = %.6g s  step %lld/%lld  %.3g steps/s  %.3g particle-steps/s  ETA %.0f s\n", w.clock.t,
+               static_cast<long long>(w.clock.step), static_cast<long long>(end), sps,
+               sps * static_cast<double>(n_fluid), static_cast<double>(end - w.clock.step) / sps);
+}
+
+// Steps from the clock's step to `end`; the outputs and the checkpoints observe the state after each step
+// (and the initial state of a run that does not resume).
+void step_to(std::int64_t end, LiquidSimulation& sim, LiquidOutputs& outputs, CheckpointOutput& checkpoints,
+             bool resumed, bool quiet, LiquidRun& r) {
+  World& w = sim.world();
+  const std::size_t n_fluid = sim.nodes().count(kFluid);
+  const auto run0 = WallClock::now();
+  auto last_print = run0;
+  if (!resumed) {
+    outputs.observe(w);
+    checkpoints.run(w, next_step(w.clock));
   }
+  while (w.clock.step < end) {
+    if (stop_requested()) {
+      r.status = "interrupted";
+      break;
+    }
+    sim.step_once();
+    ++r.steps;
+    r.ppe_iterations += sim.diagnostics().ppe.iterations;
+    outputs.observe(w);
+    checkpoints.run(w, next_step(w.clock));
+    const auto now = WallClock::now();
+    if (!quiet && (std::chrono::duration<double>(now - last_print).count() >= 2.0 || w.clock.step == end)) {
+      last_print = now;
+      print_progress(w, r.steps, end, seconds_since(run0), n_fluid);
+    }
+  }
+}
+
+void run_and_checkpoint(const CliOptions& opt, const std::filesystem::path& out, const LiquidScene& s,
+                        LiquidSimulation& sim, LiquidOutputs& outputs, CheckpointOutput& checkpoints, bool resumed,
+                        LiquidRun& r, std::string& checkpoint_file) {
+  const auto run0 = WallClock::now();
+  const auto fail = [&](const std::string& why) {
+    r.status = "failed";
+    r.failure = why;
+    r.rc = 3;
+  };
+  try {
+    step_to(opt.steps ? *opt.steps : s.steps(), sim, outputs, checkpoints, resumed, opt.quiet, r);
+    r.wall = seconds_since(run0);
+    if (s.output.checkpoint_at_end) checkpoint_file = checkpoints.write(sim.world()).string();
+  } catch (const WriteError& e) {
+    fail(e.what() + write_failure_fix(opt, out, resumed || checkpoints.written() > 0));
+  } catch (const std::exception& e) {
+    fail(e.what());
+  }
+  if (r.wall == 0) r.wall = seconds_since(run0);
+}
+
+void finish_summary(nlohmann::json& summary, LiquidSimulation& sim, const LiquidRun& r, const LiquidOutputs& outputs,
+                    const CheckpointOutput& checkpoints, const std::string& checkpoint_file) {
+  const World& world = sim.world();
+  const double n_fluid = static_cast<double>(sim.nodes().count(kFluid));
+  const auto last = sample_liquid(sim.world(), sim.scene());
+  const auto cols = liquid_series_columns();
+  nlohmann::json fin;
+  for (std::size_t c = 0; c < cols.size(); ++c)
+    fin[cols[c]] = std::isfinite(last[c]) ? nlohmann::json(last[c]) : nlohmann::json();
+  summary["status"] = r.status;
+  if (!r.failure.empty()) summary["failure"] = r.failure;
+  summary["steps"] = world.clock.step;
+  summary["steps_this_run"] = r.steps;
+  summary["simulated_time"] = world.clock.t;
+  summary["wall_seconds"] = r.wall;
+  summary["steps_per_second"] = r.wall > 0 ? static_cast<double>(r.steps) / r.wall : 0.0;
+  summary["particle_steps_per_second"] = r.wall > 0 ? static_cast<double>(r.steps) * n_fluid / r.wall : 0.0;
+  summary["mean_ppe_iterations"] = r.steps > 0 ? r.ppe_iterations / static_cast<double>(r.steps) : 0.0;
+  summary["frames"] = outputs.frames();
+  summary["checkpoints_written"] = checkpoints.written();
+  if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
+  summary["final"] = fin;
+  nlohmann::json per = nlohmann::json::array();
+  double total = 0;
+  for (auto& t : sim.step().timings()) total += t.seconds;
+  for (auto& t : sim.step().timings())
+    per.push_back({{"system", t.name}, {"seconds", t.seconds}, {"calls", t.calls},
+                   {"fraction", total > 0 ? t.seconds / total : 0.0}});
+  summary["time_per_system"] = per;
 }
 
 }  // namespace
@@ -75,134 +212,54 @@ int check_liquid_command(const CliOptions& opt) {
               s.cfl, s.velocity_scale, s.cfl_limit, s.diffusion, s.diffusion_limit,
               s.allow_unstable_dt && (s.cfl > s.cfl_limit || s.diffusion > s.diffusion_limit) ? " OVERRIDDEN" : "");
   std::printf("steps: %lld (%.4g s simulated)\n", static_cast<long long>(s.steps()), s.duration);
+  print_outputs(s.output);
   return 0;
 }
 
 int run_liquid_command(const CliOptions& opt) {
-  if (opt.resume)
-    throw std::invalid_argument("--resume: liquid scenes have no checkpoints yet (" + opt.scene.string() +
-                                "). Fix: run the liquid scene without --resume");
-  const auto wall0 = std::chrono::steady_clock::now();
+  const auto wall0 = WallClock::now();
   const LiquidScene s = load_liquid_scene(SceneDoc::load(opt.scene, opt.overrides));
   const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
   ensure_directory(out);
   LiquidSimulation sim(s);
   World& world = sim.world();
-  FluidNodes& f = sim.nodes();
-  const std::size_t n_fluid = f.count(kFluid);
-  const std::size_t n_all = f.size();
+  std::optional<CheckpointReader> ckpt;
+  if (opt.resume) {
+    ckpt.emplace(*opt.resume);
+    restore_liquid_state(*ckpt, world, s);
+  }
+  const CheckpointReader* from = ckpt ? &*ckpt : nullptr;
+  const std::size_t n_fluid = sim.nodes().count(kFluid), n_all = sim.nodes().size();
   std::fprintf(stderr, "grainflow: %s: %zu fluid + %zu wall/dummy nodes, dt = %.3g s (CFL %.3g), %zu threads -> %s\n",
                s.file.string().c_str(), n_fluid, n_all - n_fluid, s.dt, s.cfl, threads_in_use(), out.string().c_str());
-
-  nlohmann::json summary;
-  summary["scene"] = s.file.string();
-  summary["overrides"] = opt.overrides;
-  summary["model"] = "mps";
-  summary["fluid_nodes"] = n_fluid;
-  summary["nodes"] = n_all;
-  summary["threads"] = threads_in_use();
-  summary["dt"] = s.dt;
-  summary["l0"] = s.params.k.l0;
-  summary["cfl_at_load"] = s.cfl;
-  summary["diffusion_number"] = s.diffusion;
-  summary["status"] = "running";
+  if (ckpt)
+    std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", ckpt->file().string().c_str(),
+                 static_cast<long long>(world.clock.step), world.clock.t);
+  nlohmann::json summary = start_summary(opt, s, sim, from);
   write_summary_json(out / "summary.json", summary);
 
-  std::unique_ptr<SeriesCsv> series;
-  if (s.output.series_interval > 0) series = std::make_unique<SeriesCsv>(out / "series.csv", liquid_series_columns());
-  std::unique_ptr<FrameSeries> frames;
-  Grains scratch;
-  if (s.output.frame_interval > 0) frames = std::make_unique<FrameSeries>(out);
-  const std::int64_t series_every = s.output.series_interval > 0
-                                        ? std::max<std::int64_t>(1, std::llround(s.output.series_interval / s.dt))
-                                        : 0;
-  const std::int64_t frame_every =
-      s.output.frame_interval > 0 ? std::max<std::int64_t>(1, std::llround(s.output.frame_interval / s.dt)) : 0;
-  auto observe = [&](std::int64_t k) {
-    if (series && k % series_every == 0) {
-      const auto row = sample_liquid(world, s);
-      series->append(row);
-    }
-    if (frames && k % frame_every == 0) {
-      to_grains(f, s.params.k.l0, scratch);
-      frames->write(scratch, world.clock.t);
-    }
-  };
-
-  const std::int64_t steps = opt.steps ? *opt.steps : s.steps();
-  std::string status = "completed", failure;
-  int rc = 0;
-  std::int64_t done = 0;
-  const auto run0 = std::chrono::steady_clock::now();
-  auto last_print = run0;
-  double ppe_iterations = 0;
-  try {
-    observe(0);
-    for (std::int64_t k = 0; k < steps; ++k) {
-      if (stop_requested()) {
-        status = "interrupted";
-        break;
-      }
-      sim.step_once();
-      ++done;
-      ppe_iterations += sim.diagnostics().ppe.iterations;
-      observe(k + 1);
-      const auto now = std::chrono::steady_clock::now();
-      if (!opt.quiet && (std::chrono::duration<double>(now - last_print).count() >= 2.0 || k + 1 == steps)) {
-        last_print = now;
-        const double el = std::chrono::duration<double>(now - run0).count();
-        const double sps = static_cast<double>(k + 1) / el;
-        std::fprintf(stderr, "[run] t = %.6g s  step %lld/%lld  %.3g steps/s  %.3g particle-steps/s  ETA %.0f s\n",
-                     world.clock.t, static_cast<long long>(k + 1), static_cast<long long>(steps), sps,
-                     sps * static_cast<double>(n_fluid), static_cast<double>(steps - k - 1) / sps);
-      }
-    }
-  } catch (const WriteError& e) {
-    status = "failed";
-    failure = std::string(e.what()) + ". Every file written before is complete. Fix: free space on the disk that "
-              "holds '" + out.string() + "' (or write less: output.frame_interval, output.series_interval), then run again";
-    rc = 3;
-  } catch (const std::exception& e) {
-    status = "failed";
-    failure = e.what();
-    rc = 3;
-  }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
-  const auto last = sample_liquid(world, s);
-  const auto cols = liquid_series_columns();
-  nlohmann::json fin;
-  for (std::size_t c = 0; c < cols.size(); ++c) fin[cols[c]] = std::isfinite(last[c]) ? nlohmann::json(last[c]) : nlohmann::json();
-  summary["status"] = status;
-  if (!failure.empty()) summary["failure"] = failure;
-  summary["steps"] = done;
-  summary["simulated_time"] = world.clock.t;
-  summary["wall_seconds"] = wall;
-  summary["total_wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  summary["steps_per_second"] = wall > 0 ? done / wall : 0.0;
-  summary["particle_steps_per_second"] = wall > 0 ? static_cast<double>(done) * n_fluid / wall : 0.0;
-  summary["mean_ppe_iterations"] = done > 0 ? ppe_iterations / done : 0.0;
-  summary["frames"] = frames ? frames->count() : 0;
-  summary["final"] = fin;
-  nlohmann::json per = nlohmann::json::array();
-  double total = 0;
-  for (auto& t : sim.step().timings()) total += t.seconds;
-  for (auto& t : sim.step().timings())
-    per.push_back({{"system", t.name}, {"seconds", t.seconds}, {"calls", t.calls},
-                   {"fraction", total > 0 ? t.seconds / total : 0.0}});
-  summary["time_per_system"] = per;
+  LiquidOutputs outputs(out, s, from);
+  CheckpointOutput checkpoints(CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
+                               [&s](CheckpointWriter& w, World& wd) { save_liquid_state(w, wd, s); }, {&outputs});
+  if (ckpt) checkpoints.restore(*ckpt);
+  LiquidRun r;
+  std::string checkpoint_file;
+  run_and_checkpoint(opt, out, s, sim, outputs, checkpoints, ckpt.has_value(), r, checkpoint_file);
+  finish_summary(summary, sim, r, outputs, checkpoints, checkpoint_file);
+  summary["total_wall_seconds"] = seconds_since(wall0);
   try {
     write_summary_json(out / "summary.json", summary);
   } catch (const WriteError& e) {
     // The earlier summary.json (status "running") stays as it was.
-    failure += (failure.empty() ? "" : "; then ") + std::string(e.what());
-    status = "failed";
-    rc = 3;
+    r.failure += (r.failure.empty() ? "" : "; then ") + std::string(e.what());
+    r.status = "failed";
+    r.rc = 3;
   }
   std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g particle-steps/s\n",
-               status.c_str(), static_cast<long long>(done), world.clock.t, wall,
-               wall > 0 ? static_cast<double>(done) * n_fluid / wall : 0.0);
-  if (!failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", failure.c_str());
-  return rc;
+               r.status.c_str(), static_cast<long long>(r.steps), world.clock.t, r.wall,
+               r.wall > 0 ? static_cast<double>(r.steps) * static_cast<double>(n_fluid) / r.wall : 0.0);
+  if (!r.failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", r.failure.c_str());
+  return r.rc;
 }
 
 }  // namespace gf

@@ -17,6 +17,9 @@ namespace gf {
 struct LiquidOutput {
   double series_interval = 0;  // s, 0: none
   double frame_interval = 0;   // s, 0: none
+  double checkpoint_interval = 0;  // s, 0: none during the run
+  bool checkpoint_keep_all = false;
+  bool checkpoint_at_end = true;   // also when the run is interrupted
 };
 
 struct LiquidScene {

@@ -80,7 +80,7 @@ class AppendedArrays {
 
 }  // namespace
 
-std::string vtp_bytes(const Grains& g, const FrameFields& fields) {
+std::string vtp_bytes(const Grains& g, const FrameFields& fields, std::span<const PointScalars> extra) {
   const std::size_t n = g.n_owned;
   AppendedArrays data;
   std::string xml;
@@ -125,6 +125,8 @@ std::string vtp_bytes(const Grains& g, const FrameFields& fields) {
     data.add<double>(xml, in, "force", 3, n,
                      [&](std::size_t i, std::size_t c) { return f[c][i] + fw[c][i]; });
   }
+  for (const PointScalars& e : extra)
+    data.add<double>(xml, in, e.name, 1, n, [&](std::size_t i, std::size_t) { return e.values[i]; });
   xml += "      </PointData>\n";
 
   xml += "      <Points>\n";
@@ -156,7 +158,8 @@ FrameSeries::FrameSeries(std::filesystem::path out_dir) : dir_(std::move(out_dir
   ensure_directory(dir_ / "frames");
 }
 
-std::filesystem::path FrameSeries::write(const Grains& g, double time, const FrameFields& fields) {
+std::filesystem::path FrameSeries::write(const Grains& g, double time, const FrameFields& fields,
+                                         std::span<const PointScalars> extra) {
   // A NaN time would make the .pvd unreadable ("nan" is not a number to ParaView).
   if (!std::isfinite(time))
     throw std::invalid_argument("frame time must be finite, got " + shortest(time));
@@ -165,7 +168,7 @@ std::filesystem::path FrameSeries::write(const Grains& g, double time, const Fra
   const std::filesystem::path path = dir_ / rel;
 
   // Frame first, index second: the .pvd never names a frame that is not complete on disk.
-  write_file_atomic(path, vtp_bytes(g, fields));
+  write_file_atomic(path, vtp_bytes(g, fields, extra));
   frames_.push_back({time, rel});
   try {
     write_file_atomic(pvd_path(), pvd_bytes());

@@ -4,7 +4,9 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/grains.hpp"
@@ -19,10 +21,17 @@ struct FrameFields {
   bool force = false;            // "force" (3): contact + wall force, as the integrator sees it
 };
 
+// A per-point array beyond the grains' own (a liquid's pressure): `values` holds one double per
+// owned row. Written after the fields above, in the given order.
+struct PointScalars {
+  std::string_view name;
+  const double* values = nullptr;
+};
+
 // A complete .vtp document for the owned rows [0, g.n_owned): ghosts are another rank's grains
 // and would be drawn twice. Arrays use raw appended binary (UInt64 headers), which is exact
 // (doubles round-trip bit for bit) and several times smaller and faster to load than ASCII.
-std::string vtp_bytes(const Grains& g, const FrameFields& fields);
+std::string vtp_bytes(const Grains& g, const FrameFields& fields, std::span<const PointScalars> extra = {});
 
 // Writes frames/frame_NNNNNN.vtp under an output folder and keeps frames.pvd beside it listing
 // every frame written so far. Each frame is written atomically first and the .pvd rewritten
@@ -36,7 +45,8 @@ class FrameSeries {
 
   // Writes the next frame at simulated time `time` (s); returns the frame's path.
   // Throws std::invalid_argument for a non-finite time, std::runtime_error on I/O failure.
-  std::filesystem::path write(const Grains& g, double time, const FrameFields& fields = {});
+  std::filesystem::path write(const Grains& g, double time, const FrameFields& fields = {},
+                              std::span<const PointScalars> extra = {});
 
   std::size_t count() const { return frames_.size(); }
   std::vector<double> times() const;
