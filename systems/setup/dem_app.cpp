@@ -123,8 +123,9 @@ int check_dem_command(const CliOptions& opt) {
     std::printf("reach beyond touching: %.4g m (pairs closer than r_i + r_j + reach interact; the neighbour search "
                 "looks reach + skin past touching)\n",
                 s.contacts->reach());
-  std::printf("grains: %zu in %zu species; walls: %zu; fills: %zu\n", n, s.species.size(), s.walls.size(),
-              s.fills.size());
+  std::printf("grains: %zu in %zu species; walls: %zu and %zu of mesh; fills: %zu; feeds: %zu; outlets: %zu\n", n,
+              s.species.size(), s.walls.size(), s.mesh_walls.list.size(), s.fills.size(), s.flow.feeds.size(),
+              s.flow.outlets.size());
   std::size_t rotating = 0;
   for (const SpeciesSpec& sp : s.species) rotating += sp.rotates;
   if (rotating == s.species.size())

@@ -1,0 +1,285 @@
+#!/usr/bin/env python3
+"""The seed-004 mixer runs made into result files, charts and the README table.
+
+  mixer_report.py report [--runs runs/seed004] [--docs docs/seed004]
+      For every finished design run (runs/seed004/designN, scenes/mixer_seed004_designN.toml):
+      the steady state (from the first series row whose hold-up mass is within 5 % of the mean
+      hold-up of the run's last third), Vc(L) as the mean of layers.csv's pooled rows inside it
+      (with their smallest and largest), the residence-time distribution of the grains that entered
+      and left inside it (mean, spread, the dimensionless variance sigma^2 / t_mean^2), the hold-up
+      and its solid fraction of the housing. Writes mixer.json, vc_profile.csv, rtd.csv, the charts
+      vc_profile.png, rtd.png, holdup.png, and copies each run's series, layers, residence and
+      summary files under docs/seed004/designN/.
+  mixer_report.py table docs/seed004/mixer.json
+      The README's table (tools/readme/tables.py calls it).
+  mixer_report.py picture final_state.csv out.png [--title T]
+      Side view and three cross-sections of a mixer state, coloured by component.
+"""
+import argparse
+import json
+import math
+import pathlib
+import shutil
+import sys
+
+import numpy as np
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools" / "seed004"))
+import mixer_scene as geometry  # noqa: E402  (the scenes' dimensions, one source)
+
+# The seed's Fig. 4 trend, read from its text: Vc about 30-35 % near the inlet, 5-10 % by L = 0.4 m.
+SEED_NEAR_INLET = (0.30, 0.35)
+SEED_AT_04 = (0.05, 0.10)
+
+
+def read_csv(path):
+    return np.genfromtxt(path, delimiter=",", names=True, ndmin=1)
+
+
+def steady_start(series):
+    mass = series["holdup_mass"]
+    tail = mass[len(mass) * 2 // 3:]
+    level = float(np.mean(tail))
+    inside = np.nonzero(np.abs(mass - level) <= 0.05 * level)[0]
+    return float(series["time"][inside[0]]) if len(inside) else float("nan"), level
+
+
+def vc_profile(layers, t0):
+    rows = layers[layers["time"] >= t0]
+    out = []
+    for d in sorted(set(rows["distance"].tolist())):
+        v = rows["vc"][rows["distance"] == d]
+        v = v[np.isfinite(v)]
+        out.append({"distance": d, "vc_mean": float(np.mean(v)) if len(v) else None,
+                    "vc_min": float(np.min(v)) if len(v) else None, "vc_max": float(np.max(v)) if len(v) else None,
+                    "pools": int(len(v))})
+    return out
+
+
+def rtd(residence, t0):
+    inside = residence[np.isfinite(residence["entry_time"]) & (residence["entry_time"] >= t0)]
+    t = inside["residence_time"]
+    if len(t) < 2:
+        return {"grains": int(len(t))}, None
+    mean = float(np.mean(t))
+    var = float(np.var(t))
+    edges = np.linspace(0.0, float(np.max(t)) * 1.02, 31)
+    hist, _ = np.histogram(t, bins=edges, density=True)
+    return ({"grains": int(len(t)), "mean": mean, "std": math.sqrt(var), "dimensionless_variance": var / mean ** 2,
+             "median": float(np.median(t)), "p10": float(np.percentile(t, 10)), "p90": float(np.percentile(t, 90))},
+            (edges, hist))
+
+
+def design_result(run, design, docs):
+    series = read_csv(run / "series.csv")
+    layers = read_csv(run / "layers.csv")
+    residence = read_csv(run / "residence.csv")
+    summary = json.loads((run / "summary.json").read_text())
+    t0, level = steady_start(series)
+    steady = series[series["time"] >= t0]
+    housing = math.pi * geometry.RADIUS ** 2 * geometry.LENGTH
+    final = read_csv(run / "final_state.csv")
+    solid = float(np.sum(math.pi / 6.0 * final["diameter"] ** 3))
+    stats, hist = rtd(residence, t0)
+    keep = docs / f"design{design}"
+    keep.mkdir(parents=True, exist_ok=True)
+    for name in ["series.csv", "layers.csv", "residence.csv", "summary.json"]:
+        shutil.copyfile(run / name, keep / name)
+    return {
+        "design": design,
+        "blade_lengths_m": list(geometry.DESIGNS[design]),
+        "scene": f"scenes/mixer_seed004_design{design}.toml",
+        "simulated_s": float(series["time"][-1]),
+        "wall_seconds": summary.get("wall_seconds"),
+        "particle_steps_per_second": summary.get("particle_steps_per_second"),
+        "steady_from_s": t0,
+        "holdup_mass_kg": level,
+        "holdup_grains_mean": float(np.mean(steady["grains"])) if len(steady) else None,
+        "holdup_solid_fraction_final": solid / housing,
+        "feed_rate_kg_s": geometry.RATE,
+        "fed_kg": float(series["fed_mass"][-1]),
+        "discharged_kg": float(series["discharged_mass"][-1]),
+        "feed_backlog_kg_max": float(np.max(series["feed_backlog"])),
+        "rtd": stats,
+        "vc": vc_profile(layers, t0),
+    }, hist
+
+
+def charts(results, hists, docs):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for r in results:
+        d = [p["distance"] for p in r["vc"] if p["vc_mean"] is not None]
+        m = [100 * p["vc_mean"] for p in r["vc"] if p["vc_mean"] is not None]
+        lo = [100 * p["vc_min"] for p in r["vc"] if p["vc_mean"] is not None]
+        hi = [100 * p["vc_max"] for p in r["vc"] if p["vc_mean"] is not None]
+        ax.plot(d, m, "o-", label=f"design {r['design']} (blades " +
+                "/".join(f"{1000 * b:.0f}" for b in r["blade_lengths_m"]) + " mm)")
+        ax.fill_between(d, lo, hi, alpha=0.15)
+    ax.add_patch(plt.Rectangle((0.0, 100 * SEED_NEAR_INLET[0]), 0.06, 100 * (SEED_NEAR_INLET[1] - SEED_NEAR_INLET[0]),
+                               color="k", alpha=0.25, label="seed Fig. 4, as its text reads it"))
+    ax.add_patch(plt.Rectangle((0.37, 100 * SEED_AT_04[0]), 0.06, 100 * (SEED_AT_04[1] - SEED_AT_04[0]), color="k",
+                               alpha=0.25))
+    for i, x in enumerate(geometry.STAGES):
+        ax.axvline(x, color="grey", lw=0.8, ls="--")
+        ax.text(x, ax.get_ylim()[1] * 0.97, "I" * (i + 1), ha="center", va="top")
+    for x in geometry.PARTITIONS:
+        ax.axvline(x, color="grey", lw=0.6, ls=":")
+    ax.set_xlabel("distance from the inlet L (m)")
+    ax.set_ylabel("inhomogeneity Vc (%)")
+    ax.set_title("Seed 004 mixer, representative volumes: Vc(L) in steady state\n(mean of pooled 20 s rows, band: "
+                 "their range; dashed: blade stages, dotted: partitions)", fontsize=9)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(docs / "vc_profile.png", dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(6, 3.6))
+    for r, h in zip(results, hists):
+        if h is None:
+            continue
+        edges, dens = h
+        ax.step(edges[:-1], dens, where="post", label=f"design {r['design']}: mean {r['rtd']['mean']:.0f} s, "
+                f"sigma^2/t^2 = {r['rtd']['dimensionless_variance']:.2f}")
+    ax.set_xlabel("residence time (s)")
+    ax.set_ylabel("E(t) (1/s)")
+    ax.set_title("Residence-time distribution (grains fed and discharged in steady state)", fontsize=9)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(docs / "rtd.png", dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(6, 3.6))
+    for r in results:
+        s = read_csv(docs / f"design{r['design']}" / "series.csv")
+        ax.plot(s["time"], s["holdup_mass"], label=f"design {r['design']}")
+        ax.axvline(r["steady_from_s"], lw=0.6, ls=":")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("hold-up (kg)")
+    ax.set_title("Hold-up from an empty mixer (dotted: start of the steady state)", fontsize=9)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(docs / "holdup.png", dpi=110)
+    plt.close(fig)
+
+
+def report(args):
+    runs, docs = pathlib.Path(args.runs), pathlib.Path(args.docs)
+    docs.mkdir(parents=True, exist_ok=True)
+    results, hists = [], []
+    for design in sorted(geometry.DESIGNS):
+        run = runs / f"design{design}"
+        if not (run / "summary.json").exists() or json.loads((run / "summary.json").read_text()).get(
+                "status") != "completed":
+            print(f"design {design}: not finished, left out")
+            continue
+        r, h = design_result(run, design, docs)
+        results.append(r)
+        hists.append(h)
+    (docs / "mixer.json").write_text(json.dumps({"designs": results}, indent=1) + "\n")
+    with open(docs / "vc_profile.csv", "w") as f:
+        f.write("design,distance,vc_mean,vc_min,vc_max,pools\n")
+        for r in results:
+            for p in r["vc"]:
+                f.write(f"{r['design']},{p['distance']},{p['vc_mean']},{p['vc_min']},{p['vc_max']},{p['pools']}\n")
+    with open(docs / "rtd.csv", "w") as f:
+        f.write("design,bin_lo,bin_hi,density\n")
+        for r, h in zip(results, hists):
+            if h is not None:
+                for a, b, e in zip(h[0][:-1], h[0][1:], h[1]):
+                    f.write(f"{r['design']},{a:.4g},{b:.4g},{e:.6g}\n")
+    if results:
+        charts(results, hists, docs)
+    print(f"wrote {docs / 'mixer.json'} ({len(results)} designs)")
+
+
+def near(profile, at):
+    p = min(profile, key=lambda p: abs(p["distance"] - at))
+    return p
+
+
+def table(args):
+    data = json.loads(pathlib.Path(args.file).read_text())
+    rows = ["| design (blades I/II/III, mm) | Vc at L = 0.025 m | Vc at 0.2 m | Vc at 0.4 m | mean residence (s) | "
+            "sigma^2/t^2 | hold-up (kg, grains) | steady from (s) | wall time (s) |",
+            "|---|---|---|---|---|---|---|---|---|"]
+    for r in data["designs"]:
+        def vc(at):
+            p = near(r["vc"], at)
+            if p["vc_mean"] is None:
+                return "n/a"
+            return f"{100 * p['vc_mean']:.1f} % ({100 * p['vc_min']:.1f}–{100 * p['vc_max']:.1f})"
+        rt = r["rtd"]
+        rows.append(f"| {r['design']} ({'/'.join(f'{1000 * b:.0f}' for b in r['blade_lengths_m'])}) | {vc(0.025)} | "
+                    f"{vc(0.2)} | {vc(0.4)} | {rt.get('mean', float('nan')):.1f} | "
+                    f"{rt.get('dimensionless_variance', float('nan')):.2f} | {r['holdup_mass_kg']:.2f}, "
+                    f"{r['holdup_grains_mean']:.0f} | {r['steady_from_s']:.0f} | {r['wall_seconds']:.0f} |")
+    rows.append("")
+    rows.append(f"The seed (Fig. 4, as its text reads it): Vc {100 * SEED_NEAR_INLET[0]:.0f}–"
+                f"{100 * SEED_NEAR_INLET[1]:.0f} % near the inlet, {100 * SEED_AT_04[0]:.0f}–{100 * SEED_AT_04[1]:.0f} "
+                "% by L = 0.4 m.")
+    print("\n".join(rows))
+
+
+def picture(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    s = read_csv(args.state)
+    key = s["type"] == 2  # the scenes' second species, the key component
+    fig = plt.figure(figsize=(10, 5.6))
+    side = fig.add_axes([0.05, 0.5, 0.9, 0.42])
+
+    def area(ax_width_in, span_m):  # marker area (pt^2) of a grain drawn to scale
+        return (s["diameter"] / span_m * ax_width_in * 72.0) ** 2 * 0.8
+
+    for sel, colour, label in [(~key, "#C8A040", "carrier (millet)"), (key, "#303090", "key (rapeseed)")]:
+        side.scatter(s["x"][sel], s["y"][sel], s=area(9.0, geometry.LENGTH + 0.02)[sel], c=colour, label=label,
+                     lw=0, alpha=0.6)
+    for x in geometry.STAGES:
+        side.axvline(x, color="grey", lw=0.8, ls="--")
+    for x in geometry.PARTITIONS + [geometry.LENGTH]:
+        side.axvline(x, color="k", lw=0.6, ls=":")
+    side.set_xlim(0, geometry.LENGTH + 0.02)
+    side.set_ylim(-geometry.RADIUS, geometry.RADIUS)
+    side.set_aspect("equal")
+    side.set_xlabel("x (m)")
+    side.set_title(args.title or "side view", fontsize=9)
+    side.legend(fontsize=7, loc="upper right")
+    for i, x in enumerate([0.13, 0.25, 0.37]):
+        ax = fig.add_axes([0.05 + 0.31 * i, 0.02, 0.28, 0.36])
+        near_x = np.abs(s["x"] - x) <= 0.5 * geometry.CARRIER[1]
+        for sel, colour in [(~key & near_x, "#C8A040"), (key & near_x, "#303090")]:
+            ax.scatter(s["z"][sel], s["y"][sel], s=area(2.2, 2 * geometry.RADIUS)[sel], c=colour, lw=0)
+        ax.add_patch(plt.Circle((0, 0), geometry.RADIUS, fill=False, lw=0.8))
+        ax.set_xlim(-geometry.RADIUS, geometry.RADIUS)
+        ax.set_ylim(-geometry.RADIUS, geometry.RADIUS)
+        ax.set_aspect("equal")
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.set_title(f"cross-section at x = {x} m", fontsize=8)
+    fig.savefig(args.out, dpi=110)
+    print("wrote", args.out)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("report")
+    r.add_argument("--runs", default=str(ROOT / "runs" / "seed004"))
+    r.add_argument("--docs", default=str(ROOT / "docs" / "seed004"))
+    t = sub.add_parser("table")
+    t.add_argument("file")
+    p = sub.add_parser("picture")
+    p.add_argument("state")
+    p.add_argument("out")
+    p.add_argument("--title")
+    args = ap.parse_args()
+    {"report": report, "table": table, "picture": picture}[args.cmd](args)
+
+
+if __name__ == "__main__":
+    main()
