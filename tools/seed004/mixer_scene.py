@@ -19,7 +19,17 @@ the housing, the speed, the feed rate or where the stages and partitions sit; wh
   feed      0.05 kg/s, key mass fraction 0.279 (its volume fraction 0.33), every 0.5 s into
             x = 0.012 .. 0.045 m above the bed: a mean residence time near 50 s at that hold-up
 
-Usage: mixer_scene.py [--out scenes]   (writes the three designs)
+Sphere DEM of the same mixer (--dem F): the representative volumes' diameters divided by F (F^3 times
+as many grains), rotating, with the Hertz-Mindlin law: the coarse-graining rule of keeping the
+material (density, Young's modulus, restitution, friction) and scaling only the size (Bierwisch et
+al. 2009, J. Mech. Phys. Solids 57, 10; Radl et al. 2011), so F = 1 is the representative volumes'
+size with sphere physics and larger F approach the real grains (millet 2.3 mm is F of about 10).
+Material assumed (the seed gives none): E = 2e6 Pa (reduced so that 300 s of the finer runs fit this
+machine; the largest overlap it allows is reported by each run's series), nu = 0.3, restitution 0.5,
+friction 0.4, rolling friction 0.05, for both seeds; dt 0.3 of the Rayleigh time, as the kiln's.
+
+Usage: mixer_scene.py [--out scenes]                 (writes the three designs)
+       mixer_scene.py --dem F [--design 1] [--out scenes]   (writes mixer_seed004_dem_fF_designD.toml)
 """
 import argparse
 import math
@@ -70,24 +80,16 @@ def ring(name, x, inner):
                        f"inner_radius = {inner}", f"outer_radius = {RADIUS}", "segments = 64"])
 
 
-def scene(design):
-    lengths = DESIGNS[design]
-    vk = KEY_VOLUME_FRACTION
-    key_mass = vk * KEY[2] / (vk * KEY[2] + (1 - vk) * CARRIER[2])
-    out = [f"""# Seed 004's continuous drum-blade mixer, blade design {design} (blade lengths {', '.join(f'{l*1000:.0f}' for l in lengths)} mm
-# at stages I, II, III), with the seed's representative-volume law and coefficients. Written by
-# tools/seed004/mixer_scene.py, which states what the seed does not give (housing, speed, feed, where
-# the stages sit). Starts empty; the feed fills it and the end ring's hole lets the mixture out.
-# layers.csv holds Vc of transverse layers at L = 0.025 .. 0.475 m, pooled over 20 s of samples.
-# Units: SI (m, kg, s, N, rad).
-
-[run]
+def physics(dem):
+    """The [run], [[species]] and [contact] tables: representative volumes, or spheres 1/dem the size."""
+    if dem is None:
+        return f"""[run]
 dt = 4.0e-4            # s (check prints the law's time-step terms)
 duration = 300.0       # s: steady from about 150 s (hold-up), pooled rows every 20 s after
 skin = 2.0e-3          # m
 gravity = [0.0, -9.81, 0.0]
 max_overlap = 0.4      # of the smaller diameter: the law is soft, a particle under N weights overlaps k_d R* ln N
-seed = {design}
+seed = {{seed}}
 
 [[species]]
 name = "{CARRIER[0]}"       # millet's representative volume
@@ -113,8 +115,55 @@ slip_speed = 0.01      # m/s: friction regularisation
 kd = 0.2               # the seed's wall coefficients
 kr = 10.0
 kp = 0.1
+"""
+    d_c, d_k = CARRIER[1] / dem, KEY[1] / dem
+    # The Rayleigh time of the small grains scales with the diameter; dt 0.3 of it (5.5e-4 s at 8.55 mm).
+    dt = 1.6e-4 * d_k / 0.00855
+    return f"""[run]
+dt = {dt:.3g}            # s (check prints the law's time-step terms)
+duration = 300.0       # s: as the representative volumes
+dt_safety = 0.3        # of the smallest time-step term, the Rayleigh time of a small grain
+skin = {0.15 * d_k:.3g}        # m
+gravity = [0.0, -9.81, 0.0]
+seed = {{seed}}
 
-""", mesh("housing", ['primitive = "cylinder"', f"center = [{LENGTH / 2}, 0.0, 0.0]", "axis = [1.0, 0.0, 0.0]",
+[[species]]
+name = "{CARRIER[0]}"       # millet, coarse-grained: the representative volume's size / {dem:g}
+diameter = {d_c:.6g}
+density = {CARRIER[2]:.6g}
+youngs_modulus = 2.0e6
+poisson_ratio = 0.3
+
+[[species]]
+name = "{KEY[0]}"           # rapeseed: 0.778 of the carrier's size, 0.786 of its density
+diameter = {d_k:.6g}
+density = {KEY[2]:.6g}
+youngs_modulus = 2.0e6
+poisson_ratio = 0.3
+
+[contact]
+model = "hertz_mindlin"
+restitution = 0.5
+friction = 0.4
+rolling_friction = 0.05
+impact_speed = 1.0     # m/s: a grain thrown by a blade
+"""
+
+
+def scene(design, dem=None):
+    lengths = DESIGNS[design]
+    vk = KEY_VOLUME_FRACTION
+    key_mass = vk * KEY[2] / (vk * KEY[2] + (1 - vk) * CARRIER[2])
+    what = ("the seed's representative-volume law and coefficients" if dem is None else
+            f"sphere DEM (Hertz-Mindlin) of grains 1/{dem:g} the representative volumes' size")
+    out = [f"""# Seed 004's continuous drum-blade mixer, blade design {design} (blade lengths {', '.join(f'{l*1000:.0f}' for l in lengths)} mm
+# at stages I, II, III), with {what}. Written by
+# tools/seed004/mixer_scene.py, which states what the seed does not give (housing, speed, feed, where
+# the stages sit). Starts empty; the feed fills it and the end ring's hole lets the mixture out.
+# layers.csv holds Vc of transverse layers at L = 0.025 .. 0.475 m, pooled over 20 s of samples.
+# Units: SI (m, kg, s, N, rad).
+
+""" + physics(dem).replace("{seed}", str(design)), mesh("housing", ['primitive = "cylinder"', f"center = [{LENGTH / 2}, 0.0, 0.0]", "axis = [1.0, 0.0, 0.0]",
                       f"radius = {RADIUS}", f"length = {LENGTH}", "segments = 96", "rings = 10"]),
            ring("inlet-wall", 0.0, 0.0)]
     for i, x in enumerate(PARTITIONS):
@@ -156,7 +205,14 @@ checkpoint_interval = 20.0
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default=str(pathlib.Path(__file__).resolve().parents[2] / "scenes"))
+    ap.add_argument("--dem", type=float, help="sphere DEM, diameters divided by this factor")
+    ap.add_argument("--design", type=int, default=1, choices=sorted(DESIGNS))
     args = ap.parse_args()
+    if args.dem:
+        p = pathlib.Path(args.out) / f"mixer_seed004_dem_f{args.dem:g}_design{args.design}.toml"
+        p.write_text(scene(args.design, args.dem))
+        print("wrote", p)
+        return
     for d in DESIGNS:
         p = pathlib.Path(args.out) / f"mixer_seed004_design{d}.toml"
         p.write_text(scene(d))
