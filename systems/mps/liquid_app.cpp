@@ -64,15 +64,6 @@ void print_outputs(const LiquidOutput& o) {
                 o.checkpoint_keep_all ? ", each also kept as checkpoint_<step>.gfc" : "");
 }
 
-// The fix for a run stopped by an output it could not write (a full disk, a file-size limit).
-std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path& out, bool have_checkpoint) {
-  const std::string again = "grainflow run " + opt.scene.string() + " --out " + out.string();
-  return ". Every file written before is complete. Fix: free space on the disk that holds '" + out.string() +
-         "' (or write less: output.frame_interval, output.series_interval), then " +
-         (have_checkpoint ? "resume: " + again + " --resume " + (out / "checkpoints" / "checkpoint.gfc").string()
-                          : "run again (no checkpoint was written yet; output.checkpoint_interval sets how often one is)");
-}
-
 nlohmann::json start_summary(const CliOptions& opt, const LiquidScene& s, LiquidSimulation& sim,
                              const CheckpointReader* ckpt) {
   const FluidNodes& f = sim.nodes();

@@ -2,6 +2,14 @@
 
 namespace gf {
 
+std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path& out, bool have_checkpoint) {
+  const std::string again = "grainflow run " + opt.scene.string() + " --out " + out.string();
+  return ". Every file written before is complete. Fix: free space on the disk that holds '" + out.string() +
+         "' (or write less: output.frame_interval, output.series_interval), then " +
+         (have_checkpoint ? "resume: " + again + " --resume " + (out / "checkpoints" / "checkpoint.gfc").string()
+                          : "run again (no checkpoint was written yet; output.checkpoint_interval sets how often one is)");
+}
+
 SceneModel scene_model(const SceneDoc& doc) { return doc.root().has("liquid") ? SceneModel::Liquid : SceneModel::Dem; }
 
 int run_command(const CliOptions& opt) {

@@ -2,6 +2,9 @@
 // top-level [liquid] table is an MPS liquid scene, any other scene is a DEM scene.
 #pragma once
 
+#include <filesystem>
+#include <string>
+
 #include "engine/cli.hpp"
 #include "engine/scene.hpp"
 
@@ -9,6 +12,10 @@ namespace gf {
 
 enum class SceneModel { Dem, Liquid };
 SceneModel scene_model(const SceneDoc& doc);
+
+// The end of the message of a run stopped by an output it could not write (a full disk, a file-size
+// limit): what is kept, and how to go on (resume from the run's checkpoint, or run again).
+std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path& out, bool have_checkpoint);
 
 int run_dem_command(const CliOptions& opt);
 int check_dem_command(const CliOptions& opt);

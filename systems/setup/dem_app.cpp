@@ -57,15 +57,6 @@ void write_final_state(const std::filesystem::path& file, const Grains& g, const
 // JSON has no NaN: a measure that is not defined for the state (nan in series.csv) is null.
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-// The fix for a run stopped by an output it could not write (a full disk, a file-size limit).
-std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path& out, bool have_checkpoint) {
-  const std::string again = "grainflow run " + opt.scene.string() + " --out " + out.string();
-  return ". Every file written before is complete. Fix: free space on the disk that holds '" + out.string() +
-         "' (or write less: output.frame_interval, output.series_interval), then " +
-         (have_checkpoint ? "resume: " + again + " --resume " + (out / "checkpoints" / "checkpoint.gfc").string()
-                          : "run again (no checkpoint was written yet; output.checkpoint_interval sets how often one is)");
-}
-
 nlohmann::json flow_json(const FlowState& f, const Grains& g, const ResidenceOutput* residence) {
   double kg = 0.0;
   for (std::size_t i = 0; i < g.n_owned; ++i) kg += g.mass.m[i];
