@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -473,6 +474,19 @@ TEST_CASE("mesh wall scene: grainflow check and run accept the mesh drum and ref
   INFO(run.err);
   REQUIRE(run.code == 0);
   REQUIRE(fs::exists(out / "summary.json"));
+  // The series counts the mesh contacts (the pour has reached the mantle by the last row) and gives the
+  // mesh drum's angle, omega t, as for an analytic drum.
+  const auto rows = gf::test::read_lines(out / "series.csv");
+  REQUIRE(rows.size() > 2);
+  std::vector<double> last;
+  {
+    std::stringstream ss(rows.back());
+    std::string cell;
+    while (std::getline(ss, cell, ',')) last.push_back(std::stod(cell));
+  }
+  REQUIRE(last.size() >= 6);
+  CHECK(last[1] == Approx(1.5 * last[0]).epsilon(1e-12));
+  CHECK(last[5] > 0);
   // Poured and settled for 0.15 s (the grains fall at most 3 cm onto the mantle and come to rest on it), then
   // turned: every grain stays inside the drum's mesh surfaces and the bed lies on the mantle.
   gf::DemSimulation sim = gf::DemSimulation::from_file(kMeshDrum, {"settle.time=0.15"});

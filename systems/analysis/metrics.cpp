@@ -104,4 +104,15 @@ double segregation_index(const Grains& g, std::int32_t type_a, double cell, int 
   return std::sqrt(s.variance) / std::sqrt(p * (1.0 - p));
 }
 
+void add_mesh_contacts(ContactStats& s, const Grains& g, const MeshWalls& walls, double t, bool rotation_enabled) {
+  for (std::size_t i = 0; i < g.n_owned; ++i) {
+    const double r = g.radius.r[i];
+    for (const MeshContactPoint& c : mesh_contacts_of(walls, {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, r, t, rotation_enabled))
+      if (c.gap < r) {
+        ++s.wall_contacts;
+        s.max_overlap_ratio = std::max(s.max_overlap_ratio, (r - c.gap) / (2.0 * r));
+      }
+  }
+}
+
 }  // namespace gf

@@ -6,6 +6,7 @@
 
 #include "engine/grains.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
+#include "systems/walls/mesh_wall_contact.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -25,6 +26,9 @@ struct ContactStats {
   bool finite = true;              // every position and velocity finite
 };
 ContactStats contact_stats(const Grains& g, const NeighborList& list, const Walls& walls);
+// Adds the owned grains' contacts with mesh walls (at their angle for time t) to `s`: the merged
+// contacts whose closest point lies within the grain's radius, and their overlaps.
+void add_mesh_contacts(ContactStats& s, const Grains& g, const MeshWalls& walls, double t, bool rotation_enabled);
 
 // Danckwerts' intensity of segregation of species `type_a` against the rest: the standard
 // deviation of the local volume fraction of type_a over cubic cells of edge `cell` (m), weighted

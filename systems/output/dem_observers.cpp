@@ -17,10 +17,14 @@ double next_sample(double t, double next, double interval, double dt) {
   return next;
 }
 
-// Rotation angle (rad) of the first rotating wall at time t; 0 if none rotates.
-double rotation_angle(const Walls& walls, double t) {
+// Rotation angle (rad) of the first rotating wall at time t, else of the first rotating mesh wall
+// (omega t while rotation is on, as the mesh contacts place it); 0 if none rotates.
+double rotation_angle(const Walls& walls, double t, const MeshWalls* meshes = nullptr) {
   for (std::size_t w = 0; w < walls.list.size(); ++w)
     if (walls.list[w].omega != 0.0) return walls.angle(w, t);
+  if (meshes != nullptr && walls.rotation_enabled)
+    for (const MeshWall& m : meshes->list)
+      if (m.omega != 0.0) return m.omega * t;
   return 0.0;
 }
 
@@ -73,9 +77,11 @@ void SeriesOutput::sample(World& world, double t) {
   const Walls& walls = world.resources.get<Walls>();
   SeriesRow& row = world.resources.get<SeriesRow>();
   const Energies e = kinetic_energy(g);
-  const ContactStats cs = contact_stats(g, world.resources.get<NeighborList>(), walls);
+  ContactStats cs = contact_stats(g, world.resources.get<NeighborList>(), walls);
+  if (const MeshWalls* meshes = world.resources.find<MeshWalls>())
+    add_mesh_contacts(cs, g, *meshes, t, walls.rotation_enabled);
   row.time = t;
-  row.angle = rotation_angle(walls, t);
+  row.angle = rotation_angle(walls, t, world.resources.find<MeshWalls>());
   row.ke_translational = e.translational;
   row.ke_rotational = e.rotational;
   row.pair_contacts = cs.pair_contacts;

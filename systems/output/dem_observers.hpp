@@ -70,7 +70,8 @@ struct SeriesSettings {
 class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
  public:
   using Reads =
-      gf::Reads<Position, Velocity, AngularVelocity, Radius, Mass, Species, NeighborList, Walls, Gravity, FlowState>;
+      gf::Reads<Position, Velocity, AngularVelocity, Radius, Mass, Species, NeighborList, Walls, MeshWalls, Gravity,
+                FlowState>;
   using Writes = gf::Writes<SeriesRow>;
   explicit SeriesOutput(SeriesSettings s);
   std::string_view name() const override { return "series_output"; }
