@@ -64,6 +64,9 @@ def cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
+# The housing's mantle has 48 facets, each at most R (1 - cos(pi/48)) = 0.21 mm inside the radius, 1 %
+# of a carrier particle: 96 facets in 10 rings listed 4 times as many triangles per grid cell and made
+# the whole mixer step 2.1 times slower (25 s of design 1 from empty: 17.0 s against 7.9 s of wall time).
 def mesh(name, lines):
     return "\n".join(["[[wall]]", 'type = "mesh"', f'name = "{name}"'] + lines +
                      [f"omega = {OMEGA}", "rotation_axis = [1.0, 0.0, 0.0]", "rotation_point = [0.0, 0.0, 0.0]", ""])
@@ -172,7 +175,7 @@ def scene(design, dem=None):
 # Units: SI (m, kg, s, N, rad).
 
 """ + physics(dem).replace("{seed}", str(design)), mesh("housing", ['primitive = "cylinder"', f"center = [{LENGTH / 2}, 0.0, 0.0]", "axis = [1.0, 0.0, 0.0]",
-                      f"radius = {RADIUS}", f"length = {LENGTH}", "segments = 96", "rings = 10"]),
+                      f"radius = {RADIUS}", f"length = {LENGTH}", "segments = 48", "rings = 1"]),
            ring("inlet-wall", 0.0, 0.0)]
     for i, x in enumerate(PARTITIONS):
         out.append(ring(f"partition-{i + 1}", x, PARTITION_HOLE))
