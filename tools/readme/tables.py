@@ -112,6 +112,8 @@ TABLES = {
     "liggghts_flowing_grainflow": lambda: script("tools/liggghts/comparison_table.py",
                                                  "docs/liggghts/comparison_flowing_grainflow.log"),
     "pulsation": pulsation_table,
+    "mixer": lambda: script("tools/seed004/mixer_report.py", "table", "docs/seed004/mixer.json"),
+    "mesh_drum": lambda: script("tools/walls/mesh_drum_compare.py", "table", "docs/walls/mesh_drum_compare.json"),
     "kiln_map": lambda: script("tools/seed001/map_table.py", "docs/seed001/map.json"),
     "kiln_stiffness": lambda: script("tools/seed001/map_table.py", "--stiffness", "docs/seed001/stiffness.json"),
     "seed_drum": lambda: script("tools/seed000/study_table.py", "docs/seed000/seed_drum_table.json"),
