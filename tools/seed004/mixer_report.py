@@ -45,15 +45,32 @@ def steady_start(series):
     return float(series["time"][inside[0]]) if len(inside) else float("nan"), level
 
 
+def sampling_corrected_vc(vc, lacey, c):
+    """Vc with the random-mixture variance of the cells taken out: a representative volume stands
+    for hundreds of grains, so a cell holding n of them has the binomial spread of n draws, which a
+    cell of the real mixture (the seed's images) does not. With s^2 = (Vc c)^2, s0^2 = c (1 - c) and
+    Lacey's M = (s0^2 - s^2) / (s0^2 - sr^2) from the same cells, sr^2 = s0^2 - (s0^2 - s^2) / M and
+    the corrected Vc is sqrt(max(0, s^2 - sr^2)) / c."""
+    s2, s02 = (vc * c) ** 2, c * (1.0 - c)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sr2 = s02 - (s02 - s2) / lacey
+        return np.sqrt(np.maximum(0.0, s2 - sr2)) / c
+
+
 def vc_profile(layers, t0):
     rows = layers[layers["time"] >= t0]
     out = []
     for d in sorted(set(rows["distance"].tolist())):
-        v = rows["vc"][rows["distance"] == d]
-        v = v[np.isfinite(v)]
-        out.append({"distance": d, "vc_mean": float(np.mean(v)) if len(v) else None,
-                    "vc_min": float(np.min(v)) if len(v) else None, "vc_max": float(np.max(v)) if len(v) else None,
-                    "pools": int(len(v))})
+        at = rows[(rows["distance"] == d) & np.isfinite(rows["vc"]) & np.isfinite(rows["lacey"])]
+        v = at["vc"]
+        corr = sampling_corrected_vc(at["vc"], at["lacey"], at["fraction_a"])
+        n = len(v)
+        out.append({"distance": d, "vc_mean": float(np.mean(v)) if n else None,
+                    "vc_min": float(np.min(v)) if n else None, "vc_max": float(np.max(v)) if n else None,
+                    "vc_corrected_mean": float(np.mean(corr)) if n else None,
+                    "lacey_mean": float(np.mean(at["lacey"])) if n else None,
+                    "grains_per_cell": float(np.mean(at["grains"] / at["cells"])) if n else None,
+                    "pools": int(n)})
     return out
 
 
@@ -71,7 +88,7 @@ def rtd(residence, t0):
             (edges, hist))
 
 
-def design_result(run, design, docs):
+def design_result(run, design, docs, name=None):
     series = read_csv(run / "series.csv")
     layers = read_csv(run / "layers.csv")
     residence = read_csv(run / "residence.csv")
@@ -82,7 +99,7 @@ def design_result(run, design, docs):
     final = read_csv(run / "final_state.csv")
     solid = float(np.sum(math.pi / 6.0 * final["diameter"] ** 3))
     stats, hist = rtd(residence, t0)
-    keep = docs / f"design{design}"
+    keep = docs / (name or f"design{design}")
     keep.mkdir(parents=True, exist_ok=True)
     for name in ["series.csv", "layers.csv", "residence.csv", "summary.json"]:
         shutil.copyfile(run / name, keep / name)
@@ -116,9 +133,11 @@ def charts(results, hists, docs):
         m = [100 * p["vc_mean"] for p in r["vc"] if p["vc_mean"] is not None]
         lo = [100 * p["vc_min"] for p in r["vc"] if p["vc_mean"] is not None]
         hi = [100 * p["vc_max"] for p in r["vc"] if p["vc_mean"] is not None]
-        ax.plot(d, m, "o-", label=f"design {r['design']} (blades " +
-                "/".join(f"{1000 * b:.0f}" for b in r["blade_lengths_m"]) + " mm)")
-        ax.fill_between(d, lo, hi, alpha=0.15)
+        line, = ax.plot(d, m, "o-", label=f"design {r['design']} (blades " +
+                        "/".join(f"{1000 * b:.0f}" for b in r["blade_lengths_m"]) + " mm)")
+        ax.fill_between(d, lo, hi, alpha=0.15, color=line.get_color())
+        ax.plot(d, [100 * p["vc_corrected_mean"] for p in r["vc"] if p["vc_mean"] is not None], "--",
+                color=line.get_color(), lw=1)
     ax.add_patch(plt.Rectangle((0.0, 100 * SEED_NEAR_INLET[0]), 0.06, 100 * (SEED_NEAR_INLET[1] - SEED_NEAR_INLET[0]),
                                color="k", alpha=0.25, label="seed Fig. 4, as its text reads it"))
     ax.add_patch(plt.Rectangle((0.37, 100 * SEED_AT_04[0]), 0.06, 100 * (SEED_AT_04[1] - SEED_AT_04[0]), color="k",
@@ -130,9 +149,10 @@ def charts(results, hists, docs):
         ax.axvline(x, color="grey", lw=0.6, ls=":")
     ax.set_xlabel("distance from the inlet L (m)")
     ax.set_ylabel("inhomogeneity Vc (%)")
-    ax.set_title("Seed 004 mixer, representative volumes: Vc(L) in steady state\n(mean of pooled 20 s rows, band: "
-                 "their range; dashed: blade stages, dotted: partitions)", fontsize=9)
-    ax.legend(fontsize=8)
+    ax.set_title("Seed 004 mixer, representative volumes: Vc(L) in steady state (mean of pooled 20 s rows, band:\n"
+                 "their range; dashed lines: sampling-corrected; grey dashed: blade stages, dotted: partitions)",
+                 fontsize=9)
+    ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
     fig.savefig(docs / "vc_profile.png", dpi=110)
     plt.close(fig)
@@ -179,7 +199,8 @@ def report(args):
         r, h = design_result(run, design, docs)
         results.append(r)
         hists.append(h)
-    (docs / "mixer.json").write_text(json.dumps({"designs": results}, indent=1) + "\n")
+    models = model_results(runs, docs, results)
+    (docs / "mixer.json").write_text(json.dumps({"designs": results, "models": models}, indent=1) + "\n")
     with open(docs / "vc_profile.csv", "w") as f:
         f.write("design,distance,vc_mean,vc_min,vc_max,pools\n")
         for r in results:
@@ -193,7 +214,56 @@ def report(args):
                     f.write(f"{r['design']},{a:.4g},{b:.4g},{e:.6g}\n")
     if results:
         charts(results, hists, docs)
+    if len(models) > 1:
+        model_chart(models, docs)
     print(f"wrote {docs / 'mixer.json'} ({len(results)} designs)")
+
+
+def model_results(runs, docs, designs):
+    """Design 1 as representative volumes and as sphere DEM at each coarse-graining factor run, with
+    each model's Vc(L) difference from the finest DEM run (root mean square over the layers both
+    report) and its wall time per simulated second."""
+    rv = next((r for r in designs if r["design"] == 1), None)
+    models = []
+    if rv is not None:
+        models.append(dict(rv, model="representative volumes", factor=None))
+    for run in sorted(runs.glob("dem_f*")):
+        summary = run / "summary.json"
+        if not summary.exists() or json.loads(summary.read_text()).get("status") != "completed":
+            continue
+        f = float(run.name[len("dem_f"):])
+        r, _ = design_result(run, 1, docs, name=run.name)
+        models.append(dict(r, model=f"sphere DEM, factor {f:g}", factor=f))
+    dem = [m for m in models if m["factor"] is not None]
+    if dem:
+        finest = max(dem, key=lambda m: m["factor"])
+        ref = {p["distance"]: p["vc_mean"] for p in finest["vc"] if p["vc_mean"] is not None}
+        for m in models:
+            d = [p["vc_mean"] - ref[p["distance"]] for p in m["vc"] if p["vc_mean"] is not None and p["distance"] in ref]
+            m["vc_rms_difference_from_finest"] = float(np.sqrt(np.mean(np.square(d)))) if d else None
+            m["finest"] = finest["model"]
+            m["wall_seconds_per_simulated_second"] = m["wall_seconds"] / m["simulated_s"] if m["wall_seconds"] else None
+    return models
+
+
+def model_chart(models, docs):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for m in models:
+        d = [p["distance"] for p in m["vc"] if p["vc_mean"] is not None]
+        v = [100 * p["vc_mean"] for p in m["vc"] if p["vc_mean"] is not None]
+        ax.plot(d, v, "o-", ms=3, label=f"{m['model']}: {m['holdup_grains_mean']:.0f} grains, "
+                f"{m['wall_seconds'] / 60:.1f} min for {m['simulated_s']:.0f} s")
+    ax.set_xlabel("distance from the inlet L (m)")
+    ax.set_ylabel("inhomogeneity Vc (%)")
+    ax.set_title("Design 1: representative volumes against sphere DEM (legend: hold-up and wall time, 1 thread)",
+                 fontsize=9)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(docs / "vc_models.png", dpi=110)
+    plt.close(fig)
 
 
 def near(profile, at):
@@ -203,7 +273,9 @@ def near(profile, at):
 
 def table(args):
     data = json.loads(pathlib.Path(args.file).read_text())
-    rows = ["| design (blades I/II/III, mm) | Vc at L = 0.025 m | Vc at 0.2 m | Vc at 0.4 m | mean residence (s) | "
+    rows = ["Each Vc cell: mean over the steady pools (their range); the sampling-corrected Vc; Lacey's M of the same "
+            "cells.", "",
+            "| design (blades I/II/III, mm) | Vc at L = 0.025 m | Vc at 0.2 m | Vc at 0.4 m | mean residence (s) | "
             "sigma^2/t^2 | hold-up (kg, grains) | steady from (s) | wall time (s) |",
             "|---|---|---|---|---|---|---|---|---|"]
     for r in data["designs"]:
@@ -211,12 +283,25 @@ def table(args):
             p = near(r["vc"], at)
             if p["vc_mean"] is None:
                 return "n/a"
-            return f"{100 * p['vc_mean']:.1f} % ({100 * p['vc_min']:.1f}–{100 * p['vc_max']:.1f})"
+            return (f"{100 * p['vc_mean']:.1f} % ({100 * p['vc_min']:.1f}–{100 * p['vc_max']:.1f}); "
+                    f"{100 * p['vc_corrected_mean']:.1f} %; M {p['lacey_mean']:.2f}")
         rt = r["rtd"]
         rows.append(f"| {r['design']} ({'/'.join(f'{1000 * b:.0f}' for b in r['blade_lengths_m'])}) | {vc(0.025)} | "
                     f"{vc(0.2)} | {vc(0.4)} | {rt.get('mean', float('nan')):.1f} | "
                     f"{rt.get('dimensionless_variance', float('nan')):.2f} | {r['holdup_mass_kg']:.2f}, "
                     f"{r['holdup_grains_mean']:.0f} | {r['steady_from_s']:.0f} | {r['wall_seconds']:.0f} |")
+    if len(data.get("models", [])) > 1:
+        rows.append("")
+        rows.append("| design 1 as | hold-up (grains) | Vc at 0.025 / 0.2 / 0.4 m | Vc(L) RMS difference from "
+                    "the finest | wall s per simulated s (1 thread) |")
+        rows.append("|---|---|---|---|---|")
+        for m in data["models"]:
+            vcs = " / ".join("n/a" if near(m["vc"], a)["vc_mean"] is None else f"{100 * near(m['vc'], a)['vc_mean']:.1f} %"
+                             for a in (0.025, 0.2, 0.4))
+            diff = m.get("vc_rms_difference_from_finest")
+            rows.append(f"| {m['model']} | {m['holdup_grains_mean']:.0f} | {vcs} | "
+                        f"{'reference' if m['model'] == m.get('finest') else ('n/a' if diff is None else f'{100 * diff:.1f} points')} | "
+                        f"{m['wall_seconds_per_simulated_second']:.2f} |")
     rows.append("")
     rows.append(f"The seed (Fig. 4, as its text reads it): Vc {100 * SEED_NEAR_INLET[0]:.0f}–"
                 f"{100 * SEED_NEAR_INLET[1]:.0f} % near the inlet, {100 * SEED_AT_04[0]:.0f}–{100 * SEED_AT_04[1]:.0f} "
