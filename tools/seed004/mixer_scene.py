@@ -28,9 +28,9 @@ as many grains), rotating, with the Hertz-Mindlin law: the coarse-graining rule 
 material (density, Young's modulus, restitution, friction) and scaling only the size (Bierwisch et
 al. 2009, J. Mech. Phys. Solids 57, 10; Radl et al. 2011), so F = 1 is the representative volumes'
 size with sphere physics and larger F approach the real grains (millet 2.3 mm is F of about 10).
-Material assumed (the seed gives none): E = 2e6 Pa (reduced so that 300 s of the finer runs fit this
-machine; the largest overlap it allows is reported by each run's series), nu = 0.3, restitution 0.5,
-friction 0.4, rolling friction 0.05, for both seeds; dt 0.3 of the Rayleigh time, as the kiln's.
+Material assumed (the seed gives none): E = 1e7 Pa (reduced, as the kiln's; 2e6 Pa let a blade press
+two 17 mm spheres 10 % into each other after 55 s), nu = 0.3, restitution 0.5, friction 0.4, rolling
+friction 0.05, for both seeds; dt 0.3 of the Rayleigh time, as the kiln's; run.max_overlap 0.15.
 
 Usage: mixer_scene.py [--out scenes]                 (writes the three designs)
        mixer_scene.py --dem F [--design 1] [--out scenes]   (writes mixer_seed004_dem_fF_designD.toml)
@@ -128,12 +128,13 @@ kr = 10.0
 kp = 0.1
 """
     d_c, d_k = CARRIER[1] / dem, KEY[1] / dem
-    # The Rayleigh time of the small grains scales with the diameter; dt 0.3 of it (5.5e-4 s at 8.55 mm).
-    dt = 1.6e-4 * d_k / 0.00855
+    # The Rayleigh time of the small grains scales with the diameter; dt 0.3 of it (2.46e-4 s at 8.55 mm).
+    dt = 7.3e-5 * d_k / 0.00855
     return f"""[run]
 dt = {dt:.3g}            # s (check prints the law's time-step terms)
 duration = 300.0       # s: as the representative volumes
 dt_safety = 0.3        # of the smallest time-step term, the Rayleigh time of a small grain
+max_overlap = 0.15     # of the smaller diameter: a blade pressing a grain into the bed
 skin = {0.15 * d_k:.3g}        # m
 gravity = [0.0, -9.81, 0.0]
 seed = {{seed}}
@@ -142,14 +143,14 @@ seed = {{seed}}
 name = "{CARRIER[0]}"       # millet, coarse-grained: the representative volume's size / {dem:g}
 diameter = {d_c:.6g}
 density = {CARRIER[2]:.6g}
-youngs_modulus = 2.0e6
+youngs_modulus = 1.0e7
 poisson_ratio = 0.3
 
 [[species]]
 name = "{KEY[0]}"           # rapeseed: 0.778 of the carrier's size, 0.786 of its density
 diameter = {d_k:.6g}
 density = {KEY[2]:.6g}
-youngs_modulus = 2.0e6
+youngs_modulus = 1.0e7
 poisson_ratio = 0.3
 
 [contact]
