@@ -96,10 +96,13 @@ std::size_t find_hits(const MeshWalls& walls, const Turn* turn, const Vec3d& p, 
     const Vec3d pr = turn[w].to_reference(p);
     const std::size_t first = nh;
     for (const std::uint32_t t : mw.grid->near(pr)) {
-      // The triangle is no nearer than its plane: most listed triangles (the neighbours of the facet
-      // a grain rests on) fail this cheap test, which rejects nothing the full test would keep.
+      // The triangle is no nearer than its plane, nor than its bounding sphere: most listed triangles
+      // (the neighbours of the facet a grain rests on, the far triangles of a flat ring) fail one of
+      // these cheap tests, which reject nothing the full test would keep.
       const double dn = dot(pr - m.corner(t, 0), m.normal[t]);
       if (dn * dn >= r2) continue;
+      const Vec3d ec = pr - m.centre[t];
+      if (dot(ec, ec) >= (m.bound[t] + r) * (m.bound[t] + r)) continue;
       const ClosestPoint cp = closest_point_on_triangle(pr, m.corner(t, 0), m.corner(t, 1), m.corner(t, 2));
       const Vec3d dv = pr - cp.q;
       const double d2 = dot(dv, dv);

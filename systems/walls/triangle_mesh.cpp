@@ -399,6 +399,8 @@ TriangleMesh build_mesh(const TriangleSoup& soup) {
   m.tri.resize(nt);
   m.at = soup.at;
   m.normal.resize(nt);
+  m.centre.resize(nt);
+  m.bound.resize(nt);
   m.edge_out.resize(nt);
   m.edge_of.resize(nt);
   m.shortest_edge = std::numeric_limits<double>::infinity();
@@ -415,6 +417,9 @@ TriangleMesh build_mesh(const TriangleSoup& soup) {
            "repair the mesh (remove zero-area facets, e.g. with MeshLab's \"Remove Zero Area Faces\") and export it "
            "again");
     m.normal[t] = (1.0 / n_len) * n;
+    m.centre[t] = (1.0 / 3.0) * (a + b + c);
+    m.bound[t] = std::sqrt(std::max({dot(a - m.centre[t], a - m.centre[t]), dot(b - m.centre[t], b - m.centre[t]),
+                                     dot(c - m.centre[t], c - m.centre[t])}));
     for (int k = 0; k < 3; ++k) {
       const Vec3d p0 = m.corner(t, k), p1 = m.corner(t, (k + 1) % 3), opp = m.corner(t, (k + 2) % 3);
       const Vec3d e = p1 - p0;

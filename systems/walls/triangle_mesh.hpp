@@ -105,6 +105,8 @@ struct TriangleMesh {
   std::vector<std::array<std::uint32_t, 3>> tri;
   std::vector<std::size_t> at;                 // where each triangle was read (TriangleSoup::at)
   std::vector<Vec3d> normal;                   // unit, by the corners' order
+  std::vector<Vec3d> centre;                   // centroid
+  std::vector<double> bound;                   // m, the farthest corner's distance from the centroid
   // Per triangle and edge k: the unit vector in the triangle's plane, normal to the edge, pointing
   // away from the triangle, and the edge's index.
   std::vector<std::array<Vec3d, 3>> edge_out;
