@@ -122,7 +122,7 @@ StabilityLimits LiquidScene::limits() const {
   return lim;
 }
 
-LiquidScene load_liquid_scene(const SceneDoc& doc) {
+LiquidScene load_liquid_scene(const SceneDoc& doc, bool check_unused_keys) {
   LiquidScene s;
   s.file = doc.file();
   const SceneNode root = doc.root();
@@ -219,7 +219,7 @@ LiquidScene load_liquid_scene(const SceneDoc& doc) {
       out->fail("checkpoint_interval", "shorter than the time step",
                 "use a multiple of run.dt, or 0 for a checkpoint only at the end");
   }
-  doc.check_all_used();
+  if (check_unused_keys) doc.check_all_used();
   return s;
 }
 

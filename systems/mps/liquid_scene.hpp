@@ -41,6 +41,8 @@ struct LiquidScene {
   StabilityLimits limits() const;
 };
 
-LiquidScene load_liquid_scene(const SceneDoc& doc);
+// check_unused_keys off: the caller reads more of the scene (grains beside the liquid) and checks for unknown
+// keys itself.
+LiquidScene load_liquid_scene(const SceneDoc& doc, bool check_unused_keys = true);
 
 }  // namespace gf

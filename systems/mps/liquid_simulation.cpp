@@ -6,21 +6,25 @@
 
 namespace gf {
 
-LiquidSimulation::LiquidSimulation(LiquidScene scene)
-    : scene_(std::move(scene)), world_(std::make_unique<World>()), step_(std::make_unique<Schedule>()) {
-  World& w = *world_;
-  w.clock = Clock{0.0, scene_.dt, 0};
+void build_liquid_world(const LiquidScene& scene, World& w) {
+  w.clock = Clock{0.0, scene.dt, 0};
   FluidNodes& f = w.tables.add<FluidNodes>();
-  generate_nodes(scene_.geometry, scene_.blocks, scene_.params.k.l0, f);
+  generate_nodes(scene.geometry, scene.blocks, scene.params.k.l0, f);
   if (f.count(kFluid) == 0)
-    throw SceneError(scene_.file.string() + ":" + std::to_string(scene_.fluid_line) + ": the [[fluid]] blocks hold no lattice node (each is thinner than "
-                     "the spacing l0 = " + short_number(scene_.params.k.l0) + " m somewhere, or lies outside the "
+    throw SceneError(scene.file.string() + ":" + std::to_string(scene.fluid_line) + ": the [[fluid]] blocks hold no lattice node (each is thinner than "
+                     "the spacing l0 = " + short_number(scene.params.k.l0) + " m somewhere, or lies outside the "
                      "geometry). Fix: give each block at least one spacing along every axis, inside the geometry");
-  w.resources.emplace<LiquidParams>(scene_.params);
+  w.resources.emplace<LiquidParams>(scene.params);
   w.resources.emplace<NeighborPairs>();
   w.resources.emplace<PpeWorkspace>();
   w.resources.emplace<LiquidDiagnostics>();
-  w.resources.emplace<StabilityLimits>(scene_.limits());
+  w.resources.emplace<StabilityLimits>(scene.limits());
+}
+
+LiquidSimulation::LiquidSimulation(LiquidScene scene)
+    : scene_(std::move(scene)), world_(std::make_unique<World>()), step_(std::make_unique<Schedule>()) {
+  World& w = *world_;
+  build_liquid_world(scene_, w);
   schedule_liquid_step(*step_);
   step_->build(w);
 }

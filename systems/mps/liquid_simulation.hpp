@@ -13,6 +13,10 @@
 
 namespace gf {
 
+// The FluidNodes table of the scene's blocks and the liquid's resources, added to `world`; the clock set to
+// the liquid's step. A SceneError when the blocks hold no node.
+void build_liquid_world(const LiquidScene& scene, World& world);
+
 class LiquidSimulation {
  public:
   explicit LiquidSimulation(LiquidScene scene);

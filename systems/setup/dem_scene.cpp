@@ -387,13 +387,15 @@ std::int32_t species_index(const DemScene& s, const SceneNode& node, std::string
 std::int64_t DemScene::main_steps() const { return static_cast<std::int64_t>(std::llround(duration / dt)); }
 std::int64_t DemScene::settle_steps() const { return static_cast<std::int64_t>(std::llround(settle_time / dt)); }
 
-DemScene load_dem_scene(const SceneDoc& doc) {
+DemScene load_dem_scene(const SceneDoc& doc) { return load_dem_scene(doc, DemLoadOptions{}); }
+
+DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
   DemScene s;
   s.file = doc.file();
   const SceneNode root = doc.root();
 
   const SceneNode run = root.table("run");
-  s.dt = run.get_double("dt", Range::positive());
+  s.dt = options.outer_dt ? *options.outer_dt : run.get_double("dt", Range::positive());
   s.dt_safety = run.get_double("dt_safety", 0.1, Range::open_closed(0, 1));
   s.allow_unstable_dt = run.get_bool("allow_unstable_dt", false);
   s.skin = run.get_double("skin", Range::positive());
@@ -436,7 +438,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
   }
 
   const double limit = s.dt_safety * s.critical.period;
-  if (s.dt > limit && !s.allow_unstable_dt)
+  if (!options.outer_dt && s.dt > limit && !s.allow_unstable_dt)
     run.fail("dt",
              "time step " + short_number(s.dt) + " s exceeds " + short_number(s.dt_safety) + " of the contact law's smallest time-step term " +
                  short_number(s.critical.period) + " s (" + s.critical.term + "): the limit is " + short_number(limit) + " s",
@@ -498,7 +500,7 @@ DemScene load_dem_scene(const SceneDoc& doc) {
     for (const Wall& w : s.walls) s.pattern = s.pattern || w.kind == Wall::Kind::CylinderInner;
   }
   if (!with_bodies) read_analysis(s, root);  // a body scene's [analysis]: read_bodies
-  doc.check_all_used();
+  if (options.check_unused_keys) doc.check_all_used();
   return s;
 }
 

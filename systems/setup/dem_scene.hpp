@@ -107,6 +107,17 @@ struct DemScene {
 // Reads and validates everything; throws SceneError naming file, line, key and fix.
 DemScene load_dem_scene(const SceneDoc& doc);
 
+// How a scene that holds more than grains (a liquid beside them) has its DEM part read.
+struct DemLoadOptions {
+  // The step is the caller's: run.dt is not read as the DEM step and not checked against the contact
+  // law's limit (the caller sets DemScene::dt and checks it); this value stands in for run.dt in the
+  // checks of durations and output intervals.
+  std::optional<double> outer_dt;
+  // Off when the caller reads more of the scene and checks for unknown keys itself.
+  bool check_unused_keys = true;
+};
+DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options);
+
 // A [[fill]]'s region table (box or cylinder; a cylinder's max_height measured against gravity).
 Region read_fill_region(const SceneNode& node, const Gravity& g);
 // The index of the species called `name` (the value of `key` in `node`); a SceneError listing the
