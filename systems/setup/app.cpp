@@ -1,5 +1,7 @@
 #include "systems/setup/app.hpp"
 
+#include "systems/setup/coupled_scene.hpp"
+
 namespace gf {
 
 std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path& out, bool have_checkpoint) {
@@ -10,13 +12,18 @@ std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path
                           : "run again (no checkpoint was written yet; output.checkpoint_interval sets how often one is)");
 }
 
-SceneModel scene_model(const SceneDoc& doc) { return doc.root().has("liquid") ? SceneModel::Liquid : SceneModel::Dem; }
+SceneModel scene_model(const SceneDoc& doc) {
+  if (is_coupled_scene(doc)) return SceneModel::Coupled;
+  return doc.root().has("liquid") ? SceneModel::Liquid : SceneModel::Dem;
+}
 
 int run_command(const CliOptions& opt) {
   // Parsing twice is cheap next to any run, and keeps each model's loader the only reader of its keys.
   switch (scene_model(SceneDoc::load(opt.scene, opt.overrides))) {
     case SceneModel::Liquid:
       return run_liquid_command(opt);
+    case SceneModel::Coupled:
+      return run_coupled_command(opt);
     case SceneModel::Dem:
       return run_dem_command(opt);
   }
@@ -27,6 +34,8 @@ int check_command(const CliOptions& opt) {
   switch (scene_model(SceneDoc::load(opt.scene, opt.overrides))) {
     case SceneModel::Liquid:
       return check_liquid_command(opt);
+    case SceneModel::Coupled:
+      return check_coupled_command(opt);
     case SceneModel::Dem:
       return check_dem_command(opt);
   }

@@ -1,5 +1,6 @@
 // The model layer's commands. `grainflow run/check` pick the model from the scene: a scene with a
-// top-level [liquid] table is an MPS liquid scene, any other scene is a DEM scene.
+// top-level [liquid] table is an MPS liquid scene, one that also holds grains ([[species]], [[fill]] or
+// [coupling]) a coupled scene (coupled_scene.hpp), any other scene is a DEM scene.
 #pragma once
 
 #include <filesystem>
@@ -10,7 +11,7 @@
 
 namespace gf {
 
-enum class SceneModel { Dem, Liquid };
+enum class SceneModel { Dem, Liquid, Coupled };
 SceneModel scene_model(const SceneDoc& doc);
 
 // The end of the message of a run stopped by an output it could not write (a full disk, a file-size
@@ -21,5 +22,7 @@ int run_dem_command(const CliOptions& opt);
 int check_dem_command(const CliOptions& opt);
 int run_liquid_command(const CliOptions& opt);    // systems/mps/liquid_app.cpp
 int check_liquid_command(const CliOptions& opt);
+int run_coupled_command(const CliOptions& opt);   // systems/setup/coupled_app.cpp
+int check_coupled_command(const CliOptions& opt);
 
 }  // namespace gf

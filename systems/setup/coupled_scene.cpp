@@ -1,0 +1,114 @@
+#include "systems/setup/coupled_scene.hpp"
+
+#include <cmath>
+#include <cstdint>
+
+#include "systems/setup/dem_body_scene.hpp"
+
+namespace gf {
+
+namespace {
+
+// What the coupled step does not carry yet, refused before either part is read.
+void refuse_unsupported(const SceneNode& root) {
+  const char* fix = "remove the table: liquid and grains run together without it so far";
+  if (scene_has_bodies(root)) root.fail("bodies", "composite grains are not coupled to a liquid yet", fix);
+  for (const char* key : {"feed", "outlet"})
+    if (root.has(key)) root.fail(key, "feeds and outlets are not coupled to a liquid yet", fix);
+  if (root.has("settle")) root.fail("settle", "a coupled scene has no dry settling stage", fix);
+  if (root.has("periodic")) root.fail("periodic", "periodic grains are not coupled to a liquid yet", fix);
+  const SceneNode liquid = root.table("liquid");
+  if (liquid.get_int("dim", 2, 3) != 3) liquid.fail("dim", "grains are spheres, so the liquid they sit in is 3D", "set dim = 3");
+  const SceneNode run = root.table("run");
+  if (!run.has("gravity"))
+    run.fail("gravity", "a coupled scene states its gravity: the liquid's default is none, the grains' -9.81 m/s^2 along y",
+             "set gravity = [gx, gy, gz] (m/s^2) in [run]");
+}
+
+void refuse_outputs(const SceneNode& root) {
+  const auto out = root.maybe_table("output");
+  if (!out) return;
+  if (out->has("frame_interval") && out->get_double("frame_interval", 0.0, Range::non_negative()) > 0)
+    out->fail("frame_interval", "coupled runs write no VTK frames yet", "set it to 0 or remove it");
+  if (out->has("checkpoint_interval") && out->get_double("checkpoint_interval", 0.0, Range::non_negative()) > 0)
+    out->fail("checkpoint_interval", "coupled runs write no checkpoints yet", "set it to 0 or remove it");
+}
+
+void read_substeps(CoupledScene& s, const SceneNode& c) {
+  CouplingSpec& k = s.coupling;
+  const double dt = s.liquid.dt;
+  k.dem_step_limit = s.dem.dt_safety * s.dem.critical.period;
+  const double needed = std::ceil(dt / k.dem_step_limit * (1.0 - 1e-12));
+  const std::int64_t given = c.get_int("substeps", 0, 0, 1000000);
+  if (given == 0) {
+    if (!(needed <= 1e6))
+      c.fail("substeps", "the DEM step limit " + short_number(k.dem_step_limit) + " s needs more than 1e6 sub-steps of run.dt = " + short_number(dt) + " s",
+             "soften the contact law, or shorten run.dt");
+    k.substeps = static_cast<int>(std::max(1.0, needed));
+    k.substeps_computed = true;
+    return;
+  }
+  k.substeps = static_cast<int>(given);
+  if (dt / k.substeps > k.dem_step_limit && !s.dem.allow_unstable_dt)
+    c.fail("substeps",
+           std::to_string(k.substeps) + " sub-steps of run.dt = " + short_number(dt) + " s give a DEM step " +
+               short_number(dt / k.substeps) + " s above " + short_number(s.dem.dt_safety) + " of the contact law's smallest period " +
+               short_number(s.dem.critical.period) + " s (" + s.dem.critical.term + ")",
+           "set substeps >= " + std::to_string(static_cast<long long>(needed)) +
+               ", or remove the key to have it computed, or set run.allow_unstable_dt = true");
+}
+
+// In a closed box filled with one liquid, gravity is balanced by a hydrostatic pressure and drops out of
+// the motion: the liquid may solve for p + rho_l |g| height instead, with no gravity in its step (no
+// start-up compression, no sloshing). The grains keep gravity and Archimedes' buoyancy.
+void read_modified_pressure(CoupledScene& s, const SceneNode& c) {
+  s.coupling.modified_pressure = c.get_bool("modified_pressure", false);
+  if (!s.coupling.modified_pressure) return;
+  const LiquidGeometry& g = s.liquid.geometry;
+  const bool filled = s.liquid.blocks.size() == 1 && s.liquid.blocks[0].lo == g.lo && s.liquid.blocks[0].hi == g.hi;
+  if (g.kind != LiquidGeometry::Kind::Box || !filled)
+    c.fail("modified_pressure", "only a closed box filled with liquid balances gravity by a hydrostatic pressure",
+           "use geometry type = \"box\" with one [[fluid]] block of the geometry's lo and hi, or remove the key");
+  s.liquid.params.gravity = {0.0, 0.0, 0.0};
+}
+
+void read_coupling(CoupledScene& s, const SceneNode& root) {
+  const SceneNode c = root.table("coupling");
+  const double l0 = s.liquid.params.k.l0;
+  read_substeps(s, c);
+  s.dem.dt = s.liquid.dt / s.coupling.substeps;
+  s.coupling.smoothing_radius = c.get_double("smoothing_radius", Range::positive());
+  if (s.coupling.smoothing_radius < l0)
+    c.fail("smoothing_radius",
+           short_number(s.coupling.smoothing_radius) + " m is shorter than the node spacing l0 = " + short_number(l0) +
+               " m: a grain between nodes would reach none",
+           "set smoothing_radius >= l0, e.g. " + short_number(2.5 * l0) + " m (2.5 l0)");
+  const std::string drag = c.get_choice("drag", {"ergun_wen_yu", "blend"}, "ergun_wen_yu");
+  s.coupling.drag = drag == "blend" ? DragModel::Blended : DragModel::ErgunWenYu;
+  s.coupling.min_liquid_fraction = c.get_double("min_liquid_fraction", 0.2, Range::open_closed(0.0, 1.0));
+  read_modified_pressure(s, c);
+}
+
+}  // namespace
+
+bool is_coupled_scene(const SceneDoc& doc) {
+  const SceneNode root = doc.root();
+  return root.has("liquid") && (root.has("species") || root.has("fill") || root.has("coupling"));
+}
+
+CoupledScene load_coupled_scene(const SceneDoc& doc) {
+  const SceneNode root = doc.root();
+  refuse_unsupported(root);
+  CoupledScene s;
+  s.file = doc.file();
+  s.liquid = load_liquid_scene(doc, false);
+  refuse_outputs(root);
+  s.dem = load_dem_scene(doc, DemLoadOptions{s.liquid.dt, false});
+  read_coupling(s, root);
+  doc.check_all_used();
+  return s;
+}
+
+const char* drag_model_name(DragModel m) { return m == DragModel::Blended ? "blend" : "ergun_wen_yu"; }
+
+}  // namespace gf

@@ -1,0 +1,54 @@
+// A scene with a liquid and grains in it (seed 003's MPS-DEM coupling): a top-level [liquid] table as
+// an MPS scene has, grains as a DEM scene has them ([[species]], [contact], [[fill]], [[wall]]), and a
+// [coupling] table:
+//   substeps          DEM steps per liquid step (run.dt is the liquid's step); when absent or 0, the
+//                     fewest that keep dt/k within run.dt_safety of the contact law's smallest period
+//   smoothing_radius  m, the radius h over which a grain's volume and force are shared with the nodes
+//   drag              "ergun_wen_yu" (the seed's switch at eps = 0.8) or "blend" (Huilin-Gidaspow)
+//   min_liquid_fraction  floor of the nodes' liquid fraction (default 0.2)
+//   modified_pressure  true: a closed box filled with liquid solves for the pressure less its hydrostatic
+//                      part, without gravity in the liquid's step (exact for one density in a closed box;
+//                      the grains keep gravity and buoyancy); the pressure outputs are then that part
+// [run] is shared: dt, duration and gravity (required here, both parts feel it) serve both parts; skin,
+// seed and max_overlap are the grains', [liquid] and [geometry] the liquid's. Each part's loader reads
+// its keys; unknown keys are checked once, over the whole file.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "engine/scene.hpp"
+#include "systems/coupling/drag.hpp"
+#include "systems/mps/liquid_scene.hpp"
+#include "systems/setup/dem_scene.hpp"
+
+namespace gf {
+
+struct CouplingSpec {
+  int substeps = 1;
+  bool substeps_computed = false;  // no coupling.substeps: from the DEM step limit
+  double dem_step_limit = 0;       // s, run.dt_safety times the contact law's smallest period
+  double smoothing_radius = 0;     // m
+  DragModel drag = DragModel::ErgunWenYu;
+  double min_liquid_fraction = 0.2;
+  bool modified_pressure = false;
+};
+
+struct CoupledScene {
+  std::filesystem::path file;
+  LiquidScene liquid;
+  DemScene dem;  // dem.dt is the sub-step, liquid.dt / substeps
+  CouplingSpec coupling;
+  std::int64_t steps() const { return liquid.steps(); }
+};
+
+// A scene with a [liquid] table and grains ([[species]] or [[fill]]).
+bool is_coupled_scene(const SceneDoc& doc);
+
+// Both parts and the coupling, every key checked; SceneError naming file, line, key and fix.
+CoupledScene load_coupled_scene(const SceneDoc& doc);
+
+const char* drag_model_name(DragModel m);
+
+}  // namespace gf

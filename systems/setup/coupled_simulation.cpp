@@ -1,0 +1,65 @@
+#include "systems/setup/coupled_simulation.hpp"
+
+#include <algorithm>
+#include <type_traits>
+
+#include "engine/run_loop.hpp"
+#include "systems/broadphase/neighbor_list.hpp"
+#include "systems/coupling/coupled_step.hpp"
+#include "systems/mps/liquid_simulation.hpp"
+#include "systems/walls/walls.hpp"
+
+namespace gf {
+
+CoupledSimulation::CoupledSimulation(CoupledScene scene)
+    : scene_(std::move(scene)), world_(std::make_unique<World>()), step_(std::make_unique<Schedule>()) {
+  World& w = *world_;
+  build_dem_world(scene_.dem, w);
+  build_liquid_world(scene_.liquid, w);  // the clock: the liquid's step
+  attach_coupling(scene_, w);
+  dem_ = &schedule_coupled_step(*step_, scene_);
+  step_->build(w);
+}
+
+CoupledSimulation CoupledSimulation::from_file(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return CoupledSimulation(load_coupled_scene(SceneDoc::load(file, overrides)));
+}
+
+CoupledSimulation CoupledSimulation::from_text(std::string_view toml, const std::vector<std::string>& overrides) {
+  return CoupledSimulation(load_coupled_scene(SceneDoc::parse(toml, "scene.toml", overrides)));
+}
+
+void CoupledSimulation::prime() {
+  World& w = *world_;
+  prepare_coupling(w);
+  StepContext now = next_step(w.clock);
+  now.dt /= scene_.coupling.substeps;
+  now.substeps = scene_.coupling.substeps;
+  now.prime = true;
+  try {
+    dem_->inner().run_step(now);
+  } catch (const StabilityError& e) {
+    const int line = scene_.dem.fills.empty() ? 0 : scene_.dem.fills.front().line;
+    throw SceneError(scene_.file.string() + ":" + std::to_string(line) + ": the fills' initial state: " + e.what());
+  }
+  primed_ = true;
+  // Priming advanced the contact springs by v_t dt; a new state's springs start from zero.
+  w.resources.get<PairHistory>().clear();
+  for_each_column(w.grains.extras.get<WallHistory>(), [](auto& c) {
+    std::fill(c.begin(), c.end(), typename std::decay_t<decltype(c)>::value_type{});
+  });
+}
+
+void CoupledSimulation::step_once() {
+  if (!primed_) prime();
+  Clock& c = world_->clock;
+  step_->run_step(next_step(c));
+  ++c.step;
+  c.t = c.t0 + static_cast<double>(c.step) * c.dt;
+}
+
+void CoupledSimulation::advance(std::int64_t n) {
+  for (std::int64_t k = 0; k < n; ++k) step_once();
+}
+
+}  // namespace gf

@@ -1,0 +1,171 @@
+// The coupled step (systems/coupling/coupled_step.hpp) and its scene (systems/setup/coupled_scene.hpp):
+// the grains' impulse from the liquid and the liquid's reaction cancel to rounding over every step;
+// each grain's momentum changes by that impulse and its weight; the step is one graph with the DEM
+// sub-steps inside; `check` prints both parts and the coupling, `run` writes series.csv and summary.json;
+// bad coupling keys are refused naming file, line, key and fix.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "engine/scene.hpp"
+#include "systems/coupling/coupled_step.hpp"
+#include "systems/setup/coupled_simulation.hpp"
+#include "tests/test_support.hpp"
+
+using Catch::Contains;
+
+namespace {
+
+// A 3 cm tank of liquid with a free surface, three 2 mm grains inside, 16 DEM sub-steps per step.
+std::string scene(const std::string& coupling = "substeps = 16\nsmoothing_radius = 0.0075\n",
+                  const std::string& extra = "") {
+  return "[run]\ndt = 5.0e-4\nduration = 0.01\ngravity = [0.0, -9.81, 0.0]\nskin = 2.0e-4\n"
+         "[liquid]\ndim = 3\nl0 = 0.003\ndensity = 1000.0\nviscosity = 1.0e-5\n"
+         "[geometry]\ntype = \"tank\"\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.04, 0.03]\n"
+         "[[fluid]]\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.03, 0.03]\n"
+         "[[species]]\nname = \"glass\"\ndiameter = 2.0e-3\ndensity = 2500.0\n"
+         "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nkr = 1.0e-5\n"
+         "en = 0.3\net = 0.3\ner = 0.3\nfriction = 0.3\nrolling_friction = 5.0e-5\n"
+         "[[wall]]\ntype = \"box\"\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.04, 0.03]\n"
+         "[[fill]]\nkind = \"random\"\n"
+         "region = { shape = \"box\", lo = [0.01, 0.01, 0.01], hi = [0.02, 0.02, 0.02] }\ncount = { glass = 3 }\n"
+         "[coupling]\n" + coupling + extra;
+}
+
+double norm(const gf::V3<double>& a) { return std::sqrt(gf::dot(a, a)); }
+
+gf::V3<double> momentum(gf::Grains& g) {
+  gf::V3<double> p{0, 0, 0};
+  for (std::size_t i = 0; i < g.n_owned; ++i) p = p + g.mass.m[i] * gf::V3<double>{g.vel.x[i], g.vel.y[i], g.vel.z[i]};
+  return p;
+}
+
+// The 1-based line of the first line of `text` that starts with `key`.
+int line_of(const std::string& text, const std::string& key) {
+  int line = 1;
+  for (std::size_t at = 0; at < text.size(); at = text.find('\n', at) + 1, ++line)
+    if (text.compare(at, key.size(), key) == 0) return line;
+  return 0;
+}
+
+std::string load_error(const std::string& text) {
+  try {
+    gf::load_coupled_scene(gf::SceneDoc::parse(text, "scene.toml"));
+  } catch (const gf::SceneError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST_CASE("coupled step: grain impulse and liquid reaction cancel to rounding, step by step", "[coupled]") {
+  gf::CoupledSimulation sim = gf::CoupledSimulation::from_text(scene());
+  gf::World& w = sim.world();
+  gf::Grains& g = w.grains;
+  REQUIRE(g.n_owned == 3);
+  const auto& c = w.resources.get<gf::CouplingState>();
+  double mass = 0;
+  for (std::size_t i = 0; i < g.n_owned; ++i) mass += g.mass.m[i];
+  sim.prime();
+  for (int step = 0; step < 10; ++step) {
+    const gf::V3<double> p0 = momentum(g);
+    sim.step_once();
+    const gf::V3<double> dp = momentum(g) - p0;
+    const gf::V3<double> weight = (mass * w.clock.dt) * gf::V3<double>{0.0, -9.81, 0.0};
+    INFO("step " << step << ": grain impulse " << c.grain_impulse.y << " N s, reaction " << c.reaction_impulse.y);
+    REQUIRE(norm(c.grain_impulse) > 0.0);
+    CHECK(norm(c.grain_impulse + c.reaction_impulse) <= 1e-13 * norm(c.grain_impulse));
+    // The grains lie farther than h from the walls: the whole reaction reaches fluid nodes.
+    CHECK(norm(c.fluid_reaction - c.reaction_impulse) <= 1e-13 * norm(c.grain_impulse));
+    // Three grains apart, no contacts: each one's momentum changes by its weight and the liquid's impulse.
+    CHECK(norm(dp - weight - c.grain_impulse) <= 1e-9 * norm(weight));
+  }
+}
+
+TEST_CASE("coupled step: one graph, the DEM sub-steps inside the liquid's step", "[coupled]") {
+  gf::CoupledSimulation sim = gf::CoupledSimulation::from_text(scene());
+  const std::vector<std::string> outer = sim.step().names();
+  REQUIRE(outer.size() >= 4);
+  CHECK(outer[0] == "coupling_prepare");
+  CHECK(outer[1] == "dem_substeps");
+  CHECK(outer[2] == "liquid_reaction");
+  CHECK(outer[3] == "neighbour_search");
+  const std::vector<std::string> inner = sim.dem_substeps().inner().names();
+  CHECK(std::find(inner.begin(), inner.end(), "liquid_force") != inner.end());
+  CHECK(sim.dem_substeps().substeps() == 16);
+  CHECK(sim.scene().dem.dt == Approx(5.0e-4 / 16).epsilon(1e-15));
+  sim.advance(2);
+  CHECK(sim.world().clock.step == 2);
+  CHECK(sim.world().clock.t == Approx(1.0e-3).epsilon(1e-15));
+}
+
+TEST_CASE("coupled scene: sub-steps computed from the DEM step limit when not given", "[coupled]") {
+  const gf::CoupledScene s = gf::load_coupled_scene(gf::SceneDoc::parse(scene("smoothing_radius = 0.0075\n"), "scene.toml"));
+  CHECK(s.coupling.substeps_computed);
+  const double limit = s.dem.dt_safety * s.dem.critical.period;
+  CHECK(s.coupling.substeps == static_cast<int>(std::ceil(5.0e-4 / limit)));
+  CHECK(s.dem.dt <= limit);
+  CHECK(s.coupling.drag == gf::DragModel::ErgunWenYu);
+}
+
+TEST_CASE("coupled scene: bad keys are refused with file, line, key and fix", "[coupled]") {
+  struct Bad {
+    std::string coupling, extra, key, says;
+  };
+  const std::vector<Bad> cases = {
+      {"substeps = 2\nsmoothing_radius = 0.0075\n", "", "coupling.substeps", "set substeps >="},
+      {"smoothing_radius = 0.001\n", "", "coupling.smoothing_radius", "shorter than the node spacing"},
+      {"smoothing_radius = 0.0075\ndrag = \"stokes\"\n", "", "coupling.drag", "ergun_wen_yu"},
+      {"smoothing_radius = 0.0075\nsubstep = 16\n", "", "coupling.substep", "substeps"},
+      {"smoothing_radius = 0.0075\nmodified_pressure = true\n", "", "coupling.modified_pressure", "box"},
+      {"smoothing_radius = 0.0075\n", "[output]\nframe_interval = 0.001\n", "output.frame_interval", "no VTK frames"},
+      {"smoothing_radius = 0.0075\n", "[settle]\ntime = 0.1\n", "settle", "settling"},
+  };
+  for (const Bad& b : cases) {
+    const std::string text = scene(b.coupling, b.extra);
+    const std::string leaf = b.key.substr(b.key.find('.') + 1);
+    const int line = line_of(text, leaf.empty() || b.key.find('.') == std::string::npos ? "[" + b.key : leaf);
+    const std::string msg = load_error(text);
+    INFO(msg);
+    CHECK_THAT(msg, Contains("scene.toml:" + std::to_string(line) + ":") && Contains("'" + b.key + "'") &&
+                        Contains("Fix:") && Contains(b.says));
+  }
+  // A coupled scene states its gravity; its liquid is 3D.
+  std::string no_gravity = scene();
+  no_gravity.erase(no_gravity.find("gravity = "), std::string("gravity = [0.0, -9.81, 0.0]\n").size());
+  CHECK_THAT(load_error(no_gravity), Contains("'run.gravity'") && Contains("Fix:"));
+  std::string flat = scene();
+  flat.replace(flat.find("dim = 3"), 7, "dim = 2");
+  CHECK_THAT(load_error(flat), Contains("'liquid.dim'") && Contains("set dim = 3"));
+}
+
+TEST_CASE("coupled scene through the command line: check prints both parts, run writes the series", "[coupled][cli]") {
+  gf::test::TempDir dir("coupled_cli");
+  const std::string file = dir.write("coupled.toml", scene("substeps = 16\nsmoothing_radius = 0.0075\n",
+                                                            "[output]\nseries_interval = 1.0e-3\n")).string();
+  const gf::test::Exit check = gf::test::run_cli(dir, "check " + gf::test::quote(file));
+  INFO(check.out << check.err);
+  REQUIRE(check.code == 0);
+  CHECK_THAT(check.out, Contains("valid") && Contains("liquid: MPS, 3D") && Contains("grains: 3 in 1 species") &&
+                            Contains("k = 16 DEM sub-steps") && Contains("smoothing radius h = 0.0075 m") &&
+                            Contains("drag ergun_wen_yu") && Contains("dem_substeps") && Contains("liquid_force"));
+  const std::string out = (dir.path / "run").string();
+  const gf::test::Exit run = gf::test::run_cli(dir, "run " + gf::test::quote(file) + " --out " + gf::test::quote(out) +
+                                                        " --steps 4 --threads 1 --quiet");
+  INFO(run.err);
+  REQUIRE(run.code == 0);
+  const std::vector<std::string> rows = gf::test::read_lines(dir.path / "run" / "series.csv");
+  REQUIRE(rows.size() == 4);  // the header, t = 0, 1 ms and 2 ms
+  CHECK_THAT(rows[0], Contains("kinetic_energy") && Contains("grain_vy") && Contains("grain_kinetic_energy") &&
+                          Contains("impulse_balance"));
+  const std::string summary = gf::test::read_file(dir.path / "run" / "summary.json");
+  CHECK_THAT(summary, Contains("\"status\": \"completed\"") && Contains("\"substeps\": 16") &&
+                          Contains("\"drag\": \"ergun_wen_yu\"") && Contains("liquid_force"));
+  const gf::test::Exit resume = gf::test::run_cli(dir, "run " + gf::test::quote(file) + " --out " + gf::test::quote(out) +
+                                                           " --resume " + gf::test::quote(out + "/x.gfc"));
+  CHECK(resume.code != 0);
+  CHECK_THAT(resume.err, Contains("--resume") && Contains("no checkpoints") && Contains("Fix:"));
+}
