@@ -35,6 +35,10 @@ struct Turn {
     return (c * v + (sign * s) * kxv) + (kv * (1.0 - c)) * k;
   }
   Vec3d to_reference(const Vec3d& p) const { return identity ? p : o + vec(p - o, -1.0); }
+  bool same_as(const Turn& t) const {
+    return identity == t.identity && c == t.c && s == t.s && k.x == t.k.x && k.y == t.k.y && k.z == t.k.z &&
+           o.x == t.o.x && o.y == t.o.y && o.z == t.o.z;
+  }
   Vec3d to_world(const Vec3d& p) const { return identity ? p : o + vec(p - o, 1.0); }
 };
 
@@ -90,10 +94,12 @@ struct Hit {
 std::size_t find_hits(const MeshWalls& walls, const Turn* turn, const Vec3d& p, double r, Hit* hits) {
   std::size_t nh = 0;
   const double r2 = r * r, merge2 = (kMergeTol * r) * (kMergeTol * r);
+  Vec3d pr = p;
   for (std::size_t w = 0; w < walls.list.size(); ++w) {
     const MeshWall& mw = walls.list[w];
     const TriangleMesh& m = *mw.mesh;
-    const Vec3d pr = turn[w].to_reference(p);
+    // Meshes that turn together (a mixer's housing, rings and blades) share one reference position.
+    if (w == 0 || !turn[w].same_as(turn[w - 1])) pr = turn[w].to_reference(p);
     const std::size_t first = nh;
     for (const std::uint32_t t : mw.grid->near(pr)) {
       // The triangle is no nearer than its plane, nor than its bounding sphere: most listed triangles
