@@ -101,8 +101,11 @@ def design_result(run, design, docs, name=None):
     stats, hist = rtd(residence, t0)
     keep = docs / (name or f"design{design}")
     keep.mkdir(parents=True, exist_ok=True)
-    for name in ["series.csv", "layers.csv", "residence.csv", "summary.json"]:
-        shutil.copyfile(run / name, keep / name)
+    for file in ["series.csv", "layers.csv", "residence.csv", "summary.json"]:
+        shutil.copyfile(run / file, keep / file)
+    draw(run / "final_state.csv", docs / f"{name or f'design{design}'}_state.png",
+         f"{name or f'design {design}'} at {float(series['time'][-1]):.0f} s (side view: every grain; "
+         "below: slices one carrier diameter thick)")
     return {
         "design": design,
         "blade_lengths_m": list(geometry.DESIGNS[design]),
@@ -310,10 +313,15 @@ def table(args):
 
 
 def picture(args):
+    draw(args.state, args.out, args.title)
+    print("wrote", args.out)
+
+
+def draw(state, out, title=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    s = read_csv(args.state)
+    s = read_csv(state)
     key = s["type"] == 2  # the scenes' second species, the key component
     fig = plt.figure(figsize=(10, 5.6))
     side = fig.add_axes([0.05, 0.5, 0.9, 0.42])
@@ -322,7 +330,7 @@ def picture(args):
         return (s["diameter"] / span_m * ax_width_in * 72.0) ** 2 * 0.8
 
     for sel, colour, label in [(~key, "#C8A040", "carrier (millet)"), (key, "#303090", "key (rapeseed)")]:
-        side.scatter(s["x"][sel], s["y"][sel], s=area(9.0, geometry.LENGTH + 0.02)[sel], c=colour, label=label,
+        side.scatter(s["x"][sel], s["y"][sel], s=area(6.1, geometry.LENGTH + 0.02)[sel], c=colour, label=label,
                      lw=0, alpha=0.6)
     for x in geometry.STAGES:
         side.axvline(x, color="grey", lw=0.8, ls="--")
@@ -332,8 +340,8 @@ def picture(args):
     side.set_ylim(-geometry.RADIUS, geometry.RADIUS)
     side.set_aspect("equal")
     side.set_xlabel("x (m)")
-    side.set_title(args.title or "side view", fontsize=9)
-    side.legend(fontsize=7, loc="upper right")
+    side.set_title(title or "side view", fontsize=9)
+    side.legend(fontsize=7, loc="upper right", markerscale=0.3)
     for i, x in enumerate([0.13, 0.25, 0.37]):
         ax = fig.add_axes([0.05 + 0.31 * i, 0.02, 0.28, 0.36])
         near_x = np.abs(s["x"] - x) <= 0.5 * geometry.CARRIER[1]
@@ -346,8 +354,8 @@ def picture(args):
         ax.set_xticks([])
         ax.set_yticks([])
         ax.set_title(f"cross-section at x = {x} m", fontsize=8)
-    fig.savefig(args.out, dpi=110)
-    print("wrote", args.out)
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
 
 
 def main():
