@@ -3,6 +3,7 @@
 // atomically at start and end, exit code 3 and status "failed" when a stability detector stops the run.
 // No VTK frames and no checkpoints yet: the scene loader refuses the keys that ask for them, and
 // --resume is refused here.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>

@@ -1,5 +1,6 @@
 #include "systems/setup/coupled_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
