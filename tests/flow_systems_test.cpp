@@ -169,6 +169,7 @@ TEST_CASE("flow: feed and outlet tables with a problem are refused naming the ke
   CHECK_THAT(error(with("a = 0.5, b = 0.5", "a = 0.5, c = 0.5")), Contains("no species is named 'c'"));
   CHECK_THAT(error(with("interval = 0.01", "interval = 1e-6")), Contains("shorter than the time step"));
   CHECK_THAT(error(with("mass_rate = 0.01", "mass_rate = -1")), Contains("mass_rate"));
+  CHECK_THAT(error(with("mass_rate = 0.01", "mass_rate = 5000")), Contains("at most 1,000,000 grains"));
   CHECK_THAT(error(with("interval = 0.01", "interval = 0.01\nstart = 0.5\nstop = 0.2")),
              Contains("stops before it starts"));
   // Without a feed, a scene still needs grains from a fill.

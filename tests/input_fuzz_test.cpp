@@ -13,7 +13,8 @@ TEST_CASE("1,000 mutated inputs: no crash, bounded time and memory, every refusa
   s.inputs = 1000;
   s.scenes = {"tests/sphere_on_plane.toml", "tests/two_sphere_collision.toml", "tests/sphere_in_drum.toml",
               "tests/elastic_box.toml",     "drum_quick.toml",                 "bench/settled_layer.toml",
-              "liquid/hydrostatic_2d.toml", "liquid/dam_break_2d.toml",        "liquid/poiseuille_2d.toml"};
+              "liquid/hydrostatic_2d.toml", "liquid/dam_break_2d.toml",        "liquid/poiseuille_2d.toml",
+              "mixer_seed004_design1.toml", "liquid/settling_grain.toml"};
   s.checkpoints = {"tests/sphere_in_drum.toml"};
   gf::fuzz::Fuzzer f(s);
   const gf::fuzz::Report r = f.run();

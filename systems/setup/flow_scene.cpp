@@ -37,6 +37,13 @@ FeedSpec read_feed(const DemScene& s, const SceneNode& f, std::size_t index) {
   spec.stop = f.get_double("stop", std::numeric_limits<double>::infinity(), Range::positive());
   if (!(spec.stop > spec.start)) f.fail("stop", "the feed stops before it starts", "give stop > start");
   spec.interval = read_interval(f, s);
+  // One event places its grains one by one; a debt of millions per event is a typo, not a feed.
+  double per_event = 0.0;
+  for (const FeedSpecies& sp : spec.species) per_event += spec.mass_rate * sp.fraction * spec.interval / sp.mass;
+  if (per_event > 1e6)
+    f.fail("mass_rate",
+           "each feed event would place " + short_number(per_event) + " grains (mass_rate x interval / grain mass)",
+           "lower mass_rate or interval so that an event places at most 1,000,000 grains");
   spec.seed = static_cast<std::uint64_t>(
       f.get_int("seed", static_cast<std::int64_t>(s.seed) + 1000 + static_cast<std::int64_t>(index), 0,
                 std::numeric_limits<std::int64_t>::max()));
