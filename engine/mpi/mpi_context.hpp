@@ -7,6 +7,14 @@
 // without mpirun.
 #pragma once
 
+// The C API only: without these, mpi.h in C++ also declares the removed C++ bindings, whose
+// symbols live in a library not linked here.
+#ifndef OMPI_SKIP_MPICXX
+#define OMPI_SKIP_MPICXX 1
+#endif
+#ifndef MPICH_SKIP_MPICXX
+#define MPICH_SKIP_MPICXX 1
+#endif
 #include <mpi.h>
 
 #include <cstddef>
