@@ -45,3 +45,62 @@ inline bool same_row(Grains& g, std::size_t a, Grains& ref, std::size_t b) {
 }
 
 }  // namespace gf::test
+
+#include <random>
+#include <vector>
+
+#include "systems/decomposition/rcb.hpp"
+
+namespace gf::test {
+
+// A block of nx x ny x nz grains of 1 mm on a jittered lattice 0.95 mm apart (neighbours overlap),
+// with velocities and spins; everything a function of the seed, so every rank builds the same.
+struct Lattice {
+  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz;
+  double radius = 0.5e-3;  // m
+  DomainBox box;
+  std::size_t size() const { return x.size(); }
+};
+
+inline Lattice make_lattice(int nx, int ny, int nz, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> jitter(-2e-5, 2e-5), v(-0.05, 0.05), w(-20.0, 20.0);
+  Lattice l;
+  const double a = 0.95e-3;
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j)
+      for (int k = 0; k < nz; ++k) {
+        l.x.push_back(a * (i + 1) + jitter(rng));
+        l.y.push_back(a * (j + 1) + jitter(rng));
+        l.z.push_back(a * (k + 1) + jitter(rng));
+        for (auto* c : {&l.vx, &l.vy, &l.vz}) c->push_back(v(rng));
+        for (auto* c : {&l.wx, &l.wy, &l.wz}) c->push_back(w(rng));
+      }
+  l.box = {{0.0, 0.0, 0.0}, {a * (nx + 1), a * (ny + 1), a * (nz + 1)}};
+  return l;
+}
+
+// The lattice's grains whose owner is `rank` (all of them for rank -1), as owned rows with id = index.
+inline Grains lattice_grains(const Lattice& l, const Rcb& rcb, int rank) {
+  Grains g;
+  std::vector<std::size_t> mine;
+  for (std::size_t k = 0; k < l.size(); ++k)
+    if (rank < 0 || rcb.owner_of({l.x[k], l.y[k], l.z[k]}) == rank) mine.push_back(k);
+  g.resize(mine.size());
+  const double m = 2500.0 * 4.0 / 3.0 * 3.141592653589793 * l.radius * l.radius * l.radius;
+  for (std::size_t r = 0; r < mine.size(); ++r) {
+    const std::size_t k = mine[r];
+    g.pos.x[r] = l.x[k], g.pos.y[r] = l.y[k], g.pos.z[r] = l.z[k];
+    g.vel.x[r] = l.vx[k], g.vel.y[r] = l.vy[k], g.vel.z[r] = l.vz[k];
+    g.omega.x[r] = l.wx[k], g.omega.y[r] = l.wy[k], g.omega.z[r] = l.wz[k];
+    g.radius.r[r] = l.radius;
+    g.mass.m[r] = m, g.mass.inv_m[r] = 1.0 / m, g.mass.inv_inertia[r] = 1.0 / (0.4 * m * l.radius * l.radius);
+    g.species.type[r] = 0;
+    g.pid.id[r] = static_cast<std::int64_t>(k);
+  }
+  return g;
+}
+
+inline Rcb lattice_split(const Lattice& l, int ranks) { return Rcb(l.box, l.x, l.y, l.z, {}, ranks); }
+
+}  // namespace gf::test
