@@ -1,0 +1,114 @@
+// Forces across the cut: a block of touching grains split between two ranks (ghost rows from the
+// lower rank only, so each pair across the cut is evaluated once, on the upper rank, and its
+// partner side is folded back to the owner) gets the forces and torques of the same block on one
+// rank, to rounding.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+#include "systems/contact/linear_spring_dashpot.hpp"
+#include "systems/contact/pair_contact.hpp"
+#include "systems/decomposition/mpi/domain_ghosts.hpp"
+#include "tests/mpi/mpi_test_support.hpp"
+
+namespace {
+
+using Law = gf::LinearSpringDashpot;
+constexpr double kSkin = 1.5e-4;  // m
+constexpr double kDt = 1e-5;      // s
+
+gf::ContactTable seed000_table(const gf::test::Lattice& l) {
+  gf::ContactBody<Law::Material> body;
+  body.radius = l.radius;
+  body.mass = 2500.0 * 4.0 / 3.0 * 3.141592653589793 * std::pow(l.radius, 3);
+  body.inertia = 0.4 * body.mass * l.radius * l.radius;
+  const Law::Params p{1000.0, 600.0, 1e-5, 0.3, 0.3, 0.3, 0.3, 5e-5};
+  return gf::make_contact_table<Law>({body}, {"small"}, {p}, {p});
+}
+
+// Every pair (owned row i, row j > i) within r_i + r_j + skin, by owner row then partner row.
+gf::NeighborList all_pairs(const gf::Grains& g) {
+  gf::NeighborList list;
+  list.offsets.assign(g.n_owned + 1, 0);
+  for (std::size_t i = 0; i < g.n_owned; ++i) {
+    for (std::size_t j = i + 1; j < g.n; ++j) {
+      const double dx = g.pos.x[i] - g.pos.x[j], dy = g.pos.y[i] - g.pos.y[j], dz = g.pos.z[i] - g.pos.z[j];
+      const double reach = g.radius.r[i] + g.radius.r[j] + kSkin;
+      if (dx * dx + dy * dy + dz * dz > reach * reach) continue;
+      list.i.push_back(static_cast<std::uint32_t>(i));
+      list.j.push_back(static_cast<std::uint32_t>(j));
+      list.key.push_back(gf::pair_key(g.pid.id[i], g.pid.id[j]));
+    }
+    list.offsets[i + 1] = static_cast<std::uint32_t>(list.i.size());
+  }
+  list.i_lane.assign(list.pairs(), 0);
+  list.j_lane.assign(list.pairs(), 0);
+  list.type_pair.assign(list.pairs(), 0);
+  for (std::size_t k = 0; k < list.pairs(); ++k) {
+    list.i_lane[k] = static_cast<std::int32_t>(list.i[k]);
+    list.j_lane[k] = static_cast<std::int32_t>(list.j[k]);
+  }
+  return list;
+}
+
+// Evaluates the pair forces of g's list once, from fresh springs.
+void pair_forces(gf::Grains& g, const gf::ContactTable& table) {
+  const gf::NeighborList list = all_pairs(g);
+  gf::PairHistory history;
+  gf::set_layout(history, Law::history());
+  history.slot.assign(list.pairs(), -1);
+  gf::PairForces out;
+  gf::compute_pair_forces<Law>(g, list, history, table, kDt, out);
+}
+
+}  // namespace
+
+TEST_CASE("forces on grains split across two ranks equal the one-rank forces to rounding", "[mpi][ghosts]") {
+  const gf::MpiContext& mpi = gf::test::test_world();
+  REQUIRE(mpi.size() == 2);
+  const gf::test::Lattice l = gf::test::make_lattice(12, 5, 5, 5);
+  const gf::Rcb rcb = gf::test::lattice_split(l, 2);
+  const gf::ContactTable table = seed000_table(l);
+  gf::Grains one = gf::test::lattice_grains(l, rcb, -1);  // the whole block, row k = id k
+  pair_forces(one, table);
+  gf::Grains g = gf::test::lattice_grains(l, rcb, mpi.rank());
+  gf::DomainGhosts gh;
+  gf::make_domain_ghosts(g, rcb, 2.0 * l.radius + kSkin, mpi, gh, gf::GhostShell::half);
+  pair_forces(g, table);
+  gf::fold_domain_ghost_forces(g, gh, mpi);
+
+  double fmax = 0.0, tmax = 0.0;
+  for (std::size_t k = 0; k < one.n_owned; ++k)
+    for (int d = 0; d < 3; ++d) {
+      fmax = std::max(fmax, std::abs((d == 0 ? one.force.x : d == 1 ? one.force.y : one.force.z)[k]));
+      tmax = std::max(tmax, std::abs((d == 0 ? one.torque.x : d == 1 ? one.torque.y : one.torque.z)[k]));
+    }
+  REQUIRE(fmax > 0.0);
+  REQUIRE(tmax > 0.0);
+  double worst_f = 0.0, worst_t = 0.0;
+  std::int64_t identical = 0, boundary = 0;
+  const std::int64_t ghosts_here = static_cast<std::int64_t>(gh.size());
+  for (std::size_t r = 0; r < g.n_owned; ++r) {
+    const auto k = static_cast<std::size_t>(g.pid.id[r]);
+    const double f[6] = {g.force.x[r], g.force.y[r], g.force.z[r], g.torque.x[r], g.torque.y[r], g.torque.z[r]};
+    const double e[6] = {one.force.x[k], one.force.y[k], one.force.z[k], one.torque.x[k], one.torque.y[k], one.torque.z[k]};
+    bool same = true;
+    for (int c = 0; c < 6; ++c) {
+      (c < 3 ? worst_f : worst_t) = std::max(c < 3 ? worst_f : worst_t, std::abs(f[c] - e[c]) / (c < 3 ? fmax : tmax));
+      same = same && f[c] == e[c];
+    }
+    identical += same;
+    boundary += rcb.box(1 - mpi.rank()).distance({g.pos.x[r], g.pos.y[r], g.pos.z[r]}) <= 2.0 * l.radius + kSkin;
+  }
+  CHECK(worst_f <= 1e-12);
+  CHECK(worst_t <= 1e-12);
+  CHECK(mpi.sum(ghosts_here) > 0);
+  const double worst = mpi.max(std::max(worst_f, worst_t));
+  const std::int64_t same_all = mpi.sum(identical), boundary_all = mpi.sum(boundary);
+  if (mpi.rank() == 0)
+    std::cout << "grains " << l.size() << ", at the cut " << boundary_all << ", bit-identical to one rank "
+              << same_all << ", largest difference " << worst << " of the largest component\n";
+}
