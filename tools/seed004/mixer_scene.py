@@ -13,12 +13,12 @@ the housing, the speed, the feed rate or where the stages and partitions sit; wh
             to the housing and reaching 60 mm in from it; blades alternately inclined -60 and +30
             degrees to the cross section (the seed's alpha1 and alpha2, "bent in opposite directions"; the
             signs that carry the bed towards the outlet, see ALPHA)
-  partitions annular, inner radius 0.07 m, at x = 0.16, 0.28, 0.40 m; end ring at x = 0.5 m with a
-            0.065 m hole (the outlet); the inlet end is a closed disc (the nozzle is not modelled:
-            the feed places grains just inside it). A ring of hole radius r dams the bed up to
-            y = -r: a bed of fill factor 0.21 has its surface at y = -0.036 m, so these holes let
-            the seed's fill pass with a small axial gradient (holes of 0.05 and 0.045 m held twice
-            that fill in a trial: over 900 particles after 95 s, none out yet)
+  partitions annular, inner radius 0.085 m, at x = 0.16, 0.28, 0.40 m; end ring at x = 0.5 m with
+            a 0.08 m hole (the outlet); the inlet end is a closed disc (the nozzle is not modelled:
+            the feed places grains just inside it). The holes set the hold-up: chosen so that design
+            1 holds the seed's N = 480 (480-506 particles from 100 to 160 s in a trial); holes of
+            0.07 and 0.065 m held 887-1,014, those of 0.05 and 0.045 m over 900 after 95 s with none
+            out yet
   particles carrier (millet) 22.0 mm, 1400 kg/m^3; key (rapeseed) 17.1 mm (0.778), 1100 kg/m^3
             (0.786); about 480 of them make a fill factor of 0.21 at a solid fraction of 0.59
   feed      0.05 kg/s, key mass fraction 0.279 (its volume fraction 0.33), every 0.5 s into
@@ -43,7 +43,7 @@ import pathlib
 RADIUS, LENGTH, OMEGA = 0.1, 0.5, 3.13
 STAGES = [0.10, 0.22, 0.34]
 PARTITIONS = [0.16, 0.28, 0.40]
-PARTITION_HOLE, OUTLET_HOLE = 0.07, 0.065
+PARTITION_HOLE, OUTLET_HOLE = 0.085, 0.08
 # Blades alternately at -60 and +30 degrees to the cross section (the seed's alpha1, alpha2, bent in
 # opposite directions); with the housing turning at +omega about +x this pair carries the bed towards
 # the outlet: in 80 s trials from empty, the first grain left at 49 s, and at 79 s with the signs
