@@ -25,7 +25,8 @@ namespace gf {
 
 class MpiContext {
  public:
-  // Initialises MPI unless it already is (then this context only borrows MPI_COMM_WORLD).
+  // Initialises MPI unless it already is (then this context only borrows MPI_COMM_WORLD). Sets
+  // MPI_COMM_WORLD's errors to return codes, which the helpers throw as std::runtime_error.
   MpiContext(int* argc, char*** argv);
   // Finalises MPI if this context initialised it.
   ~MpiContext();

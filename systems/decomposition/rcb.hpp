@@ -6,8 +6,10 @@
 // the next row; a row on a cut belongs to the upper side, so the boxes are half-open and tile the
 // box without gaps or overlaps. The cut is the prefix of rows (sorted by coordinate, ties by row)
 // whose weight is nearest the target, so each cut misses its target by at most half the heaviest
-// row's weight, and a rank's weight misses W / P by less than one row's weight for P up to 8. The
-// result depends on the points and weights alone: every rank computing it gets the same boxes.
+// row's weight, and a rank's weight misses W / P by less than one row's weight for P up to 8 (rows
+// that share the coordinate of a cut all go to the upper side, so a cut through many equal
+// coordinates may miss by their weight instead). The result depends on the points and weights
+// alone: every rank computing it gets the same boxes.
 //
 // Why not Zoltan (libtrilinos-zoltan-dev): its RCB is the same algorithm behind a dependency of
 // its own (Trilinos' build, its parameter strings, its MPI-parallel median search). The split here
