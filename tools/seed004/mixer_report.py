@@ -351,7 +351,7 @@ def draw(state, out, title=None):
     side.set_xlabel("x (m)")
     side.set_title(title or "side view", fontsize=9)
     side.legend(fontsize=7, loc="upper right", markerscale=0.3)
-    for i, x in enumerate([0.13, 0.25, 0.37]):
+    for i, x in enumerate([0.13, 0.25, 0.45]):
         ax = fig.add_axes([0.05 + 0.31 * i, 0.02, 0.28, 0.36])
         near_x = np.abs(s["x"] - x) <= 0.5 * geometry.CARRIER[1]
         for sel, colour in [(~key & near_x, "#C8A040"), (key & near_x, "#303090")]:
