@@ -348,27 +348,6 @@ void transform_soup(TriangleSoup& soup, double scale, const Vec3d& translate) {
 
 // ---- Geometry -----------------------------------------------------------------------------------------
 
-ClosestPoint closest_point_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  const Vec3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return {a, Feature::Vertex0};
-  const Vec3d bp = p - b;
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0.0 && d4 <= d3) return {b, Feature::Vertex1};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return {a + (d1 / (d1 - d3)) * ab, Feature::Edge0};
-  const Vec3d cp = p - c;
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0.0 && d5 <= d6) return {c, Feature::Vertex2};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return {a + (d2 / (d2 - d6)) * ac, Feature::Edge2};
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
-    return {b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b), Feature::Edge1};
-  const double denom = 1.0 / (va + vb + vc);
-  return {a + (vb * denom) * ab + (vc * denom) * ac, Feature::Face};
-}
-
 TriangleMesh build_mesh(const TriangleSoup& soup) {
   TriangleMesh m;
   m.name = soup.name;
