@@ -114,6 +114,13 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
 }
 
 void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHistory& history, PeriodicImages& im) {
+  rebuild_neighbors(g, s, list, history, im, GhostRowMaker{});
+}
+
+void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHistory& history, PeriodicImages& im,
+                       const GhostRowMaker& add_ghosts) {
+  if (add_ghosts && (im.box.any() || history.size() != 0))
+    throw std::logic_error("rebuild_neighbors: ghost rows from elsewhere need no periodic faces and an empty history");
   // Ghost rows other than periodic images would be another domain's, which this search does not place.
   if (g.n - g.n_owned != im.size())
     throw std::logic_error("rebuild_neighbors: the table has ghost rows, which the neighbour search does not place");
@@ -161,6 +168,7 @@ void rebuild_neighbors(Grains& g, BroadphaseState& s, NeighborList& list, PairHi
   double rmax = 0.0;
   for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, g.radius.r[i]);
   make_images(g, im, 2.0 * rmax + search);
+  if (add_ghosts) add_ghosts(g);
 
   // Candidate pairs: count per row, prefix, fill. Each row owns pairs with higher rows only.
   const std::size_t nown = g.n_owned;

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "engine/grains.hpp"
@@ -47,6 +48,13 @@ void rebuild_neighbors(Grains& g, BroadphaseState& state, NeighborList& list, Pa
 // (periodic_images.hpp) and listed with the owned rows they touch.
 void rebuild_neighbors(Grains& g, BroadphaseState& state, NeighborList& list, PairHistory& history,
                        PeriodicImages& images);
+// The same with ghost rows made elsewhere (a domain decomposition's copies of other ranks' grains):
+// once the owned rows are sorted, `add_ghosts` appends them as ghost rows, and the search lists each
+// with the owned rows within reach, as it does periodic images. It is not combined with periodic
+// faces, and the history must hold no springs on entry (the caller carries them by pair key).
+using GhostRowMaker = std::function<void(Grains&)>;
+void rebuild_neighbors(Grains& g, BroadphaseState& state, NeighborList& list, PairHistory& history,
+                       PeriodicImages& images, const GhostRowMaker& add_ghosts);
 // True when the list must be rebuilt whatever the positions: none built yet, a rebuild forced, or
 // rows queued for insertion or removal.
 bool list_invalid(const Grains& g, const BroadphaseState& state);

@@ -5,7 +5,8 @@
 // Each rank keeps its remaining rows in their order and appends the arrivals after them, by sending
 // rank, in the sender's row order: the result depends on the positions alone. Ghost rows are
 // dropped (the ghost exchange refills them). Called at a neighbour rebuild, where rows may move.
-// The pair springs (PairHistory) are not carried yet: a moved grain's pair contacts restart.
+// The pair springs (PairHistory) are not rows: migrate_rows leaves them, and RankSimulation
+// (rank_simulation.hpp) sends each to the rank that evaluates its pair next, by pair key.
 #pragma once
 
 #include <cstddef>

@@ -1,0 +1,250 @@
+#include "systems/decomposition/mpi/rank_simulation.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <unordered_map>
+
+#include "engine/run_loop.hpp"
+#include "systems/bodies/body_contact.hpp"
+#include "systems/broadphase/broadphase.hpp"
+#include "systems/contact/laws.hpp"
+#include "systems/contact/pair_contact.hpp"
+#include "systems/decomposition/mpi/migration.hpp"
+#include "systems/decomposition/row_bytes.hpp"
+#include "systems/integrate/integrate.hpp"
+#include "systems/walls/mesh_wall_contact.hpp"
+#include "systems/walls/wall_contact.hpp"
+#include "systems/walls/walls.hpp"
+
+namespace gf {
+
+namespace {
+
+std::array<double, 3> position(const Grains& g, std::size_t row) { return {g.pos.x[row], g.pos.y[row], g.pos.z[row]}; }
+
+// The grains' bounding box widened by a thousand times its largest side on every side.
+DomainBox padded_bounds(const Grains& g) {
+  DomainBox b;
+  b.lo = {0.0, 0.0, 0.0};
+  b.hi = {1.0, 1.0, 1.0};
+  if (g.n_owned > 0) b.lo = b.hi = position(g, 0);
+  for (std::size_t i = 0; i < g.n_owned; ++i)
+    for (int d = 0; d < 3; ++d) {
+      const double x = position(g, i)[static_cast<std::size_t>(d)];
+      b.lo[static_cast<std::size_t>(d)] = std::min(b.lo[static_cast<std::size_t>(d)], x);
+      b.hi[static_cast<std::size_t>(d)] = std::max(b.hi[static_cast<std::size_t>(d)], x);
+    }
+  double side = 0.0;
+  for (std::size_t d = 0; d < 3; ++d) side = std::max(side, b.hi[d] - b.lo[d]);
+  const double pad = 1000.0 * std::max(side, 1e-3);
+  for (std::size_t d = 0; d < 3; ++d) b.lo[d] -= pad, b.hi[d] += pad;
+  return b;
+}
+
+// A spring in flight between ranks: its pair's ids (the first is the grain whose view the values
+// are in) and the law's history values.
+struct SpringRecord {
+  std::int64_t own = 0, other = 0;
+  std::array<double, kMaxHistory> value{};
+};
+
+void put(std::vector<std::byte>& out, const void* p, std::size_t n) {
+  const auto* b = static_cast<const std::byte*>(p);
+  out.insert(out.end(), b, b + n);
+}
+
+}  // namespace
+
+RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mpi) {
+  if (scene.bodies) throw std::invalid_argument("a scene of composite bodies does not run on several ranks yet");
+  if (!scene.flow.feeds.empty() || !scene.flow.outlets.empty())
+    throw std::invalid_argument("a scene with feeds or outlets does not run on several ranks yet");
+  if (scene.periodic.any()) throw std::invalid_argument("a scene with periodic faces does not run on several ranks yet");
+  sim_ = std::make_unique<DemSimulation>(std::move(scene));
+  World& w = sim_->world();
+  Grains& g = w.grains;
+  const DemScene& s = sim_->scene();
+
+  // Every rank placed the same grains: the same boxes everywhere, then this rank's rows kept.
+  const DomainBox domain = padded_bounds(g);
+  rcb_ = std::make_unique<Rcb>(domain, g.pos.x.span().first(g.n_owned), g.pos.y.span().first(g.n_owned),
+                               g.pos.z.span().first(g.n_owned), std::span<const double>{}, mpi.size());
+  std::vector<std::uint32_t> keep;
+  for (std::size_t i = 0; i < g.n_owned; ++i)
+    if (rcb_->owner_of(position(g, i)) == mpi.rank()) keep.push_back(static_cast<std::uint32_t>(i));
+  keep_and_append(g, keep, {});
+
+  double rmax = 0.0;
+  for (const SpeciesSpec& sp : s.species) rmax = std::max(rmax, 0.5 * sp.diameter);
+  const BroadphaseState& bs = w.resources.get<BroadphaseState>();
+  reach_ = 2.0 * rmax + bs.skin + bs.reach;
+
+  drift_ = std::make_unique<Schedule>();
+  contacts_ = std::make_unique<Schedule>();
+  kick_ = std::make_unique<Schedule>();
+  drift_->emplace<IntegratePositions>(dem_force_terms(s));
+  const bool known = with_law(s.law, [&]<class Law>() {
+    contacts_->emplace<PairContact<Law>>();
+    if (!s.walls.empty()) contacts_->emplace<WallContact<Law>>();
+    if (!s.mesh_walls.list.empty()) contacts_->emplace<MeshWallContact<Law>>();
+  });
+  if (!known) throw std::invalid_argument("no contact law is named '" + s.law + "'");
+  kick_->emplace<IntegrateVelocities>(dem_force_terms(s));
+  drift_->build(w);
+  contacts_->build(w);
+  kick_->build(w);
+}
+
+RankSimulation RankSimulation::from_text(std::string_view toml, const MpiContext& mpi,
+                                         const std::vector<std::string>& overrides) {
+  return RankSimulation(load_dem_scene(SceneDoc::parse(toml, "scene.toml", overrides)), mpi);
+}
+
+RankSimulation RankSimulation::from_file(const std::filesystem::path& file, const MpiContext& mpi,
+                                         const std::vector<std::string>& overrides) {
+  return RankSimulation(load_dem_scene(SceneDoc::load(file, overrides)), mpi);
+}
+
+RankSimulation::RankSimulation(RankSimulation&&) noexcept = default;
+RankSimulation::~RankSimulation() = default;
+
+void RankSimulation::rebuild() {
+  World& w = sim_->world();
+  Grains& g = w.grains;
+  NeighborList& list = w.resources.get<NeighborList>();
+  PairHistory& history = w.resources.get<PairHistory>();
+  const MpiContext& mpi = *mpi_;
+  const auto ranks = static_cast<std::size_t>(mpi.size());
+
+  for (std::size_t i = 0; i < g.n_owned; ++i)
+    if (!rcb_->box(rcb_->owner_of(position(g, i))).contains(position(g, i)))
+      throw StabilityError("grain " + std::to_string(g.pid.id[i]) +
+                           " left the domain the ranks' boxes tile (the grains' starting bounds widened a "
+                           "thousandfold): the run blew up or a grain escaped the walls");
+
+  // Each spring to the rank that evaluates its pair after the migration: the higher owner.
+  const std::size_t width = history.width;
+  std::vector<std::vector<std::byte>> out(ranks);
+  if (listed_)
+    for (std::size_t e = 0; e < history.size(); ++e) {
+      const auto k = static_cast<std::size_t>(history.pair[e]);
+      const std::uint32_t i = list.i[k], j = list.j[k];
+      const int to = std::max(rcb_->owner_of(position(g, i)), rcb_->owner_of(position(g, j)));
+      std::vector<std::byte>& o = out[static_cast<std::size_t>(to)];
+      put(o, &g.pid.id[i], sizeof(std::int64_t));
+      put(o, &g.pid.id[j], sizeof(std::int64_t));
+      for (std::size_t c = 0; c < width; ++c) put(o, &history.value[c][e], sizeof(double));
+    }
+  const std::vector<std::vector<std::byte>> in = mpi.exchange(out);
+  const std::size_t record = 2 * sizeof(std::int64_t) + width * sizeof(double);
+  std::vector<SpringRecord> springs;
+  for (const auto& bytes : in) {
+    if (bytes.size() % record != 0) throw std::runtime_error("a spring message is not whole springs");
+    for (std::size_t at = 0; at < bytes.size(); at += record) {
+      SpringRecord r;
+      std::memcpy(&r.own, bytes.data() + at, sizeof(std::int64_t));
+      std::memcpy(&r.other, bytes.data() + at + sizeof(std::int64_t), sizeof(std::int64_t));
+      for (std::size_t c = 0; c < width; ++c)
+        std::memcpy(&r.value[c], bytes.data() + at + 2 * sizeof(std::int64_t) + c * sizeof(double), sizeof(double));
+      springs.push_back(r);
+    }
+  }
+
+  // The rows to their owners, then the sorted owned rows, the ghost rows and the list.
+  const MigrationCount moved = migrate_rows(g, row_owners(g, *rcb_), mpi);
+  counters_.migrated += static_cast<std::int64_t>(moved.sent);
+  history.clear();
+  PeriodicImages none;
+  rebuild_neighbors(g, w.resources.get<BroadphaseState>(), list, history, none, [&](Grains& rows) {
+    make_domain_ghosts(rows, *rcb_, reach_, mpi, ghosts_, GhostShell::half);
+  });
+  counters_.ghosts = static_cast<std::int64_t>(ghosts_.size());
+  ++counters_.rebuilds;
+  listed_ = true;
+
+  // The springs attached to their pairs in the new list, turned to its owner's view.
+  std::unordered_map<std::uint64_t, std::size_t> by_key;
+  by_key.reserve(springs.size());
+  for (std::size_t f = 0; f < springs.size(); ++f) by_key.emplace(pair_key(springs[f].own, springs[f].other), f);
+  const std::size_t np = list.pairs();
+  std::vector<std::pair<std::size_t, std::size_t>> found;  // (list pair, spring)
+  for (std::size_t k = 0; k < np && !by_key.empty(); ++k) {
+    const auto it = by_key.find(list.key[k]);
+    if (it != by_key.end()) found.emplace_back(k, it->second);
+  }
+  history.resize(found.size());
+  history.slot.assign(np, -1);
+  for (std::size_t e = 0; e < found.size(); ++e) {
+    const auto [k, f] = found[e];
+    const double sign = g.pid.id[list.i[k]] == springs[f].own ? 1.0 : history.exchange_sign;
+    history.pair[e] = static_cast<std::int32_t>(k);
+    history.slot[k] = static_cast<std::int32_t>(e);
+    for (std::size_t c = 0; c < width; ++c) history.value[c][e] = sign * springs[f].value[c];
+  }
+}
+
+void RankSimulation::step_once(const StepContext& c) {
+  Grains& g = sim_->grains();
+  drift_->run_step(c);
+  if (listed_) refresh_domain_ghosts(g, ghosts_, *mpi_);
+  const bool mine = !listed_ || needs_rebuild(g, sim_->world().resources.get<BroadphaseState>());
+  if (mpi_->max(mine ? 1.0 : 0.0) > 0.0) rebuild();
+  contacts_->run_step(c);
+  fold_domain_ghost_forces(g, ghosts_, *mpi_);
+  kick_->run_step(c);
+}
+
+void RankSimulation::prime() {
+  World& w = sim_->world();
+  StepContext now = next_step(w.clock);
+  now.prime = true;
+  step_once(now);
+  primed_ = true;
+  // As DemSimulation::prime: the springs of a new state start from zero.
+  w.resources.get<PairHistory>().clear();
+  for_each_column(w.grains.extras.get<WallHistory>(), [](auto& col) {
+    std::fill(col.begin(), col.end(), typename std::decay_t<decltype(col)>::value_type{});
+  });
+}
+
+void RankSimulation::advance(std::int64_t n) {
+  if (!primed_) prime();
+  Clock& clock = sim_->world().clock;
+  if (clock.step == 0) clock.t0 = clock.t;
+  for (std::int64_t k = 0; k < n; ++k) {
+    step_once(next_step(clock));
+    ++clock.step;
+    clock.t = clock.t0 + static_cast<double>(clock.step) * clock.dt;
+  }
+}
+
+std::int64_t RankSimulation::total_grains() { return mpi_->sum(static_cast<std::int64_t>(grains().n_owned)); }
+
+double RankSimulation::total_kinetic_energy() {
+  const Grains& g = grains();
+  double e = 0.0;
+  for (std::size_t i = 0; i < g.n_owned; ++i) {
+    const double m = g.mass.m[i];
+    e += 0.5 * m * (g.vel.x[i] * g.vel.x[i] + g.vel.y[i] * g.vel.y[i] + g.vel.z[i] * g.vel.z[i]);
+    if (g.spin && g.mass.inv_inertia[i] > 0.0)
+      e += 0.5 / g.mass.inv_inertia[i] *
+           (g.omega.x[i] * g.omega.x[i] + g.omega.y[i] * g.omega.y[i] + g.omega.z[i] * g.omega.z[i]);
+  }
+  return mpi_->sum(e);
+}
+
+std::array<double, 3> RankSimulation::total_momentum() {
+  const Grains& g = grains();
+  std::array<double, 3> p{};
+  for (std::size_t i = 0; i < g.n_owned; ++i) {
+    p[0] += g.mass.m[i] * g.vel.x[i];
+    p[1] += g.mass.m[i] * g.vel.y[i];
+    p[2] += g.mass.m[i] * g.vel.z[i];
+  }
+  return {mpi_->sum(p[0]), mpi_->sum(p[1]), mpi_->sum(p[2])};
+}
+
+}  // namespace gf

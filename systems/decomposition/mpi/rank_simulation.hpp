@@ -1,0 +1,94 @@
+// A DEM scene stepped on several ranks: each rank holds the grains of its box of a recursive
+// coordinate bisection and copies (ghost rows) of its lower-numbered neighbours' grains near it.
+//
+// Every rank loads the scene and places the same grains; the boxes are cut from those starting
+// positions (rcb.hpp, every grain weighing 1) and stay fixed for the run, and each rank keeps the
+// grains in its box. The domain the boxes tile is the grains' bounding box widened by a thousand
+// times its largest side on every side (the same margin on every axis keeps the cuts' order); a
+// grain that leaves it stops the run.
+//
+// One step, on the thread that made the MpiContext (the oneTBB graphs run inside each phase):
+//   1. the opening half-kick and drift of the owned rows (IntegratePositions);
+//   2. the ghost rows refreshed from their owners (position, velocity, spin); then, when any rank
+//      sees a row past half the skin (or no list yet), every rank rebuilds: the rows whose centre
+//      left the rank's box migrate to their new owner (migration.hpp), the owned rows are sorted,
+//      the ghost rows are made (domain_ghosts.hpp, half shell: rows of lower ranks within the
+//      largest diameter + skin + the law's reach of the box) and appended before the neighbour
+//      search, which lists them with the owned rows as it lists periodic images;
+//   3. pair, plane-wall and mesh-wall contacts (walls act on owned rows only);
+//   4. the partner-side pair forces left on the ghost rows folded back to their owners;
+//   5. the closing half-kick (IntegrateVelocities).
+// A pair across ranks is evaluated once, on the higher rank. Pair springs (PairHistory) are carried
+// across rebuilds and migrations by pair key: before migrating, every spring is sent to the rank that
+// will evaluate its pair (the higher of its grains' new owners) and attached there to the new list.
+//
+// The list-cover check that may keep a list past half the skin is not made here (its answer would
+// have to agree on every rank): a rank rebuilds whenever the half-skin screen trips anywhere.
+// Not supported yet (refused at construction): composite bodies, feeds and outlets (rows appear or
+// leave), periodic faces (images and domain ghosts do not share the table yet).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "engine/mpi/mpi_context.hpp"
+#include "engine/schedule.hpp"
+#include "systems/decomposition/mpi/domain_ghosts.hpp"
+#include "systems/decomposition/rcb.hpp"
+#include "systems/setup/dem_simulation.hpp"
+
+namespace gf {
+
+struct RankCounters {
+  std::int64_t rebuilds = 0;  // neighbour rebuilds (every rank makes the same number)
+  std::int64_t migrated = 0;  // rows this rank sent away over the run
+  std::int64_t ghosts = 0;    // ghost rows held now
+};
+
+class RankSimulation {
+ public:
+  // Loads the scene on every rank (all grains placed), cuts the boxes and keeps this rank's grains.
+  RankSimulation(DemScene scene, const MpiContext& mpi);
+  static RankSimulation from_text(std::string_view toml, const MpiContext& mpi,
+                                  const std::vector<std::string>& overrides = {});
+  static RankSimulation from_file(const std::filesystem::path& file, const MpiContext& mpi,
+                                  const std::vector<std::string>& overrides = {});
+  RankSimulation(RankSimulation&&) noexcept;
+  ~RankSimulation();
+
+  // Forces of the initial state (nothing moves); the springs then restart from zero, as in
+  // DemSimulation::prime. Collective.
+  void prime();
+  // Advances n steps; primes first if that has not been done. Collective.
+  void advance(std::int64_t n);
+
+  // This rank's rows: owned first (grains().n_owned), then the ghost rows.
+  Grains& grains() { return sim_->grains(); }
+  World& world() { return sim_->world(); }
+  DemScene& scene() { return sim_->scene(); }
+  const Rcb& rcb() const { return *rcb_; }
+  const MpiContext& mpi() const { return *mpi_; }
+  const RankCounters& counters() const { return counters_; }
+
+  // Sums over all ranks of the owned rows (collective): grains, kinetic energy (translation and
+  // rotation, J) and momentum (kg m/s).
+  std::int64_t total_grains();
+  double total_kinetic_energy();
+  std::array<double, 3> total_momentum();
+
+ private:
+  void step_once(const StepContext& c);
+  void rebuild();
+
+  const MpiContext* mpi_;
+  std::unique_ptr<DemSimulation> sim_;
+  std::unique_ptr<Rcb> rcb_;
+  std::unique_ptr<Schedule> drift_, contacts_, kick_;
+  DomainGhosts ghosts_;
+  double reach_ = 0.0;  // m, how far from a box a ghost row may lie
+  bool listed_ = false;
+  bool primed_ = false;
+  RankCounters counters_;
+};
+
+}  // namespace gf
