@@ -216,9 +216,24 @@ void RankSimulation::advance(std::int64_t n) {
   if (clock.step == 0) clock.t0 = clock.t;
   for (std::int64_t k = 0; k < n; ++k) {
     step_once(next_step(clock));
+    counters_.particle_steps += static_cast<double>(sim_->grains().n_owned);
     ++clock.step;
     clock.t = clock.t0 + static_cast<double>(clock.step) * clock.dt;
   }
+}
+
+std::int64_t RankSimulation::settle() {
+  if (!primed_) prime();
+  const std::int64_t n = sim_->scene().settle_steps();
+  if (n <= 0) return 0;
+  World& w = sim_->world();
+  Walls& walls = w.resources.get<Walls>();
+  walls.rotation_enabled = false;
+  advance(n);
+  walls.rotation_enabled = true;
+  w.clock.t = 0.0;
+  w.clock.step = 0;
+  return n;
 }
 
 std::int64_t RankSimulation::total_grains() { return mpi_->sum(static_cast<std::int64_t>(grains().n_owned)); }

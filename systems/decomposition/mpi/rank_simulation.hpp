@@ -43,6 +43,7 @@ struct RankCounters {
   std::int64_t rebuilds = 0;  // neighbour rebuilds (every rank makes the same number)
   std::int64_t migrated = 0;  // rows this rank sent away over the run
   std::int64_t ghosts = 0;    // ghost rows held now
+  double particle_steps = 0;  // owned rows summed over the steps advanced
 };
 
 class RankSimulation {
@@ -61,6 +62,9 @@ class RankSimulation {
   void prime();
   // Advances n steps; primes first if that has not been done. Collective.
   void advance(std::int64_t n);
+  // The scene's settling stage (walls not rotating), then the clock back to 0, as
+  // DemSimulation::settle. Returns the steps run. Collective.
+  std::int64_t settle();
 
   // This rank's rows: owned first (grains().n_owned), then the ghost rows.
   Grains& grains() { return sim_->grains(); }
