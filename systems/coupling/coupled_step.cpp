@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "engine/sub_schedule.hpp"
 #include "systems/broadphase/broadphase.hpp"
@@ -96,7 +97,9 @@ void prepare_coupling(World& w) {
   const std::size_t n = g.n_owned;
   const PointSet grains{owned(g.pos.x, n), owned(g.pos.y, n), owned(g.pos.z, n)};
   const PointSet nodes{owned(f.x, f.size()), owned(f.y, f.size()), owned(f.z, f.size())};
-  c.shares = compute_shares(grains, nodes, c.h);
+  const Periodicity& per = c.periodic;
+  c.shares = per.axis >= 0 ? compute_shares_periodic(grains, nodes, c.h, per.axis, per.lo, per.hi)
+                           : compute_shares(grains, nodes, c.h);
   std::vector<double> volume(n);
   for (std::size_t i = 0; i < n; ++i) volume[i] = 4.0 / 3.0 * std::numbers::pi * std::pow(g.radius.r[i], 3);
   c.node_eps = liquid_fraction(solid_volume(c.shares, volume, f.size()), c.node_volume, c.eps_min);
@@ -126,6 +129,7 @@ void attach_coupling(const CoupledScene& s, World& w) {
   c.drag = s.coupling.drag;
   c.eps_min = s.coupling.min_liquid_fraction;
   c.node_volume = std::pow(s.liquid.params.k.l0, 3);
+  c.periodic = s.liquid.params.periodic;
   c.liquid = {s.liquid.params.rho, s.liquid.params.rho * s.liquid.params.nu};
 }
 
@@ -146,9 +150,16 @@ std::unique_ptr<Schedule> coupled_dem_step(const DemScene& scene) {
   return step;
 }
 
+std::unique_ptr<Schedule> fixed_grains_step() {
+  auto step = std::make_unique<Schedule>();
+  step->emplace<LiquidForceSystem>();
+  return step;
+}
+
 SubSchedule& schedule_coupled_step(Schedule& outer, const CoupledScene& scene) {
   outer.emplace<CouplingPrepare>();
-  SubSchedule& dem = outer.emplace<SubSchedule>("dem_substeps", scene.coupling.substeps, coupled_dem_step(scene.dem));
+  auto inner = scene.coupling.fixed_grains ? fixed_grains_step() : coupled_dem_step(scene.dem);
+  SubSchedule& dem = outer.emplace<SubSchedule>("dem_substeps", scene.coupling.substeps, std::move(inner));
   outer.emplace<LiquidReaction>();
   schedule_liquid_step(outer);
   return dem;

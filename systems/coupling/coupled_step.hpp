@@ -2,7 +2,8 @@
 // schedule; the DEM step runs k times inside it at dt/k as one of its systems (engine/sub_schedule.hpp):
 //   coupling_prepare   shares of every grain on the nodes within h (void_fraction.hpp), the nodes' liquid
 //                      fraction eps_i, and the liquid's velocity and fraction read at each grain
-//   dem_substeps       k DEM steps; in each, liquid_force sets F = F_d/eps - V_p rho_l g on every grain
+//   dem_substeps       k DEM steps (with coupling.fixed_grains only liquid_force, the grains staying put);
+//                      in each, liquid_force sets F = F_d/eps - V_p rho_l g on every grain
 //                      (drag.hpp: the scene's drag law with the grain's own velocity, the liquid's read at
 //                      the step's start; buoyancy in Archimedes' form) and adds the impulse the
 //                      integrator's two half-kicks give it, h/2 (F_old + F_new), to the grain's tally
@@ -23,6 +24,7 @@
 #include "engine/schedule.hpp"
 #include "systems/coupling/drag.hpp"
 #include "systems/coupling/void_fraction.hpp"
+#include "systems/mps/neighbors.hpp"
 #include "systems/setup/coupled_scene.hpp"
 
 namespace gf {
@@ -51,6 +53,7 @@ struct CouplingState {
   DragModel drag = DragModel::ErgunWenYu;
   double eps_min = 0.2;
   double node_volume = 0;  // m^3, l0^3
+  Periodicity periodic;    // the liquid's periodic axis: shares reach across it
   LiquidProps liquid;
   GrainShares shares;
   std::vector<double> node_eps;  // liquid fraction per node
@@ -64,6 +67,8 @@ void attach_coupling(const CoupledScene& scene, World& world);
 
 // The DEM step of the scene with the liquid's force as one more force term (grains of spheres, no feeds).
 std::unique_ptr<Schedule> coupled_dem_step(const DemScene& scene);
+// The sub-step of grains held fixed (coupling.fixed_grains): the liquid's force and its impulse only.
+std::unique_ptr<Schedule> fixed_grains_step();
 
 class SubSchedule;
 // The whole coupled step into `outer` (the systems above, then the liquid's); returns the DEM sub-steps.

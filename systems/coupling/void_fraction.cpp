@@ -57,6 +57,27 @@ GrainShares compute_shares(const PointSet& grains, const PointSet& nodes, double
   return s;
 }
 
+GrainShares compute_shares_periodic(const PointSet& grains, const PointSet& nodes, double h, int axis, double lo,
+                                    double hi) {
+  if (axis < 0 || axis > 2 || !(hi - lo > 0.0)) throw std::invalid_argument("coupling: a periodic axis needs hi > lo");
+  std::vector<double> c[3];
+  std::vector<std::uint32_t> origin;
+  const std::span<const double> in[3] = {nodes.x, nodes.y, nodes.z};
+  const auto add = [&](std::size_t n, double shift) {
+    for (int a = 0; a < 3; ++a) c[a].push_back(in[a][n] + (a == axis ? shift : 0.0));
+    origin.push_back(static_cast<std::uint32_t>(n));
+  };
+  for (std::size_t n = 0; n < nodes.size(); ++n) add(n, 0.0);
+  const double period = hi - lo;
+  for (std::size_t n = 0; n < nodes.size(); ++n) {
+    if (in[axis][n] < lo + h) add(n, period);
+    if (in[axis][n] > hi - h) add(n, -period);
+  }
+  GrainShares s = compute_shares(grains, PointSet{c[0], c[1], c[2]}, h);
+  for (std::uint32_t& n : s.node) n = origin[n];
+  return s;
+}
+
 std::vector<double> solid_volume(const GrainShares& s, std::span<const double> grain_volume, std::size_t nodes) {
   std::vector<double> out(nodes, 0.0);
   for (std::size_t p = 0; p + 1 < s.start.size(); ++p)

@@ -44,6 +44,12 @@ double smoothing_shape(double q);
 // within h (its index and position in the message, and the fix: a larger smoothing radius).
 GrainShares compute_shares(const PointSet& grains, const PointSet& nodes, double h);
 
+// As compute_shares, on nodes that repeat along `axis` (0, 1 or 2) with period [lo, hi): a grain within h
+// of one end shares with the nodes near the other end too, through their images one period away, so a bed
+// that fills a periodic column has no seam in its liquid fraction. The shares name the nodes themselves.
+GrainShares compute_shares_periodic(const PointSet& grains, const PointSet& nodes, double h, int axis, double lo,
+                                    double hi);
+
 // S_i: the grains' volumes (m^3) shared onto the nodes.
 std::vector<double> solid_volume(const GrainShares& s, std::span<const double> grain_volume, std::size_t nodes);
 

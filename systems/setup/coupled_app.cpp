@@ -55,6 +55,8 @@ void print_coupling(const CoupledScene& s) {
               "buoyancy -V_p rho_l g (Archimedes); min liquid fraction %g\n",
               c.substeps, c.substeps_computed ? "computed: the fewest within the DEM step limit" : "coupling.substeps",
               c.smoothing_radius, c.smoothing_radius / s.liquid.params.k.l0, drag_model_name(c.drag), c.min_liquid_fraction);
+  if (c.fixed_grains)
+    std::printf("grains: held fixed (coupling.fixed_grains): the liquid's force and its reaction only, no contacts\n");
   if (c.modified_pressure)
     std::printf("liquid pressure: modified (the hydrostatic part removed, no gravity in the liquid's step: a closed, "
                 "filled box)\n");
@@ -78,6 +80,7 @@ nlohmann::json start_summary(const CliOptions& opt, const CoupledScene& s, Coupl
   j["drag"] = drag_model_name(s.coupling.drag);
   j["buoyancy"] = "archimedes";
   j["modified_pressure"] = s.coupling.modified_pressure;
+  j["fixed_grains"] = s.coupling.fixed_grains;
   j["status"] = "running";
   return j;
 }

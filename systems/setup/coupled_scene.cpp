@@ -39,6 +39,10 @@ void read_substeps(CoupledScene& s, const SceneNode& c) {
   CouplingSpec& k = s.coupling;
   const double dt = s.liquid.dt;
   k.dem_step_limit = s.dem.dt_safety * s.dem.critical.period;
+  if (k.fixed_grains) {  // nothing moves: the contact law's period sets no limit
+    k.substeps = static_cast<int>(c.get_int("substeps", 1, 1, 1000000));
+    return;
+  }
   const double needed = std::ceil(dt / k.dem_step_limit * (1.0 - 1e-12));
   const std::int64_t given = c.get_int("substeps", 0, 0, 1000000);
   if (given == 0) {
@@ -76,6 +80,7 @@ void read_modified_pressure(CoupledScene& s, const SceneNode& c) {
 void read_coupling(CoupledScene& s, const SceneNode& root) {
   const SceneNode c = root.table("coupling");
   const double l0 = s.liquid.params.k.l0;
+  s.coupling.fixed_grains = c.get_bool("fixed_grains", false);
   read_substeps(s, c);
   s.dem.dt = s.liquid.dt / s.coupling.substeps;
   s.coupling.smoothing_radius = c.get_double("smoothing_radius", Range::positive());

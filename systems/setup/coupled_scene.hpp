@@ -6,6 +6,9 @@
 //   smoothing_radius  m, the radius h over which a grain's volume and force are shared with the nodes
 //   drag              "ergun_wen_yu" (the seed's switch at eps = 0.8) or "blend" (Huilin-Gidaspow)
 //   min_liquid_fraction  floor of the nodes' liquid fraction (default 0.2)
+//   fixed_grains      true: the grains are held where the fills put them (a fixed bed): they feel the
+//                      liquid's force and give the liquid its reaction but never move, and no contact or
+//                      integration runs; substeps then defaults to 1 and the contact law sets no limit
 //   modified_pressure  true: a closed box filled with liquid solves for the pressure less its hydrostatic
 //                      part, without gravity in the liquid's step (exact for one density in a closed box;
 //                      the grains keep gravity and buoyancy); the pressure outputs are then that part
@@ -33,6 +36,7 @@ struct CouplingSpec {
   DragModel drag = DragModel::ErgunWenYu;
   double min_liquid_fraction = 0.2;
   bool modified_pressure = false;
+  bool fixed_grains = false;
 };
 
 struct CoupledScene {
