@@ -8,7 +8,6 @@
 #include <unordered_map>
 
 #include "engine/run_loop.hpp"
-#include "systems/bodies/body_contact.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/contact/laws.hpp"
 #include "systems/contact/pair_contact.hpp"
