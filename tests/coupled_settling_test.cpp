@@ -23,6 +23,7 @@
 #include "systems/coupling/coupled_step.hpp"
 #include "systems/coupling/drag.hpp"
 #include "systems/setup/coupled_simulation.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -89,6 +90,12 @@ TEST_CASE("coupled: a grain settling in still liquid reaches Schiller-Naumann's 
   INFO("grain " << v << " m/s (50 steps earlier " << v_before << "), liquid at the grain " << u << " m/s, slip "
                 << slip << " m/s, eps " << eps << "; closed form " << w_closed << " m/s at Re " << re
                 << ", the drag law's balance at that eps " << w_model << " m/s");
+  gf::test::record_result("settling_grain.csv", "closed_form_m_s,Re,grain_m_s,grain_50_steps_before_m_s,"
+                          "liquid_at_grain_m_s,slip_m_s,eps_at_grain,drag_law_balance_at_eps_m_s",
+                          gf::test::csv_number(w_closed) + "," + gf::test::csv_number(re) + "," +
+                              gf::test::csv_number(v) + "," + gf::test::csv_number(v_before) + "," +
+                              gf::test::csv_number(u) + "," + gf::test::csv_number(slip) + "," +
+                              gf::test::csv_number(eps) + "," + gf::test::csv_number(w_model));
   CHECK(std::abs(v - v_before) < 2e-3 * v);        // terminal: steady within 0.2 % over the last 0.05 s
   CHECK(eps > 0.99);                                 // a lone grain: the liquid around it is nearly all liquid
   CHECK(slip == Approx(w_model).epsilon(2e-3));      // the coupled step reproduces its drag law's balance
