@@ -79,6 +79,26 @@ std::vector<std::vector<std::byte>> MpiContext::exchange(const std::vector<std::
   return out;
 }
 
+std::vector<std::vector<std::byte>> MpiContext::gather(const std::vector<std::byte>& send, int root) const {
+  const int count = byte_count(send.size());
+  const bool here = rank_ == root;
+  std::vector<int> counts(here ? static_cast<std::size_t>(size_) : 0), displs(counts.size());
+  check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_), "MPI_Gather");
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    displs[r] = byte_count(total);
+    total += static_cast<std::size_t>(counts[r]);
+  }
+  byte_count(total);
+  std::vector<std::byte> all(total);
+  check(MPI_Gatherv(send.data(), count, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, root, comm_),
+        "MPI_Gatherv");
+  std::vector<std::vector<std::byte>> out(counts.size());
+  for (std::size_t r = 0; r < counts.size(); ++r)
+    out[r].assign(all.begin() + displs[r], all.begin() + displs[r] + counts[r]);
+  return out;
+}
+
 std::int64_t MpiContext::sum(std::int64_t value) const {
   std::int64_t out = 0;
   check(MPI_Allreduce(&value, &out, 1, MPI_INT64_T, MPI_SUM, comm_), "MPI_Allreduce");
@@ -94,6 +114,12 @@ double MpiContext::sum(double value) const {
 double MpiContext::max(double value) const {
   double out = 0;
   check(MPI_Allreduce(&value, &out, 1, MPI_DOUBLE, MPI_MAX, comm_), "MPI_Allreduce");
+  return out;
+}
+
+std::int64_t MpiContext::max(std::int64_t value) const {
+  std::int64_t out = 0;
+  check(MPI_Allreduce(&value, &out, 1, MPI_INT64_T, MPI_MAX, comm_), "MPI_Allreduce");
   return out;
 }
 

@@ -43,9 +43,13 @@ class MpiContext {
   // Sends send[r] (bytes) to rank r for every rank; returns, per rank, what it sent here. Each
   // message is at most 2 GiB (an int count of bytes).
   std::vector<std::vector<std::byte>> exchange(const std::vector<std::vector<std::byte>>& send) const;
+  // Every rank's bytes on `root` (element r from rank r); an empty list on the other ranks
+  // (MPI_Gatherv). At most 2 GiB in all.
+  std::vector<std::vector<std::byte>> gather(const std::vector<std::byte>& send, int root = 0) const;
   std::int64_t sum(std::int64_t value) const;
   double sum(double value) const;
   double max(double value) const;
+  std::int64_t max(std::int64_t value) const;
 
  private:
   MPI_Comm comm_ = MPI_COMM_WORLD;
