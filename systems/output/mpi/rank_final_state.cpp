@@ -1,0 +1,17 @@
+#include "systems/output/mpi/rank_final_state.hpp"
+
+#include "engine/mpi/rank_failure.hpp"
+#include "systems/fill/state_csv.hpp"
+#include "systems/output/mpi/gathered_grains.hpp"
+
+namespace gf {
+
+void write_rank_final_state(const std::filesystem::path& file, const Grains& g, const DemScene& s,
+                            const MpiContext& mpi) {
+  const std::vector<StateRow> rows = gather_state_rows(g, s, mpi);
+  on_every_rank(mpi, [&] {
+    if (mpi.rank() == 0) write_state_csv(file, rows);
+  });
+}
+
+}  // namespace gf

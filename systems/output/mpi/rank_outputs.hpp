@@ -1,0 +1,39 @@
+// What a run on several ranks writes into its folder besides summary.json, as `grainflow run` does
+// on one: series.csv (rank_series.hpp), the VTK frames in pieces with their .pvtp and frames.pvd
+// (rank_frames.hpp) and final_state.csv (rank_final_state.hpp). Every call is collective; a file
+// that cannot be written stops every rank with a RankFailure (rank_failure.hpp) naming it.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include "engine/mpi/mpi_context.hpp"
+#include "engine/world.hpp"
+#include "systems/output/mpi/rank_frames.hpp"
+#include "systems/output/mpi/rank_series.hpp"
+#include "systems/setup/dem_scene.hpp"
+
+namespace gf {
+
+class RankOutputs {
+ public:
+  // Creates `out` and, for the scene's intervals, series.csv and the frames folder.
+  RankOutputs(const DemScene& s, std::filesystem::path out, const MpiContext& mpi);
+  // At the start of the main stage and after each of its steps: the rows and frames that are due.
+  void observe(World& w);
+  // The last state as a row and a frame (unless the latest shows it) and final_state.csv; returns
+  // the last row (whole on rank 0).
+  const SeriesRow& finish(World& w);
+  std::size_t series_rows() const { return series_.rows(); }
+  std::size_t frames() const { return frames_ ? frames_->count() : 0; }
+  const std::filesystem::path& folder() const { return out_; }
+
+ private:
+  const DemScene* scene_;
+  std::filesystem::path out_;
+  const MpiContext* mpi_;
+  RankSeries series_;
+  std::optional<RankFrames> frames_;
+};
+
+}  // namespace gf

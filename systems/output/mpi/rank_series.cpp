@@ -1,0 +1,158 @@
+#include "systems/output/mpi/rank_series.hpp"
+
+#include <array>
+#include <limits>
+#include <stdexcept>
+
+#include "engine/mpi/rank_failure.hpp"
+#include "systems/analysis/drum_section.hpp"
+#include "systems/output/mpi/gathered_grains.hpp"
+
+namespace gf {
+
+namespace {
+
+// As SeriesOutput: due at t >= next up to round-off of the clock, and the sampling times on the
+// grid k * interval.
+bool due(double t, double next, double dt) { return t >= next - 1e-6 * dt; }
+double next_sample(double t, double next, double interval, double dt) {
+  while (due(t, next, dt)) next += interval;
+  return next;
+}
+
+// As SeriesOutput: the first rotating wall's angle, else the first rotating mesh wall's; 0 if none.
+double rotation_angle(const Walls& walls, double t, const MeshWalls* meshes) {
+  for (std::size_t w = 0; w < walls.list.size(); ++w)
+    if (walls.list[w].omega != 0.0) return walls.angle(w, t);
+  if (meshes != nullptr && walls.rotation_enabled)
+    for (const MeshWall& m : meshes->list)
+      if (m.omega != 0.0) return m.omega * t;
+  return 0.0;
+}
+
+// The columns SeriesOutput writes for these settings, in its order (a scene with feeds or outlets
+// does not run on several ranks, so never the hold-up columns).
+std::vector<std::string> series_columns(const SeriesSettings& s) {
+  std::vector<std::string> c{"time",     "angle",         "ke_translational",  "ke_rotational",
+                             "contacts", "wall_contacts", "max_overlap_ratio", "segregation_index"};
+  if (s.mixing_cell > 0) c.insert(c.end(), {"lacey_index", "lacey_cell_grains"});
+  if (s.pattern)
+    c.insert(c.end(), {"pattern", "petals", "pattern_contrast", "surface_angle", "radial_segregation",
+                       "depth_segregation"});
+  return c;
+}
+
+std::vector<double> series_values(const SeriesRow& row, const SeriesSettings& s) {
+  std::vector<double> v{row.time,
+                        row.angle,
+                        row.ke_translational,
+                        row.ke_rotational,
+                        static_cast<double>(row.pair_contacts),
+                        static_cast<double>(row.wall_contacts),
+                        row.max_overlap_ratio,
+                        row.segregation_index};
+  if (s.mixing_cell > 0) v.insert(v.end(), {row.lacey_index, row.lacey_cell_grains});
+  if (s.pattern)
+    v.insert(v.end(), {static_cast<double>(row.pattern), static_cast<double>(row.petals), row.pattern_contrast,
+                       row.surface_angle, row.radial_segregation, row.depth_segregation});
+  return v;
+}
+
+}  // namespace
+
+SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::path& out) {
+  SeriesSettings ss;
+  if (s.output.series_interval > 0) ss.csv = out / "series.csv";
+  ss.interval = s.output.series_interval > 0 ? s.output.series_interval : 1000 * s.dt;
+  ss.segregation_type = s.segregation_type;
+  ss.segregation_cell = s.segregation_cell;
+  ss.pattern = s.pattern;
+  ss.pattern_settings.large_type = s.segregation_type;
+  ss.mixing_cell = s.mixing_cell;
+  ss.mixing_min_grains = s.mixing_min_grains;
+  ss.flow = s.flow.any();
+  return ss;
+}
+
+RankSeries::RankSeries(SeriesSettings s, const MpiContext& mpi) : s_(std::move(s)), mpi_(&mpi) {
+  if (s_.flow) throw std::invalid_argument("the hold-up columns of feeds and outlets are not written across ranks");
+  if (s_.mixing_cell > 0 && s_.segregation_type < 0)
+    throw std::logic_error("series: Lacey's index requested without a species to measure (segregation_type)");
+  columns_ = series_columns(s_);
+  on_every_rank(mpi, [&] {
+    if (mpi.rank() == 0 && s_.csv) csv_ = std::make_unique<SeriesCsv>(*s_.csv, columns_);
+  });
+}
+
+void RankSeries::observe(World& w) {
+  if (!s_.csv) return;  // no file: only the final row is sampled
+  const double t = w.clock.t;
+  if (!due(t, next_, w.clock.dt)) return;
+  next_ = next_sample(t, next_, s_.interval, w.clock.dt);
+  sample(w, t);
+}
+
+const SeriesRow& RankSeries::finish(World& w) {
+  if (!(row_.valid && row_.time == w.clock.t)) sample(w, w.clock.t);
+  return row_;
+}
+
+bool RankSeries::needs_all() const { return s_.segregation_type >= 0 || s_.mixing_cell > 0 || s_.pattern; }
+
+void RankSeries::sample(World& w, double t) {
+  const MpiContext& mpi = *mpi_;
+  const Grains& g = w.grains;
+  const Walls& walls = w.resources.get<Walls>();
+  const MeshWalls* meshes = w.resources.find<MeshWalls>();
+  const Energies e = kinetic_energy(g);
+  ContactStats cs = contact_stats(g, w.resources.get<NeighborList>(), walls);
+  if (meshes) add_mesh_contacts(cs, g, *meshes, t, walls.rotation_enabled);
+  SeriesRow row;
+  row.time = t;
+  row.angle = rotation_angle(walls, t, meshes);
+  row.ke_translational = mpi.sum(e.translational);
+  row.ke_rotational = mpi.sum(e.rotational);
+  row.pair_contacts = mpi.sum(cs.pair_contacts);
+  row.wall_contacts = mpi.sum(cs.wall_contacts);
+  row.max_overlap_ratio = mpi.max(cs.max_overlap_ratio);
+  row.has_mixing = s_.mixing_cell > 0;
+  row.has_pattern = s_.pattern;
+  row.valid = true;
+  row_ = row;
+  const Grains all = needs_all() ? gather_shapes(g, mpi) : Grains{};
+  on_every_rank(mpi, [&] {
+    if (mpi.rank() != 0) return;
+    if (needs_all()) sample_whole(all, w, row_);
+    if (csv_) csv_->append(series_values(row_, s_));
+  });
+  ++rows_;
+}
+
+// The measures of every grain at once, from the grains gathered on rank 0.
+void RankSeries::sample_whole(const Grains& all, World& w, SeriesRow& row) const {
+  if (s_.segregation_type >= 0) row.segregation_index = segregation_index(all, s_.segregation_type, s_.segregation_cell);
+  if (s_.mixing_cell > 0) {
+    const LaceyIndex m = lacey_index(all, s_.segregation_type, s_.mixing_cell, s_.mixing_min_grains);
+    row.lacey_index = m.index;
+    row.lacey_cell_grains = m.grains_per_cell;
+    row.lacey_cell = m.cell;
+  }
+  if (!s_.pattern) return;
+  const Walls& walls = w.resources.get<Walls>();
+  const auto drum = find_drum(walls);
+  if (!drum) throw std::logic_error("series: pattern columns requested for a scene without a drum wall");
+  const Gravity& gr = w.resources.get<Gravity>();
+  const DrumSection section = drum_section(walls.list[*drum], {gr.x, gr.y, gr.z});
+  const std::size_t n = all.n_owned;
+  const PatternGrains pg{{all.pos.x.data(), n}, {all.pos.y.data(), n}, {all.pos.z.data(), n},
+                         {all.radius.r.data(), n}, {all.species.type.data(), n}};
+  const Pattern p = classify_pattern(pg, section, s_.pattern_settings);
+  row.pattern = static_cast<int>(p.kind);
+  row.petals = p.petals;
+  row.pattern_contrast = p.contrast;
+  row.surface_angle = p.surface_angle;
+  row.radial_segregation = radial_segregation(all, s_.segregation_type, section).index;
+  row.depth_segregation = depth_segregation(all, s_.segregation_type, section, p.surface_angle, p.surface_level).index;
+}
+
+}  // namespace gf
