@@ -2,13 +2,17 @@
 //
 //   mpiexec -n P grainflow_mpi run SCENE --out DIR [--steps N] [--threads T] [--set key=value]...
 //
-// Runs the scene's settling stage, then its main stage (or N steps), and writes DIR/summary.json from
-// rank 0: the grains, steps and wall time, the particle-steps per second of rank 0's own grains and
-// of all ranks together, the decomposition's counters over the main stage (rebuilds, rows migrated,
-// ghost rows at the end) and the final kinetic energy and momentum. No VTK files, series or state
-// files are written across ranks yet. Exit status 2 for a scene or usage error, 3 when the run
-// became unphysical (every rank is stopped).
+// Runs the scene's settling stage, then its main stage (or N steps). Into DIR, as `grainflow run`
+// on one rank: series.csv (rank 0, at output.series_interval), VTK frames at output.frame_interval
+// (one .vtp piece per rank, a .pvtp per frame and frames.pvd; rank_frames.hpp), final_state.csv
+// (gathered to rank 0) and summary.json from rank 0: the grains, steps and wall time (outputs
+// included), the particle-steps per second of rank 0's own grains and of all ranks together, the
+// decomposition's counters over the main stage (rebuilds, rows migrated, ghost rows at the end), the
+// final kinetic energy and momentum and the last series row. Exit status 2 for a scene or usage
+// error, 3 when the run became unphysical (every rank is stopped by MPI_Abort) or an output could not
+// be written (every rank stops and finalises; rank 0 names the file).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -20,8 +24,10 @@
 #include <tbb/info.h>
 
 #include "engine/mpi/mpi_context.hpp"
+#include "engine/mpi/rank_failure.hpp"
 #include "engine/run_loop.hpp"
 #include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/output/mpi/rank_outputs.hpp"
 #include "systems/output/summary_json.hpp"
 
 namespace {
@@ -54,6 +60,50 @@ bool parse(int argc, char** argv, Options& o) {
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The main stage's steps with the outputs observing the start and every step after it.
+void run_main_stage(gf::RankSimulation& sim, gf::RankOutputs& outputs, std::int64_t steps) {
+  outputs.observe(sim.world());
+  for (std::int64_t k = 0; k < steps; ++k) {
+    sim.advance(1);
+    outputs.observe(sim.world());
+  }
+}
+
+nlohmann::json final_row(const gf::SeriesRow& row) {
+  const auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json j = {{"time", row.time},
+                      {"angle", row.angle},
+                      {"ke_translational", row.ke_translational},
+                      {"ke_rotational", row.ke_rotational},
+                      {"contacts", row.pair_contacts},
+                      {"wall_contacts", row.wall_contacts},
+                      {"max_overlap_ratio", row.max_overlap_ratio},
+                      {"segregation_index", row.segregation_index}};
+  if (row.has_mixing) j["lacey_index"] = number(row.lacey_index);
+  if (row.has_pattern) j["surface_angle"] = number(row.surface_angle);
+  return j;
+}
+
+// A file that could not be written: what rank 0 says and records, with the fix.
+std::string write_failure(const gf::RankFailure& e, const Options& o) {
+  return std::string(e.what()) + ". Fix: make sure the folder '" + o.out.string() +
+         "' is writable and its disk has room (or write less: output.frame_interval, output.series_interval), "
+         "then run again";
+}
+
+// From rank 0. A summary that cannot be written after a completed run stops every rank (the others
+// may be past their last collective call); after a failed one, the failure is reported already.
+void write_summary(const nlohmann::json& summary, const Options& opt, const gf::MpiContext& mpi, bool abort) {
+  if (mpi.rank() != 0) return;
+  try {
+    std::filesystem::create_directories(opt.out);
+    gf::write_summary_json(opt.out / "summary.json", summary);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "grainflow_mpi: %s\n", e.what());
+    if (abort) MPI_Abort(mpi.comm(), 2);
+  }
 }
 
 }  // namespace
@@ -89,13 +139,15 @@ int main(int argc, char** argv) {
                  static_cast<long long>(steps), opt.out.string().c_str());
   nlohmann::json summary;
   try {
+    gf::RankOutputs outputs(sim->scene(), opt.out, mpi);
     const auto t_settle = std::chrono::steady_clock::now();
     const std::int64_t settled = sim->settle();
     const double settle_wall = mpi.max(seconds_since(t_settle));
     const gf::RankCounters before = sim->counters();
     mpi.barrier();
     const auto t_run = std::chrono::steady_clock::now();
-    sim->advance(steps);
+    run_main_stage(*sim, outputs, steps);
+    const gf::SeriesRow& last = outputs.finish(sim->world());
     const double mine = seconds_since(t_run);
     const double wall = mpi.max(mine);
     const double own_steps = sim->counters().particle_steps - before.particle_steps;
@@ -125,7 +177,17 @@ int main(int argc, char** argv) {
     summary["ghost_rows_at_end"] = ghosts;
     summary["kinetic_energy"] = energy;
     summary["momentum"] = {p[0], p[1], p[2]};
-    summary["outputs"] = "summary.json only: no VTK, series or state files across ranks yet";
+    summary["series_rows"] = outputs.series_rows();
+    summary["frames"] = outputs.frames();
+    summary["final"] = final_row(last);
+  } catch (const gf::RankFailure& e) {
+    // Every rank is here: rank 0 records and reports, then all finalise.
+    summary["status"] = "failed";
+    summary["failure"] = write_failure(e, opt);
+    if (mpi.rank() == 0)
+      std::fprintf(stderr, "grainflow_mpi: error: %s\n", summary["failure"].get<std::string>().c_str());
+    write_summary(summary, opt, mpi, false);
+    return 3;
   } catch (const gf::StabilityError& e) {
     std::fprintf(stderr, "grainflow_mpi: rank %d: %s\n", mpi.rank(), e.what());
     MPI_Abort(mpi.comm(), 3);
@@ -133,14 +195,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "grainflow_mpi: rank %d: %s\n", mpi.rank(), e.what());
     MPI_Abort(mpi.comm(), 2);
   }
+  write_summary(summary, opt, mpi, true);
   if (mpi.rank() == 0) {
-    try {
-      std::filesystem::create_directories(opt.out);
-      gf::write_summary_json(opt.out / "summary.json", summary);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "grainflow_mpi: %s\n", e.what());
-      MPI_Abort(mpi.comm(), 2);
-    }
     std::fprintf(stderr, "grainflow_mpi: %lld steps in %.2f s wall: %.3g particle-steps/s on all ranks, %.3g on rank 0\n",
                  static_cast<long long>(steps), summary["wall_seconds"].get<double>(),
                  summary["particle_steps_per_second"].get<double>(),
