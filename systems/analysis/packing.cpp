@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -11,20 +12,34 @@
 
 namespace gf {
 
-PackingFraction packing_fraction(const Bodies& bodies, const Members& members, const std::array<double, 3>& lo,
-                                 const std::array<double, 3>& hi, double h) {
-  if (!(h > 0.0) || !std::isfinite(h)) throw std::invalid_argument("packing: the voxel edge must be positive");
+namespace {
+
+// The voxel grid of a box: dims voxels per axis, each of edge `edge` (the box split evenly, so an edge
+// is h rounded to fit), solid[i + dims0 (j + dims1 k)] = 1 where the voxel's centre lies in a moving
+// body's member.
+struct VoxelGrid {
+  std::array<double, 3> lo{}, edge{};
   std::array<std::size_t, 3> dims{};
+  std::vector<std::uint8_t> solid;
+  std::size_t index(std::size_t i, std::size_t j, std::size_t k) const { return i + dims[0] * (j + dims[1] * k); }
+};
+
+VoxelGrid voxelize(const Bodies& bodies, const Members& members, const std::array<double, 3>& lo,
+                   const std::array<double, 3>& hi, double h) {
+  if (!(h > 0.0) || !std::isfinite(h)) throw std::invalid_argument("packing: the voxel edge must be positive");
+  VoxelGrid g;
+  g.lo = lo;
   double total = 1.0;
   for (int d = 0; d < 3; ++d) {
     if (!(hi[d] > lo[d])) throw std::invalid_argument("packing: the box needs hi > lo on every axis");
-    dims[d] = static_cast<std::size_t>(std::max(1.0, std::round((hi[d] - lo[d]) / h)));
-    total *= static_cast<double>(dims[d]);
+    g.dims[d] = static_cast<std::size_t>(std::max(1.0, std::round((hi[d] - lo[d]) / h)));
+    total *= static_cast<double>(g.dims[d]);
   }
   if (total > static_cast<double>(1u << 30)) throw std::invalid_argument("packing: more than 2^30 voxels: a larger h");
-  std::array<double, 3> edge{};
-  for (int d = 0; d < 3; ++d) edge[d] = (hi[d] - lo[d]) / static_cast<double>(dims[d]);
-  std::vector<std::uint8_t> solid(dims[0] * dims[1] * dims[2], 0);
+  for (int d = 0; d < 3; ++d) g.edge[d] = (hi[d] - lo[d]) / static_cast<double>(g.dims[d]);
+  const auto& dims = g.dims;
+  const auto& edge = g.edge;
+  g.solid.assign(dims[0] * dims[1] * dims[2], 0);
   for (std::size_t m = 0; m < members.n; ++m) {
     const std::uint32_t b = members.body.row[m];
     if (!bodies.moving(b)) continue;
@@ -53,7 +68,7 @@ PackingFraction packing_fraction(const Bodies& bodies, const Members& members, c
     for (std::size_t k = from[2]; k < to[2]; ++k)
       for (std::size_t j = from[1]; j < to[1]; ++j)
         for (std::size_t i = from[0]; i < to[0]; ++i) {
-          std::uint8_t& cell = solid[i + dims[0] * (j + dims[1] * k)];
+          std::uint8_t& cell = g.solid[g.index(i, j, k)];
           if (cell) continue;
           const Eigen::Vector3d p(lo[0] + (static_cast<double>(i) + 0.5) * edge[0],
                                   lo[1] + (static_cast<double>(j) + 0.5) * edge[1],
@@ -61,10 +76,153 @@ PackingFraction packing_fraction(const Bodies& bodies, const Members& members, c
           if (core.dilated_contains(to_body * (p - x), r)) cell = 1;
         }
   }
+  return g;
+}
+
+}  // namespace
+
+PackingFraction packing_fraction(const Bodies& bodies, const Members& members, const std::array<double, 3>& lo,
+                                 const std::array<double, 3>& hi, double h) {
+  const VoxelGrid g = voxelize(bodies, members, lo, hi, h);
   PackingFraction out;
-  out.voxels = solid.size();
-  out.solid = static_cast<std::size_t>(std::count(solid.begin(), solid.end(), std::uint8_t{1}));
+  out.voxels = g.solid.size();
+  out.solid = static_cast<std::size_t>(std::count(g.solid.begin(), g.solid.end(), std::uint8_t{1}));
   out.fraction = static_cast<double>(out.solid) / static_cast<double>(out.voxels);
+  return out;
+}
+
+BedPacking bed_packing(const Bodies& bodies, const Members& members, int up, int up_sign, double margin, double h) {
+  if (up < 0 || up > 2 || (up_sign != 1 && up_sign != -1))
+    throw std::invalid_argument("packing: the up axis is 0, 1 or 2 and its sign +1 or -1");
+  if (!(margin >= 0.0) || !std::isfinite(margin)) throw std::invalid_argument("packing: the margin must be >= 0");
+  BedPacking out;
+  out.margin = margin;
+  std::array<double, 3> lo{}, hi{};
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (std::size_t m = 0; m < members.n; ++m) {
+    if (!bodies.moving(members.body.row[m])) continue;
+    const double c[3] = {members.centre.x[m], members.centre.y[m], members.centre.z[m]};
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], c[d] - members.bound.radius[m]);
+      hi[d] = std::max(hi[d], c[d] + members.bound.radius[m]);
+    }
+  }
+  if (!(lo[0] < hi[0])) {
+    out.reason = "no moving bodies";
+    return out;
+  }
+  if (!(h > 0.0) || !std::isfinite(h)) throw std::invalid_argument("packing: the voxel edge must be positive");
+  // Voxels on a grid of pitch h from the origin, so that beds sampled alike share their voxels.
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::floor(lo[d] / h) * h;
+    hi[d] = std::max(lo[d] + h, std::ceil(hi[d] / h) * h);
+  }
+  const VoxelGrid g = voxelize(bodies, members, lo, hi, h);
+  out.voxel = g.edge;
+  std::array<std::size_t, 3> first{g.dims}, last{};
+  bool any = false;
+  for (std::size_t k = 0; k < g.dims[2]; ++k)
+    for (std::size_t j = 0; j < g.dims[1]; ++j)
+      for (std::size_t i = 0; i < g.dims[0]; ++i)
+        if (g.solid[g.index(i, j, k)]) {
+          any = true;
+          const std::size_t at[3] = {i, j, k};
+          for (int d = 0; d < 3; ++d) {
+            first[d] = std::min(first[d], at[d]);
+            last[d] = std::max(last[d], at[d]);
+          }
+        }
+  if (!any) {
+    out.reason = "no voxel centre lies in a body: a smaller voxel edge";
+    return out;
+  }
+  for (int d = 0; d < 3; ++d) {
+    out.bed_lo[d] = g.lo[d] + static_cast<double>(first[d]) * g.edge[d];
+    out.bed_hi[d] = g.lo[d] + static_cast<double>(last[d] + 1) * g.edge[d];
+  }
+  const int a = (up + 1) % 3, b = (up + 2) % 3;
+  // The interior's columns: voxels whose centres lie at least `margin` inside the bed's lateral extent.
+  std::array<std::size_t, 3> in_first{}, in_last{};
+  for (const int d : {a, b}) {
+    const auto inset = static_cast<std::size_t>(std::max(0.0, std::ceil(margin / g.edge[d] - 0.5)));
+    if (last[d] < first[d] + 2 * inset) {
+      out.reason = "the bed is narrower than two margins";
+      return out;
+    }
+    in_first[d] = first[d] + inset;
+    in_last[d] = last[d] - inset;
+  }
+  // Layers counted from the floor: layer l is the voxel index first + l (up_sign +1) or last - l.
+  const std::size_t n_layers = last[up] - first[up] + 1;
+  const double e = g.edge[up];
+  out.floor = up_sign > 0 ? out.bed_lo[up] : out.bed_hi[up];
+  auto voxel_at = [&](std::size_t ia, std::size_t ib, std::size_t layer) {
+    std::size_t at[3]{};
+    at[a] = ia;
+    at[b] = ib;
+    at[up] = up_sign > 0 ? first[up] + layer : last[up] - layer;
+    return g.solid[g.index(at[0], at[1], at[2])];
+  };
+  std::vector<std::size_t> solid_in(n_layers, 0), solid_all(n_layers, 0);
+  double top_sum = 0;
+  std::size_t columns = 0;
+  for (std::size_t ib = first[b]; ib <= last[b]; ++ib)
+    for (std::size_t ia = first[a]; ia <= last[a]; ++ia) {
+      const bool inside = ia >= in_first[a] && ia <= in_last[a] && ib >= in_first[b] && ib <= in_last[b];
+      std::size_t top = 0;
+      bool filled = false;
+      for (std::size_t l = 0; l < n_layers; ++l)
+        if (voxel_at(ia, ib, l)) {
+          ++solid_all[l];
+          if (inside) ++solid_in[l];
+          top = l;
+          filled = true;
+        }
+      if (inside && filled) {
+        top_sum += static_cast<double>(top + 1) * e;
+        ++columns;
+      }
+    }
+  const std::size_t cols_in = (in_last[a] - in_first[a] + 1) * (in_last[b] - in_first[b] + 1);
+  const std::size_t cols_all = (last[a] - first[a] + 1) * (last[b] - first[b] + 1);
+  if (columns == 0) {
+    out.reason = "no grain in the interior's columns";
+    return out;
+  }
+  const double depth = top_sum / static_cast<double>(columns);
+  out.surface = out.floor + up_sign * depth;
+  std::size_t l_first = n_layers, l_last = 0;
+  for (std::size_t l = 0; l < n_layers; ++l) {
+    const double centre = (static_cast<double>(l) + 0.5) * e;
+    out.layers.push_back({centre, static_cast<double>(solid_in[l]) / static_cast<double>(cols_in),
+                          static_cast<double>(solid_all[l]) / static_cast<double>(cols_all)});
+    if (centre < depth) {
+      out.whole.voxels += cols_all;
+      out.whole.solid += solid_all[l];
+    }
+    if (centre >= margin && centre <= depth - margin) {
+      l_first = std::min(l_first, l);
+      l_last = std::max(l_last, l);
+      out.interior.voxels += cols_in;
+      out.interior.solid += solid_in[l];
+    }
+  }
+  if (out.interior.voxels == 0) {
+    out.reason = "the bed is shallower than two margins";
+    return out;
+  }
+  out.interior.fraction = static_cast<double>(out.interior.solid) / static_cast<double>(out.interior.voxels);
+  out.whole.fraction = static_cast<double>(out.whole.solid) / static_cast<double>(out.whole.voxels);
+  for (const int d : {a, b}) {
+    out.lo[d] = g.lo[d] + static_cast<double>(in_first[d]) * g.edge[d];
+    out.hi[d] = g.lo[d] + static_cast<double>(in_last[d] + 1) * g.edge[d];
+  }
+  const double z0 = out.floor + up_sign * static_cast<double>(l_first) * e;
+  const double z1 = out.floor + up_sign * static_cast<double>(l_last + 1) * e;
+  out.lo[up] = std::min(z0, z1);
+  out.hi[up] = std::max(z0, z1);
+  out.valid = true;
   return out;
 }
 
