@@ -1,16 +1,20 @@
 #include "systems/setup/dem_body_app.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <optional>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include <tbb/global_control.h>
 
 #include "engine/atomic_file.hpp"
 #include "engine/run_loop.hpp"
+#include "systems/analysis/packing.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/output/body_outputs.hpp"
 #include "systems/output/checkpoint_output.hpp"
@@ -63,6 +67,65 @@ std::vector<Rgb> picture_colours(const DemScene& s, const std::vector<int>& laye
                : "by [[bodies]] group, Okabe-Ito palette from group 0: blue, vermillion, bluish green, orange, "
                  "reddish purple, sky blue, yellow; fixed bodies grey";
   return c;
+}
+
+// The outer edges of a shape: its cores' bounding box grown by the dilation radius on every side.
+std::array<double, 3> outer_edges(const ShapeSpec& shape) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& part : shape.parts)
+    for (const Eigen::Vector3d& v : part) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+  return {hi.x() - lo.x() + 2 * shape.radius, hi.y() - lo.y() + 2 * shape.radius, hi.z() - lo.z() + 2 * shape.radius};
+}
+
+// The packing of the final bed (systems/analysis/packing.hpp: bed_packing): its interior lies one
+// grain length (the largest outer edge of any moving shape) inside the bed's walls, above its floor
+// and below its free surface, sampled on voxels of a sixth of the thinnest moving shape's smallest
+// edge. Returns summary.json's "packing" entry and writes packing.csv, the fraction per voxel layer
+// from the floor: height (m, the layer's centre above the floor), interior (within the interior's
+// columns), whole (across the bed's full extent).
+nlohmann::json final_packing(const DemScene& s, World& world, const std::filesystem::path& out) {
+  const Gravity& g = world.resources.get<Gravity>();
+  const double gv[3] = {g.x, g.y, g.z};
+  int up = -1, along = 0;
+  for (int d = 0; d < 3; ++d)
+    if (gv[d] != 0.0) {
+      up = d;
+      ++along;
+    }
+  if (along != 1) return {{"valid", false}, {"reason", "gravity is not along one axis"}};
+  double margin = 0;
+  for (const BodyPlacement& p : s.bodies->placed)
+    if (!p.fixed)
+      for (const double e : outer_edges(s.bodies->shapes[p.shape].shape)) margin = std::max(margin, e);
+  const double h = s.bodies->output.overlap_scale / 6.0;
+  if (!(margin > 0) || !std::isfinite(h)) return {{"valid", false}, {"reason", "no moving bodies"}};
+  const BedPacking p = bed_packing(world.tables.get<Bodies>(), world.tables.get<Members>(), up, gv[up] < 0 ? 1 : -1,
+                                   margin, h);
+  nlohmann::json j = {{"valid", p.valid}, {"margin", margin}, {"voxel", h}, {"up_axis", up}};
+  if (!p.valid) {
+    j["reason"] = p.reason;
+    return j;
+  }
+  auto vec = [](const std::array<double, 3>& v) { return nlohmann::json::array({v[0], v[1], v[2]}); };
+  j["fraction"] = p.interior.fraction;
+  j["interior_voxels"] = p.interior.voxels;
+  j["region"] = {{"lo", vec(p.lo)}, {"hi", vec(p.hi)}};
+  j["whole_bed_fraction"] = p.whole.fraction;
+  j["bed"] = {{"lo", vec(p.bed_lo)}, {"hi", vec(p.bed_hi)}};
+  j["floor"] = p.floor;
+  j["surface"] = p.surface;
+  j["bed_depth"] = std::abs(p.surface - p.floor);
+  std::string csv = "height,interior,whole\n";
+  char line[96];
+  for (const BedPacking::Layer& l : p.layers) {
+    std::snprintf(line, sizeof line, "%.6g,%.6g,%.6g\n", l.height, l.interior, l.whole);
+    csv += line;
+  }
+  write_file_atomic(out / "packing.csv", csv);
+  return j;
 }
 
 }  // namespace
@@ -255,6 +318,16 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
       rc = 3;
     }
   }
+  nlohmann::json packing;
+  if (status != "failed") {
+    try {
+      packing = final_packing(s, world, out);
+    } catch (const std::exception& e) {
+      status = "failed";
+      failure = std::string("the final packing: ") + e.what();
+      rc = 3;
+    }
+  }
   const double bsps = main.wall_seconds > 0 ? static_cast<double>(main.steps) * counts.moving / main.wall_seconds : 0.0;
   const BodySeriesRow& row = world.resources.get<BodySeriesRow>();
   summary["status"] = status;
@@ -279,6 +352,7 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
                       {"max_overlap_ratio", row.max_overlap_ratio},
                       {"moving", row.moving}};
   if (bo.has_outlet) summary["final"]["remaining_fraction"] = number_or_null(row.remaining_fraction);
+  if (!packing.is_null()) summary["packing"] = packing;
   double total = 0;
   for (auto& t : step.timings()) total += t.seconds;
   for (auto& t : observe.timings()) total += t.seconds;
