@@ -194,9 +194,11 @@ TEST_CASE("the frames' .pvtp names one piece per rank, and the pieces hold every
 TEST_CASE("final_state.csv from several ranks holds every grain once, as its owner holds it", "[mpi][rank_outputs]") {
   const gf::MpiContext& mpi = gf::test::test_world();
   const fs::path dir = fresh_folder(mpi, "state");
-  gf::RankSimulation many = gf::RankSimulation::from_text(settling_box(), mpi, {"output.frame_interval=0"});
+  // 2000 steps: the grains land, so that the state holds pair and wall contacts.
+  gf::RankSimulation many =
+      gf::RankSimulation::from_text(settling_box(), mpi, {"output.frame_interval=0", "run.duration=0.02"});
   gf::RankOutputs out(many.scene(), dir, mpi);
-  run_ranks(many, out);
+  const gf::SeriesRow last = run_ranks(many, out);
   mpi.barrier();
   // Every rank reads the file rank 0 wrote (read_state_csv refuses a repeated id).
   const std::vector<gf::StateRow> rows = gf::read_state_csv(dir / "final_state.csv");
@@ -219,6 +221,32 @@ TEST_CASE("final_state.csv from several ranks holds every grain once, as its own
   }
   CHECK(mpi.sum(differ) == 0);
   CHECK(mpi.sum(static_cast<std::int64_t>(g.n_owned)) == static_cast<std::int64_t>(rows.size()));
+  if (mpi.rank() != 0) return;
+
+  // A one-rank run started from the file (a `kind = "file"` fill) starts where the ranks ended: the
+  // same grains in the same places and motion, so the same contacts and, up to the order of the
+  // sums, the same kinetic energy as the ranks' last series row.
+  std::string scene = settling_box();
+  const std::string fill = "kind = \"random\"\nseed = 7\n";
+  scene.replace(scene.find(fill), fill.size(),
+                "kind = \"file\"\npath = \"" + (dir / "final_state.csv").string() +
+                    "\"\ntypes = { 1 = \"small\", 2 = \"large\" }\n");
+  scene.erase(scene.find("region = "), scene.find("[output]") - scene.find("region = "));
+  gf::DemSimulation one = gf::DemSimulation::from_text(scene);
+  one.prime();
+  gf::World& w = one.world();
+  const gf::Energies e = gf::kinetic_energy(w.grains);
+  const gf::ContactStats cs =
+      gf::contact_stats(w.grains, w.resources.get<gf::NeighborList>(), w.resources.get<gf::Walls>());
+  std::cout << "one rank from final_state.csv: " << cs.pair_contacts << " contacts, " << cs.wall_contacts
+            << " wall contacts, kinetic energy " << e.translational << " J (the ranks' last row: " << last.pair_contacts
+            << ", " << last.wall_contacts << ", " << last.ke_translational << " J)\n";
+  CHECK(static_cast<std::size_t>(w.grains.n_owned) == rows.size());
+  CHECK(cs.pair_contacts == last.pair_contacts);
+  CHECK(cs.wall_contacts == last.wall_contacts);
+  CHECK(cs.max_overlap_ratio == Approx(last.max_overlap_ratio).epsilon(1e-12));
+  CHECK(e.translational == Approx(last.ke_translational).epsilon(1e-12));
+  CHECK(e.rotational == Approx(last.ke_rotational).epsilon(1e-12));
 }
 
 TEST_CASE("a folder that cannot be made stops every rank, naming it", "[mpi][rank_outputs]") {

@@ -130,7 +130,8 @@ void RankSeries::sample(World& w, double t) {
 
 // The measures of every grain at once, from the grains gathered on rank 0.
 void RankSeries::sample_whole(const Grains& all, World& w, SeriesRow& row) const {
-  if (s_.segregation_type >= 0) row.segregation_index = segregation_index(all, s_.segregation_type, s_.segregation_cell);
+  if (s_.segregation_type >= 0)
+    row.segregation_index = segregation_index(all, s_.segregation_type, s_.segregation_cell);
   if (s_.mixing_cell > 0) {
     const LaceyIndex m = lacey_index(all, s_.segregation_type, s_.mixing_cell, s_.mixing_min_grains);
     row.lacey_index = m.index;
