@@ -1,6 +1,6 @@
 // The files a run on several ranks writes (systems/output/mpi/): series.csv against the one-rank
 // run's (SeriesOutput, as `grainflow run` writes it), the VTK pieces with their .pvtp and .pvd,
-// final_state.csv, and a folder that cannot be written.
+// final_state.csv (and a one-rank run started from it), and files that cannot be written.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -270,5 +270,31 @@ TEST_CASE("a folder that cannot be made stops every rank, naming it", "[mpi][ran
     CHECK(message.find((dir / "frames").string()) != std::string::npos);
   }
   // Every rank is still in step: a collective call completes.
+  CHECK(mpi.sum(std::int64_t{1}) == mpi.size());
+}
+
+TEST_CASE("a piece that one rank cannot write stops every rank mid-run, naming it", "[mpi][rank_outputs]") {
+  const gf::MpiContext& mpi = gf::test::test_world();
+  const fs::path dir = fresh_folder(mpi, "blocked_piece");
+  const int last = mpi.size() - 1;
+  const fs::path blocked = dir / "frames" / gf::RankFrames::piece_name(1, last);
+  if (mpi.rank() == 0) fs::create_directories(blocked / "in_the_way");  // a folder where the piece goes
+  mpi.barrier();
+  gf::RankSimulation many = gf::RankSimulation::from_text(settling_box(), mpi);
+  gf::RankOutputs out(many.scene(), dir, mpi);
+  std::string message;
+  try {
+    run_ranks(many, out);
+  } catch (const gf::RankFailure& e) {
+    message = e.what();
+  }
+  REQUIRE(!message.empty());
+  CHECK(out.frames() == 1);
+  if (mpi.rank() == 0) {
+    CHECK(message.find("rank " + std::to_string(last) + ": ") != std::string::npos);
+    CHECK(message.find(blocked.string()) != std::string::npos);
+    // The index lists the one whole frame.
+    CHECK(gf::test::attribute_values(gf::test::slurp(dir / "frames.pvd"), "file").size() == 1);
+  }
   CHECK(mpi.sum(std::int64_t{1}) == mpi.size());
 }
