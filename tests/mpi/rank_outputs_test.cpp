@@ -57,9 +57,11 @@ std::string settling_box() {
          "[output]\nframe_interval = 0.001\n";
 }
 
-// An empty folder under the test's working directory, the same on every rank.
+// An empty folder under the test's working directory, the same on every rank (one per rank count, so
+// the runs on two and three ranks may go side by side).
 fs::path fresh_folder(const gf::MpiContext& mpi, const std::string& name) {
-  const fs::path dir = fs::current_path() / "rank_outputs_test_out" / name;
+  const fs::path dir =
+      fs::current_path() / "rank_outputs_test_out" / (std::to_string(mpi.size()) + "_ranks") / name;
   if (mpi.rank() == 0) fs::remove_all(dir);
   mpi.barrier();
   return dir;
