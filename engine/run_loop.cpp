@@ -37,28 +37,24 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
   StageReport rep;
   const auto t0 = clock::now();
   auto last_print = t0;
-  // t = t0 + step dt from the stage's start, so that a stage run in pieces (resumed from a
-  // checkpoint, or advanced in several calls) sees bit-for-bit the same times as one run.
   if (world.clock.step == 0) world.clock.t0 = world.clock.t;
-  const double stage_t0 = world.clock.t0;
-  const std::int64_t step_start = world.clock.step;
+  const auto rows = [&] { return opt.rows ? opt.rows(world) : static_cast<double>(world.grains.n_owned); };
   auto context = [&] {
     StepContext c = next_step(world.clock);
     c.stage = opt.label;
     return c;
   };
-  if (opt.observe) opt.observe->run_step(context());
+  if (opt.observe && opt.observe_start) opt.observe->run_step(context());
   for (std::int64_t k = 0; k < opt.steps; ++k) {
     if (stop_requested()) {
       rep.interrupted = true;
       break;
     }
     step.run_step(context());
-    world.clock.step = step_start + k + 1;
-    world.clock.t = stage_t0 + static_cast<double>(step_start + k + 1) * world.clock.dt;
+    advance_clock(world.clock);
     if (opt.observe) opt.observe->run_step(context());
     ++rep.steps;
-    rep.particle_steps += static_cast<double>(world.grains.n_owned);
+    rep.particle_steps += rows();
     if (opt.progress_seconds > 0) {
       const auto now = clock::now();
       if (std::chrono::duration<double>(now - last_print).count() >= opt.progress_seconds || k + 1 == opt.steps) {
@@ -69,7 +65,7 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
         std::fprintf(stderr, "[%s] t = %.6g s  step %lld/%lld (%.1f%%)  %.3g steps/s  %.3g particle-steps/s  ETA %s\n",
                      opt.label.c_str(), world.clock.t, static_cast<long long>(k + 1),
                      static_cast<long long>(opt.steps), 100.0 * static_cast<double>(k + 1) / opt.steps, sps,
-                     sps * static_cast<double>(world.grains.n_owned), human_seconds(eta).c_str());
+                     sps * rows(), human_seconds(eta).c_str());
       }
     }
   }

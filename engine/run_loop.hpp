@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -21,7 +22,7 @@ class StabilityError : public std::runtime_error {
 
 struct StageReport {
   std::int64_t steps = 0;     // steps completed in this stage
-  double particle_steps = 0;  // grains in the table summed over those steps (rows change in continuous scenes)
+  double particle_steps = 0;  // rows stepped (StageOptions::rows) summed over those steps (rows change in continuous scenes)
   double wall_seconds = 0.0;  // s
   bool interrupted = false;   // stopped early by SIGINT/SIGTERM (results so far are on disk)
 };
@@ -30,10 +31,14 @@ struct StageOptions {
   std::string label = "run";
   std::int64_t steps = 0;
   Schedule* observe = nullptr;   // run after every step and once before the first
+  bool observe_start = true;      // false: not before the first (a resumed run whose start was observed)
   double progress_seconds = 2.0;  // wall seconds between progress lines; <= 0 for none
+  // Rows the step advances (for particle-steps); unset: the grains owned.
+  std::function<double(const World&)> rows;
 };
 
-// Runs `opt.steps` steps. The clock is t = t_start + k dt (no accumulated round-off).
+// Runs `opt.steps` steps of every simulation kind (grains, liquid, both). The clock is
+// t = t0 + step dt (advance_clock: no accumulated round-off).
 StageReport run_stage(World& world, Schedule& step, const StageOptions& opt);
 
 // SIGINT/SIGTERM stop the stage after the step in flight, so a killed run still closes its files

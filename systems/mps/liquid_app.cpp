@@ -3,6 +3,7 @@
 // and status "failed" when a stability detector stops the run, checkpoints in checkpoints/checkpoint.gfc
 // (output.checkpoint_interval, at the end unless output.checkpoint_at_end = false) and `--resume` continuing a
 // run bit-identically to the same end step.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -90,65 +91,56 @@ struct LiquidRun {
   int rc = 0;
   std::int64_t steps = 0;  // this run's
   double wall = 0;         // s, this run's stepping
-  double ppe_iterations = 0;
 };
 
-void print_progress(const World& w, std::int64_t done, std::int64_t end, double elapsed, std::size_t n_fluid) {
-  const double sps = static_cast<double>(done) / elapsed;
-  std::fprintf(stderr, "[run] t = %.6g s  step %lld/%lld  %.3g steps/s  %.3g particle-steps/s  ETA %.0f s\n", w.clock.t,
-               static_cast<long long>(w.clock.step), static_cast<long long>(end), sps,
-               sps * static_cast<double>(n_fluid), static_cast<double>(end - w.clock.step) / sps);
-}
+// The outputs and the checkpoints, observing the state after each step (and the initial state of
+// a run that does not resume).
+struct LiquidObservers {
+  Schedule schedule;
+  LiquidOutputs* outputs = nullptr;
+  CheckpointOutput* checkpoints = nullptr;
+};
 
-// Steps from the clock's step to `end`; the outputs and the checkpoints observe the state after each step
-// (and the initial state of a run that does not resume).
-void step_to(std::int64_t end, LiquidSimulation& sim, LiquidOutputs& outputs, CheckpointOutput& checkpoints,
-             bool resumed, bool quiet, LiquidRun& r) {
-  World& w = sim.world();
-  const std::size_t n_fluid = sim.nodes().count(kFluid);
-  const auto run0 = WallClock::now();
-  auto last_print = run0;
-  if (!resumed) {
-    outputs.observe(w);
-    checkpoints.run(w, next_step(w.clock));
-  }
-  while (w.clock.step < end) {
-    if (stop_requested()) {
-      r.status = "interrupted";
-      break;
-    }
-    sim.step_once();
-    ++r.steps;
-    r.ppe_iterations += sim.diagnostics().ppe.iterations;
-    outputs.observe(w);
-    checkpoints.run(w, next_step(w.clock));
-    const auto now = WallClock::now();
-    if (!quiet && (std::chrono::duration<double>(now - last_print).count() >= 2.0 || w.clock.step == end)) {
-      last_print = now;
-      print_progress(w, r.steps, end, seconds_since(run0), n_fluid);
-    }
-  }
+void add_observers(LiquidObservers& o, const std::filesystem::path& out, const LiquidScene& s, World& world,
+                   const CheckpointReader* from) {
+  o.outputs = &o.schedule.emplace<LiquidOutputs>(out, s, from);
+  o.checkpoints = &o.schedule.emplace<CheckpointOutput>(
+      CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
+      [&s](CheckpointWriter& w, World& wd) { save_liquid_state(w, wd, s); },
+      std::vector<const Checkpointable*>{o.outputs});
+  if (from) o.checkpoints->restore(*from);
+  o.schedule.build(world);
 }
 
 void run_and_checkpoint(const CliOptions& opt, const std::filesystem::path& out, const LiquidScene& s,
-                        LiquidSimulation& sim, LiquidOutputs& outputs, CheckpointOutput& checkpoints, bool resumed,
-                        LiquidRun& r, std::string& checkpoint_file) {
+                        LiquidSimulation& sim, LiquidObservers& obs, bool resumed, LiquidRun& r,
+                        std::string& checkpoint_file) {
   const auto run0 = WallClock::now();
   const auto fail = [&](const std::string& why) {
     r.status = "failed";
     r.failure = why;
     r.rc = 3;
   };
+  const std::int64_t start = sim.world().clock.step;
+  StageOptions so;
+  so.steps = std::max<std::int64_t>(0, (opt.steps ? *opt.steps : s.steps()) - start);
+  so.observe = &obs.schedule;
+  so.observe_start = !resumed;
+  so.progress_seconds = opt.quiet ? 0.0 : 2.0;
+  const auto n_fluid = static_cast<double>(sim.nodes().count(kFluid));
+  so.rows = [n_fluid](const World&) { return n_fluid; };
   try {
-    step_to(opt.steps ? *opt.steps : s.steps(), sim, outputs, checkpoints, resumed, opt.quiet, r);
+    const StageReport rep = run_stage(sim.world(), sim.step(), so);
+    if (rep.interrupted) r.status = "interrupted";
     r.wall = seconds_since(run0);
-    if (s.output.checkpoint_at_end) checkpoint_file = checkpoints.write(sim.world()).string();
+    if (s.output.checkpoint_at_end) checkpoint_file = obs.checkpoints->write(sim.world()).string();
   } catch (const WriteError& e) {
-    fail(e.what() + write_failure_fix(opt, out, resumed || checkpoints.written() > 0));
+    fail(e.what() + write_failure_fix(opt, out, resumed || obs.checkpoints->written() > 0));
   } catch (const std::exception& e) {
     fail(e.what());
   }
   if (r.wall == 0) r.wall = seconds_since(run0);
+  r.steps = sim.world().clock.step - start;  // the steps completed, also when one failed
 }
 
 void finish_summary(nlohmann::json& summary, LiquidSimulation& sim, const LiquidRun& r, const LiquidOutputs& outputs,
@@ -168,7 +160,8 @@ void finish_summary(nlohmann::json& summary, LiquidSimulation& sim, const Liquid
   summary["wall_seconds"] = r.wall;
   summary["steps_per_second"] = r.wall > 0 ? static_cast<double>(r.steps) / r.wall : 0.0;
   summary["particle_steps_per_second"] = r.wall > 0 ? static_cast<double>(r.steps) * n_fluid / r.wall : 0.0;
-  summary["mean_ppe_iterations"] = r.steps > 0 ? r.ppe_iterations / static_cast<double>(r.steps) : 0.0;
+  const LiquidDiagnostics& d = sim.diagnostics();
+  summary["mean_ppe_iterations"] = d.ppe_solves > 0 ? d.ppe_iterations_total / static_cast<double>(d.ppe_solves) : 0.0;
   summary["frames"] = outputs.frames();
   summary["checkpoints_written"] = checkpoints.written();
   if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
@@ -229,14 +222,12 @@ int run_liquid_command(const CliOptions& opt) {
   nlohmann::json summary = start_summary(opt, s, sim, from);
   write_summary_json(out / "summary.json", summary);
 
-  LiquidOutputs outputs(out, s, from);
-  CheckpointOutput checkpoints(CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
-                               [&s](CheckpointWriter& w, World& wd) { save_liquid_state(w, wd, s); }, {&outputs});
-  if (ckpt) checkpoints.restore(*ckpt);
+  LiquidObservers obs;
+  add_observers(obs, out, s, world, from);
   LiquidRun r;
   std::string checkpoint_file;
-  run_and_checkpoint(opt, out, s, sim, outputs, checkpoints, ckpt.has_value(), r, checkpoint_file);
-  finish_summary(summary, sim, r, outputs, checkpoints, checkpoint_file);
+  run_and_checkpoint(opt, out, s, sim, obs, ckpt.has_value(), r, checkpoint_file);
+  finish_summary(summary, sim, r, *obs.outputs, *obs.checkpoints, checkpoint_file);
   summary["total_wall_seconds"] = seconds_since(wall0);
   try {
     write_summary_json(out / "summary.json", summary);

@@ -13,20 +13,30 @@
 
 #include "engine/checkpoint_file.hpp"
 #include "engine/grains.hpp"
+#include "engine/system.hpp"
 #include "engine/world.hpp"
+#include "systems/mps/fluid_nodes.hpp"
+#include "systems/mps/liquid_params.hpp"
 #include "systems/mps/liquid_scene.hpp"
 #include "systems/output/series_csv.hpp"
 #include "systems/output/vtk_frames.hpp"
 
 namespace gf {
 
-class LiquidOutputs : public Checkpointable {
+// An observer system: the run loop runs it after every step (and at a new run's start), before the
+// checkpoint output, which holds its state.
+class LiquidOutputs : public SystemBase<LiquidOutputs>, public Checkpointable {
  public:
+  using Reads = gf::Reads<FluidNodes, LiquidParams>;
+  using Writes = gf::Writes<FrameSeries>;
+
   // Creates series.csv (output.series_interval > 0) and frames/ (output.frame_interval > 0) in `out`; with
   // `resume`, continues the files of the run that wrote that checkpoint instead.
   LiquidOutputs(const std::filesystem::path& out, const LiquidScene& s, const CheckpointReader* resume);
 
+  std::string_view name() const override { return "liquid_outputs"; }
   // Writes the row and frame due at the world's current step, if any.
+  void run(World& w, const StepContext&) override { observe(w); }
   void observe(World& w);
   std::size_t frames() const { return frames_ ? frames_->count() : 0; }
   std::size_t rows() const { return rows_; }

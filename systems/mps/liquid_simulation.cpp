@@ -43,9 +43,7 @@ const LiquidDiagnostics& LiquidSimulation::diagnostics() { return world_->resour
 
 void LiquidSimulation::step_once() {
   step_->run_step(next_step(world_->clock));
-  Clock& c = world_->clock;
-  ++c.step;
-  c.t = t0_ + static_cast<double>(c.step) * c.dt;
+  advance_clock(world_->clock);
 }
 
 void LiquidSimulation::advance(std::int64_t n) {

@@ -38,7 +38,6 @@ class LiquidSimulation {
   LiquidScene scene_;
   std::unique_ptr<World> world_;
   std::unique_ptr<Schedule> step_;
-  double t0_ = 0;
 };
 
 }  // namespace gf

@@ -76,6 +76,8 @@ struct PressureSolve : SystemBase<PressureSolve> {
     auto& lp = res<LiquidParams>(w);
     auto& d = res<LiquidDiagnostics>(w);
     d.ppe = solve_pressure(nodes(w), res<NeighborPairs>(w), lp, step.dt, res<PpeWorkspace>(w));
+    ++d.ppe_solves;
+    d.ppe_iterations_total += static_cast<double>(d.ppe.iterations);
     check_ppe(d.ppe, lp.solver, step.t + step.dt);
   }
 };

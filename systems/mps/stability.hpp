@@ -33,6 +33,9 @@ struct LiquidDiagnostics {
   double max_density_ratio = 0;  // max n*/n0 over fluid nodes, this step
   std::size_t surface_nodes = 0;
   PpeResult ppe;
+  // Over this process's steps (not checkpointed): the PPE solves and their iterations summed.
+  std::int64_t ppe_solves = 0;
+  double ppe_iterations_total = 0;
 };
 
 // Throws if the solve failed; `t` is the simulated time (s) for the message.

@@ -98,27 +98,39 @@ struct CoupledRun {
   double wall = 0;
 };
 
-void step_to(std::int64_t end, CoupledSimulation& sim, SeriesCsv* series, std::int64_t every, bool quiet, CoupledRun& r) {
-  World& w = sim.world();
-  const auto t0 = WallClock::now();
-  auto last = t0;
-  sim.prime();
-  if (series) series->append(sample_coupled(w, sim.scene()));
-  while (w.clock.step < end) {
-    if (stop_requested()) {
-      r.status = "interrupted";
-      break;
-    }
-    sim.step_once();
-    ++r.steps;
-    if (series && w.clock.step % every == 0) series->append(sample_coupled(w, sim.scene()));
-    if (!quiet && (seconds_since(last) >= 2.0 || w.clock.step == end)) {
-      last = WallClock::now();
-      std::fprintf(stderr, "[run] t = %.6g s  step %lld/%lld  %.3g steps/s\n", w.clock.t,
-                   static_cast<long long>(w.clock.step), static_cast<long long>(end),
-                   static_cast<double>(r.steps) / seconds_since(t0));
-    }
+// series.csv: a row every `every` liquid steps, from step 0.
+class CoupledSeries : public SystemBase<CoupledSeries> {
+ public:
+  using Reads = gf::Reads<FluidNodes, Position, Velocity>;
+  using Writes = gf::Writes<>;
+  CoupledSeries(const std::filesystem::path& file, const CoupledScene& s, std::int64_t every)
+      : csv_(file, coupled_series_columns()), s_(s), every_(every) {}
+  std::string_view name() const override { return "series_output"; }
+  void run(World& w, const StepContext&) override {
+    if (w.clock.step % every_ == 0) csv_.append(sample_coupled(w, s_));
   }
+
+ private:
+  SeriesCsv csv_;
+  const CoupledScene& s_;
+  std::int64_t every_;
+};
+
+void step_to(std::int64_t end, CoupledSimulation& sim, Schedule& observe, bool quiet, CoupledRun& r) {
+  World& w = sim.world();
+  sim.prime();
+  const std::int64_t start = w.clock.step;
+  StageOptions so;
+  so.steps = std::max<std::int64_t>(0, end - start);
+  so.observe = &observe;
+  so.progress_seconds = quiet ? 0.0 : 2.0;
+  try {
+    if (run_stage(w, sim.step(), so).interrupted) r.status = "interrupted";
+  } catch (...) {
+    r.steps = w.clock.step - start;
+    throw;
+  }
+  r.steps = w.clock.step - start;
 }
 
 }  // namespace
@@ -156,13 +168,14 @@ int run_coupled_command(const CliOptions& opt) {
                s.file.string().c_str(), sim.world().grains.n_owned, s.liquid.dt, s.coupling.substeps, out.string().c_str());
   nlohmann::json summary = start_summary(opt, s, sim);
   write_summary_json(out / "summary.json", summary);
-  std::unique_ptr<SeriesCsv> series;
+  Schedule observe;
   const std::int64_t every = std::max<std::int64_t>(1, std::llround(s.liquid.output.series_interval / s.liquid.dt));
-  if (s.liquid.output.series_interval > 0) series = std::make_unique<SeriesCsv>(out / "series.csv", coupled_series_columns());
+  if (s.liquid.output.series_interval > 0) observe.emplace<CoupledSeries>(out / "series.csv", s, every);
+  observe.build(sim.world());
   CoupledRun r;
   const auto run0 = WallClock::now();
   try {
-    step_to(opt.steps ? *opt.steps : s.steps(), sim, series.get(), every, opt.quiet, r);
+    step_to(opt.steps ? *opt.steps : s.steps(), sim, observe, opt.quiet, r);
   } catch (const std::exception& e) {
     r.status = "failed";
     r.failure = e.what();

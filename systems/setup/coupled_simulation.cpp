@@ -52,10 +52,8 @@ void CoupledSimulation::prime() {
 
 void CoupledSimulation::step_once() {
   if (!primed_) prime();
-  Clock& c = world_->clock;
-  step_->run_step(next_step(c));
-  ++c.step;
-  c.t = c.t0 + static_cast<double>(c.step) * c.dt;
+  step_->run_step(next_step(world_->clock));
+  advance_clock(world_->clock);
 }
 
 void CoupledSimulation::advance(std::int64_t n) {
