@@ -26,7 +26,6 @@ class RankOutputs {
   const SeriesRow& finish(World& w);
   std::size_t series_rows() const { return series_.rows(); }
   std::size_t frames() const { return frames_ ? frames_->count() : 0; }
-  const std::filesystem::path& folder() const { return out_; }
 
  private:
   const DemScene* scene_;
