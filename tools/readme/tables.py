@@ -113,6 +113,7 @@ TABLES = {
                                                  "docs/liggghts/comparison_flowing_grainflow.log"),
     "pulsation": pulsation_table,
     "mixer": lambda: script("tools/seed004/mixer_report.py", "table", "docs/seed004/mixer.json"),
+    "mixer_compartments": lambda: script("tools/seed004/compartments.py", "table", "docs/seed004/compartments.json"),
     "mesh_drum": lambda: script("tools/walls/mesh_drum_compare.py", "table", "docs/walls/mesh_drum_compare.json"),
     "kiln_map": lambda: script("tools/seed001/map_table.py", "docs/seed001/map.json"),
     "kiln_stiffness": lambda: script("tools/seed001/map_table.py", "--stiffness", "docs/seed001/stiffness.json"),
