@@ -31,6 +31,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "engine/checkpoint_file.hpp"
 #include "engine/mpi/mpi_context.hpp"
 #include "engine/schedule.hpp"
 #include "systems/decomposition/mpi/domain_ghosts.hpp"
@@ -65,6 +66,16 @@ class RankSimulation {
   // The scene's settling stage (walls not rotating), then the clock back to 0, as
   // DemSimulation::settle. Returns the steps run. Collective.
   std::int64_t settle();
+
+  // This rank's whole state as a checkpoint part (rank_state.cpp): the clock, the boxes, every row
+  // it holds (owned and ghost, every column, wall springs included), the neighbour list with the
+  // springs it evaluates, the broadphase's reference positions and counters, the ghost rows'
+  // owners and the counters. Local (no collective call).
+  void save(CheckpointWriter& out);
+  // Replaces this rank's state by a part that `save` wrote on the same rank of a run of the same
+  // scene on as many ranks; the steps then continue bit for bit. A part of another rank, rank count,
+  // scene or boxes is a CheckpointError naming the file, what differs and the fix. Local.
+  void restore(const CheckpointReader& in);
 
   // This rank's rows: owned first (grains().n_owned), then the ghost rows.
   Grains& grains() { return sim_->grains(); }

@@ -1,0 +1,204 @@
+// RankSimulation::save and restore: one rank's state in its checkpoint part. Everything that the
+// next steps read is stored as it is in memory rather than derived again (the ghost rows and their
+// owners, the list, the springs, the skin's reference positions), so the row order, the pair order
+// and every floating-point sum after a resume are those of the run that was not stopped.
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "systems/broadphase/broadphase.hpp"
+#include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/decomposition/row_bytes.hpp"
+#include "systems/walls/walls.hpp"
+
+namespace gf {
+
+namespace {
+
+const char* kSameRun = "resume with the scene (and --set overrides) of the run that wrote the checkpoint, on as many ranks";
+
+std::string column_name(std::size_t k) { return "rank.grains.column." + std::to_string(k); }
+
+// The neighbour list, the springs and the skin's reference positions, for both directions.
+template <class Io, class List, class History, class State>
+void list_sections(Io& io, List& list, History& h, State& bp) {
+  io.vector("rank.neighbors.offsets", list.offsets);
+  io.vector("rank.neighbors.i", list.i);
+  io.vector("rank.neighbors.j", list.j);
+  io.column("rank.neighbors.i_lane", list.i_lane);
+  io.column("rank.neighbors.j_lane", list.j_lane);
+  io.column("rank.neighbors.type_pair", list.type_pair);
+  io.vector("rank.neighbors.key", list.key);
+  const std::string c = "rank.history." + h.component;
+  io.column(c + ".pair", h.pair);
+  for (std::size_t q = 0; q < h.width; ++q) io.column(c + "." + h.fields[q], h.value[q]);
+  io.column(c + ".slot", h.slot);
+  io.column("rank.broadphase.ref_x", bp.ref_x);
+  io.column("rank.broadphase.ref_y", bp.ref_y);
+  io.column("rank.broadphase.ref_z", bp.ref_z);
+}
+
+// The ghost rows' owners: per rank, the owned rows sent there (flattened with their counts), and
+// where the rows received from it lie.
+void save_ghosts(CheckpointWriter& out, const DomainGhosts& gh) {
+  std::vector<std::uint64_t> sizes;
+  std::vector<std::uint32_t> rows;
+  for (const auto& s : gh.send) {
+    sizes.push_back(s.size());
+    rows.insert(rows.end(), s.begin(), s.end());
+  }
+  out.vector("rank.ghosts.send_sizes", std::move(sizes));
+  out.vector("rank.ghosts.send_rows", std::move(rows));
+  out.vector("rank.ghosts.first", gh.first);
+  out.vector("rank.ghosts.count", gh.count);
+}
+
+// Fails with the file named when a value read back cannot be this run's.
+void require(const CheckpointReader& in, bool ok, const std::string& what) {
+  if (!ok) in.fail("it is inconsistent (" + what + ")", "resume from an earlier checkpoint");
+}
+
+template <class T>
+bool all_below(const T& v, std::size_t n) {
+  return std::all_of(v.begin(), v.end(), [n](auto x) { return x >= 0 && static_cast<std::size_t>(x) < n; });
+}
+
+void restore_ghosts(const CheckpointReader& in, DomainGhosts& gh, const Grains& g, std::size_t ranks) {
+  std::vector<std::uint64_t> sizes;
+  std::vector<std::uint32_t> rows;
+  in.vector("rank.ghosts.send_sizes", sizes);
+  in.vector("rank.ghosts.send_rows", rows);
+  in.vector("rank.ghosts.first", gh.first);
+  in.vector("rank.ghosts.count", gh.count);
+  require(in, sizes.size() == ranks && gh.first.size() == ranks && gh.count.size() == ranks, "ghost lists");
+  require(in, all_below(rows, g.n_owned), "rows sent as ghosts");
+  gh.send.assign(ranks, {});
+  std::size_t at = 0;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    require(in, sizes[r] <= rows.size() - at, "ghost list sizes");
+    gh.send[r].assign(rows.begin() + static_cast<std::ptrdiff_t>(at), rows.begin() + static_cast<std::ptrdiff_t>(at + sizes[r]));
+    at += sizes[r];
+    require(in, gh.first[r] >= g.n_owned && gh.first[r] <= g.n && gh.count[r] <= g.n - gh.first[r], "ghost rows");
+  }
+}
+
+void check_list(const CheckpointReader& in, const NeighborList& l, const PairHistory& h, const BroadphaseState& bp,
+                const Grains& g) {
+  const std::size_t pairs = l.pairs();
+  require(in, l.offsets.empty() || (l.offsets.size() == g.n_owned + 1 && l.offsets.back() == pairs),
+          "neighbour list offsets");
+  require(in, l.i.size() == pairs && l.key.size() == pairs && l.type_pair.size() >= pairs &&
+                  l.i_lane.size() >= pairs && l.j_lane.size() >= pairs,
+          "neighbour list lengths");
+  require(in, all_below(l.i, g.n_owned) && all_below(l.j, g.n) && all_below(l.i_lane, g.n) && all_below(l.j_lane, g.n),
+          "neighbour list rows");
+  require(in, all_below(h.pair, pairs), "spring pairs");
+  for (std::size_t q = 0; q < h.width; ++q) require(in, h.value[q].size() == h.size(), "spring lengths");
+  require(in, std::all_of(h.slot.begin(), h.slot.end(),
+                          [&](std::int32_t s) { return s >= -1 && s < static_cast<std::int64_t>(h.size()); }),
+          "spring slots");
+  require(in, bp.ref_x.size() == bp.ref_y.size() && bp.ref_y.size() == bp.ref_z.size() &&
+                  (bp.ref_x.empty() || bp.ref_x.size() == g.n),
+          "skin reference positions");
+}
+
+// The rank, the rank count, the boxes, the law, dt and the skin of the part against this run's.
+void check_run(const CheckpointReader& in, const MpiContext& mpi, const Rcb& rcb, const DemScene& s, double skin) {
+  const auto ranks = in.value<std::int32_t>("rank.ranks");
+  if (ranks != mpi.size())
+    in.fail("it is a part of a checkpoint of " + std::to_string(ranks) + " ranks, this run has " +
+                std::to_string(mpi.size()),
+            "resume on " + std::to_string(ranks) + " ranks (mpiexec -n " + std::to_string(ranks) + ")");
+  if (in.value<std::int32_t>("rank.rank") != mpi.rank())
+    in.fail("it is rank " + std::to_string(in.value<std::int32_t>("rank.rank")) + "'s part, read by rank " +
+                std::to_string(mpi.rank()),
+            "resume from the checkpoint's index file, which names each rank's part");
+  std::vector<char> law;
+  in.vector("rank.contact.law", law);
+  if (std::string(law.begin(), law.end()) != s.law)
+    in.fail("it was written with the contact law '" + std::string(law.begin(), law.end()) + "', the scene now uses '" +
+                s.law + "'",
+            kSameRun);
+  if (in.value<double>("rank.clock.dt") != s.dt) in.fail("it was written with another run.dt", kSameRun);
+  if (in.value<double>("rank.broadphase.skin") != skin) in.fail("it was written with another run.skin", kSameRun);
+  std::vector<DomainBox> boxes;
+  in.vector("rank.boxes", boxes);
+  const std::vector<DomainBox>& now = rcb.boxes();
+  if (boxes.size() != now.size() || std::memcmp(boxes.data(), now.data(), boxes.size() * sizeof(DomainBox)) != 0)
+    in.fail("its ranks' boxes are not those this scene's grains give (another fill, seed or grain count)", kSameRun);
+}
+
+}  // namespace
+
+void RankSimulation::save(CheckpointWriter& out) {
+  World& w = sim_->world();
+  Grains& g = w.grains;
+  const DemScene& s = sim_->scene();
+  out.value("rank.ranks", static_cast<std::int32_t>(mpi_->size()));
+  out.value("rank.rank", static_cast<std::int32_t>(mpi_->rank()));
+  out.vector("rank.boxes", rcb_->boxes());
+  out.vector("rank.contact.law", std::vector<char>(s.law.begin(), s.law.end()));
+  out.value("rank.clock.t", w.clock.t);
+  out.value("rank.clock.dt", w.clock.dt);
+  out.value("rank.clock.step", w.clock.step);
+  out.value("rank.clock.t0", w.clock.t0);
+  out.value("rank.grains.n_owned", static_cast<std::uint64_t>(g.n_owned));
+  out.value("rank.grains.n", static_cast<std::uint64_t>(g.n));
+  out.value("rank.grains.spin", g.spin);
+  const std::vector<RawColumn> cols = raw_row_columns(g);
+  out.value("rank.grains.columns", static_cast<std::uint64_t>(cols.size()));
+  for (std::size_t k = 0; k < cols.size(); ++k) out.raw(column_name(k), cols[k].data, cols[k].elem_size, cols[k].size);
+  BroadphaseState& bp = w.resources.get<BroadphaseState>();
+  out.value("rank.broadphase.skin", bp.skin);
+  out.value("rank.broadphase.valid", bp.valid);
+  out.value("rank.broadphase.force_rebuild", bp.force_rebuild);
+  out.value("rank.broadphase.rebuilds", bp.rebuilds);
+  out.value("rank.broadphase.checks", bp.checks);
+  out.value("rank.broadphase.kept", bp.cover.kept);
+  out.value("rank.walls.rotation_enabled", w.resources.get<Walls>().rotation_enabled);
+  list_sections(out, w.resources.get<NeighborList>(), w.resources.get<PairHistory>(), bp);
+  save_ghosts(out, ghosts_);
+  out.value("rank.listed", listed_);
+  out.value("rank.primed", primed_);
+  out.value("rank.counters", counters_);
+}
+
+void RankSimulation::restore(const CheckpointReader& in) {
+  World& w = sim_->world();
+  Grains& g = w.grains;
+  BroadphaseState& bp = w.resources.get<BroadphaseState>();
+  check_run(in, *mpi_, *rcb_, sim_->scene(), bp.skin);
+  if (in.value<bool>("rank.grains.spin") != g.spin) in.fail("it was written for grains that rotate otherwise", kSameRun);
+  const auto n_owned = in.value<std::uint64_t>("rank.grains.n_owned");
+  const auto n = in.value<std::uint64_t>("rank.grains.n");
+  // Every row takes at least 8 bytes per column: a larger count is corrupt, not a reason to allocate.
+  require(in, n_owned <= n && n <= in.bytes() / 8, "grain counts");
+  g.resize(n);
+  g.n_owned = n_owned;
+  const std::vector<RawColumn> cols = raw_row_columns(g);
+  if (in.value<std::uint64_t>("rank.grains.columns") != cols.size())
+    in.fail("its grains have other columns than this scene's", kSameRun);
+  for (std::size_t k = 0; k < cols.size(); ++k) in.copy_raw(column_name(k), cols[k].data, cols[k].elem_size, n);
+  w.clock.t = in.value<double>("rank.clock.t");
+  w.clock.dt = in.value<double>("rank.clock.dt");
+  w.clock.step = in.value<std::int64_t>("rank.clock.step");
+  w.clock.t0 = in.value<double>("rank.clock.t0");
+  bp.valid = in.value<bool>("rank.broadphase.valid");
+  bp.force_rebuild = in.value<bool>("rank.broadphase.force_rebuild");
+  bp.rebuilds = in.value<std::int64_t>("rank.broadphase.rebuilds");
+  bp.checks = in.value<std::int64_t>("rank.broadphase.checks");
+  bp.cover.kept = in.value<std::int64_t>("rank.broadphase.kept");
+  Walls& walls = w.resources.get<Walls>();
+  walls.rotation_enabled = in.value<bool>("rank.walls.rotation_enabled");
+  walls.place(w.clock.t);
+  NeighborList& list = w.resources.get<NeighborList>();
+  PairHistory& history = w.resources.get<PairHistory>();
+  list_sections(in, list, history, bp);
+  check_list(in, list, history, bp, g);
+  restore_ghosts(in, ghosts_, g, static_cast<std::size_t>(mpi_->size()));
+  listed_ = in.value<bool>("rank.listed");
+  primed_ = in.value<bool>("rank.primed");
+  counters_ = in.value<RankCounters>("rank.counters");
+}
+
+}  // namespace gf
