@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/checkpoint_file.hpp"
 #include "engine/grains.hpp"
 #include "engine/mpi/mpi_context.hpp"
 #include "systems/output/mpi/parallel_vtk.hpp"
@@ -26,6 +27,12 @@ class RankFrames {
   // Writes the last state unless the latest frame shows it. Collective.
   void finish(const Grains& g, double t);
   std::size_t count() const { return frames_; }
+  // The next frame time, the frames written and their times, in a checkpoint part and back.
+  void save(CheckpointWriter& out) const;
+  // Local: takes the state back (the frames after it are written again under the same names).
+  void restore(const CheckpointReader& in);
+  // Rank 0 rewrites frames.pvd listing the restored frames only. Collective.
+  void rewrite_index();
   std::filesystem::path pvd_path() const { return out_ / "frames.pvd"; }
   // The file names of frame k, relative to out/frames.
   static std::string pvtp_name(std::size_t k);
@@ -37,7 +44,7 @@ class RankFrames {
   double interval_;
   FrameFields fields_;
   const MpiContext* mpi_;
-  std::vector<PvdEntry> index_;  // rank 0 only
+  std::vector<PvdEntry> index_;
   std::size_t frames_ = 0;
   double next_ = 0;
   double last_written_ = -1;

@@ -14,11 +14,39 @@ const std::filesystem::path& made_folder(const std::filesystem::path& out, const
   });
   return out;
 }
+
+// The series' settings, continuing a csv when a resumed run gives its rows.
+SeriesSettings series_settings(const DemScene& s, const std::filesystem::path& out, std::optional<std::size_t> rows) {
+  SeriesSettings ss = scene_series_settings(s, out);
+  ss.resume_rows = rows;
+  return ss;
+}
 }  // namespace
 
-RankOutputs::RankOutputs(const DemScene& s, std::filesystem::path out, const MpiContext& mpi)
-    : scene_(&s), out_(made_folder(out, mpi)), mpi_(&mpi), series_(scene_series_settings(s, out_), mpi) {
+RankOutputs::RankOutputs(const DemScene& s, std::filesystem::path out, const MpiContext& mpi,
+                         std::optional<std::size_t> series_rows)
+    : scene_(&s), out_(made_folder(out, mpi)), mpi_(&mpi), series_(series_settings(s, out_, series_rows), mpi) {
   if (s.output.frame_interval > 0) frames_.emplace(out_, s.output.frame_interval, s.output.fields, mpi);
+}
+
+std::size_t RankOutputs::series_rows(const CheckpointReader& part) {
+  return part.value<std::uint64_t>("rank_series.rows");
+}
+
+void RankOutputs::save(CheckpointWriter& out) const {
+  series_.save(out);
+  if (frames_) frames_->save(out);
+}
+
+void RankOutputs::restore(const CheckpointReader& part) {
+  on_every_rank(*mpi_, [&] {
+    series_.restore(part);
+    if (!frames_) return;
+    if (!part.has("rank_frames.next"))
+      part.fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
+    frames_->restore(part);
+  });
+  if (frames_) frames_->rewrite_index();
 }
 
 void RankOutputs::observe(World& w) {

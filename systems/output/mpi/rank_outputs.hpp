@@ -17,8 +17,12 @@ namespace gf {
 
 class RankOutputs {
  public:
-  // Creates `out` and, for the scene's intervals, series.csv and the frames folder.
-  RankOutputs(const DemScene& s, std::filesystem::path out, const MpiContext& mpi);
+  // Creates `out` and, for the scene's intervals, series.csv and the frames folder. A resumed run
+  // gives the rows its checkpoint's series.csv had (series_rows(part)): later ones are dropped.
+  RankOutputs(const DemScene& s, std::filesystem::path out, const MpiContext& mpi,
+              std::optional<std::size_t> series_rows = std::nullopt);
+  // The series rows written up to the checkpoint this part belongs to.
+  static std::size_t series_rows(const CheckpointReader& part);
   // At the start of the main stage and after each of its steps: the rows and frames that are due.
   void observe(World& w);
   // The last state as a row and a frame (unless the latest shows it) and final_state.csv; returns
@@ -26,6 +30,12 @@ class RankOutputs {
   const SeriesRow& finish(World& w);
   std::size_t series_rows() const { return series_.rows(); }
   std::size_t frames() const { return frames_ ? frames_->count() : 0; }
+  // The series' and frames' state (next due times, rows and frames so far) in a checkpoint part.
+  void save(CheckpointWriter& out) const;
+  // Takes that state back from this rank's part and rewrites frames.pvd to list the frames written
+  // up to the checkpoint; a part without frames for a scene with them stops every rank, naming the
+  // file. Collective.
+  void restore(const CheckpointReader& part);
 
  private:
   const DemScene* scene_;

@@ -80,8 +80,24 @@ RankSeries::RankSeries(SeriesSettings s, const MpiContext& mpi) : s_(std::move(s
     throw std::logic_error("series: Lacey's index requested without a species to measure (segregation_type)");
   columns_ = series_columns(s_);
   on_every_rank(mpi, [&] {
-    if (mpi.rank() == 0 && s_.csv) csv_ = std::make_unique<SeriesCsv>(*s_.csv, columns_);
+    if (mpi.rank() != 0 || !s_.csv) return;
+    if (s_.resume_rows)
+      csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, columns_, *s_.resume_rows));
+    else
+      csv_ = std::make_unique<SeriesCsv>(*s_.csv, columns_);
   });
+}
+
+void RankSeries::save(CheckpointWriter& out) const {
+  out.value("rank_series.next", next_);
+  out.value("rank_series.rows", static_cast<std::uint64_t>(rows_));
+  out.value("rank_series.row", row_);
+}
+
+void RankSeries::restore(const CheckpointReader& in) {
+  next_ = in.value<double>("rank_series.next");
+  rows_ = in.value<std::uint64_t>("rank_series.rows");
+  row_ = in.value<SeriesRow>("rank_series.row");
 }
 
 void RankSeries::observe(World& w) {

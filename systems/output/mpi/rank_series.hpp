@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "engine/checkpoint_file.hpp"
 #include "engine/mpi/mpi_context.hpp"
 #include "engine/world.hpp"
 #include "systems/output/dem_observers.hpp"
@@ -25,8 +26,9 @@ SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::p
 
 class RankSeries {
  public:
-  // Rank 0 creates the csv with its header (none when the scene has no series_interval).
-  // Collective; RankFailure on every rank if it cannot be created.
+  // Rank 0 creates the csv with its header (none when the scene has no series_interval), or with
+  // s.resume_rows continues it, keeping that many rows (SeriesCsv::resume). Collective; RankFailure
+  // on every rank if it cannot be created.
   RankSeries(SeriesSettings s, const MpiContext& mpi);
   // Writes a row when the clock reached the next sampling time (t = k interval, as on one rank).
   // Collective (called by every rank after every step, and once before the first).
@@ -35,6 +37,9 @@ class RankSeries {
   // the measures of gathered grains keep their defaults. Collective.
   const SeriesRow& finish(World& w);
   std::size_t rows() const { return rows_; }
+  // The next sampling time, the rows written and the latest row, in a checkpoint part and back.
+  void save(CheckpointWriter& out) const;
+  void restore(const CheckpointReader& in);
   const std::vector<std::string>& columns() const { return columns_; }
 
  private:
