@@ -1,21 +1,27 @@
 // grainflow_mpi: a DEM scene stepped on several ranks (RankSimulation), launched by mpiexec.
 //
 //   mpiexec -n P grainflow_mpi run SCENE --out DIR [--steps N] [--threads T] [--set key=value]...
+//                                  [--resume DIR/checkpoints/checkpoint_ranks.gfc]
 //
-// Runs the scene's settling stage, then its main stage (or N steps). Into DIR, as `grainflow run`
-// on one rank: series.csv (rank 0, at output.series_interval), VTK frames at output.frame_interval
-// (one .vtp piece per rank, a .pvtp per frame and frames.pvd; rank_frames.hpp), final_state.csv
-// (gathered to rank 0) and summary.json from rank 0: the grains, steps and wall time (outputs
-// included), the particle-steps per second of rank 0's own grains and of all ranks together, the
-// decomposition's counters over the main stage (rebuilds, rows migrated, ghost rows at the end), the
-// final kinetic energy and momentum and the last series row. Exit status 2 for a scene or usage
-// error, 3 when the run became unphysical (every rank is stopped by MPI_Abort) or an output could not
-// be written (every rank stops and finalises; rank 0 names the file).
+// Runs the scene's settling stage, then its main stage (or up to step N of it). Into DIR, as
+// `grainflow run` on one rank: series.csv (rank 0, at output.series_interval), VTK frames at
+// output.frame_interval (one .vtp piece per rank, a .pvtp per frame and frames.pvd; rank_frames.hpp),
+// checkpoints at output.checkpoint_interval and at the end (output.checkpoint_at_end; one part per
+// rank and an index, rank_checkpoints.hpp), final_state.csv (gathered to rank 0) and summary.json
+// from rank 0: the grains, steps and wall time (outputs included), the particle-steps per second of
+// rank 0's own grains and of all ranks together, the decomposition's counters over the main stage
+// (rebuilds, rows migrated, ghost rows at the end), the final kinetic energy and momentum and the
+// last series row. --resume continues a checkpoint's run on as many ranks bit for bit (no settling;
+// series.csv and the frames go on from the checkpoint, rows and frames the stopped run wrote after it
+// are replaced). Exit status 2 for a scene, usage or checkpoint error (every rank stops; rank 0 names
+// the file), 3 when the run became unphysical (every rank is stopped by MPI_Abort) or an output could
+// not be written (every rank stops and finalises; rank 0 names the file).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +33,8 @@
 #include "engine/mpi/rank_failure.hpp"
 #include "engine/run_loop.hpp"
 #include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/output/mpi/rank_checkpoint_index.hpp"
+#include "systems/output/mpi/rank_checkpoints.hpp"
 #include "systems/output/mpi/rank_outputs.hpp"
 #include "systems/output/summary_json.hpp"
 
@@ -37,10 +45,12 @@ struct Options {
   std::int64_t steps = -1;
   int threads = 0;
   std::vector<std::string> overrides;
+  std::optional<std::filesystem::path> resume;
 };
 
 const char* kUsage =
-    "usage: mpiexec -n P grainflow_mpi run SCENE --out DIR [--steps N] [--threads T] [--set key=value]...\n";
+    "usage: mpiexec -n P grainflow_mpi run SCENE --out DIR [--steps N] [--threads T] [--set key=value]...\n"
+    "                                   [--resume DIR/checkpoints/checkpoint_ranks.gfc]\n";
 
 bool parse(int argc, char** argv, Options& o) {
   if (argc < 3 || std::string(argv[1]) != "run") return false;
@@ -53,6 +63,7 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--steps") o.steps = std::stoll(v);
     else if (a == "--threads") o.threads = std::stoi(v);
     else if (a == "--set") o.overrides.push_back(v);
+    else if (a == "--resume") o.resume = v;
     else return false;
   }
   return !o.out.empty();
@@ -62,13 +73,47 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// The main stage's steps with the outputs observing the start and every step after it.
-void run_main_stage(gf::RankSimulation& sim, gf::RankOutputs& outputs, std::int64_t steps) {
+// The main stage's steps with the outputs, then the checkpoints, observing the start and every step
+// after it.
+void run_main_stage(gf::RankSimulation& sim, gf::RankOutputs& outputs, gf::RankCheckpoints& checkpoints,
+                    std::int64_t steps) {
   outputs.observe(sim.world());
+  checkpoints.observe(sim, outputs);
   for (std::int64_t k = 0; k < steps; ++k) {
     sim.advance(1);
     outputs.observe(sim.world());
+    checkpoints.observe(sim, outputs);
   }
+}
+
+// A checkpoint's state on every rank: each rank's part opened and restored. Collective; a
+// RankFailure on every rank when any part cannot be (rank 0's message names the files).
+struct Resumed {
+  std::unique_ptr<gf::CheckpointReader> part;
+  std::size_t series_rows = 0;
+};
+
+Resumed resume(const std::filesystem::path& index, gf::RankSimulation& sim, const gf::MpiContext& mpi) {
+  Resumed r;
+  r.part = gf::open_rank_part(index, mpi);
+  gf::on_every_rank(mpi, [&] {
+    sim.restore(*r.part);
+    r.series_rows = gf::RankOutputs::series_rows(*r.part);
+  });
+  return r;
+}
+
+// The outputs and checkpoints take their state back from the part. Collective (RankFailure).
+void resume_outputs(const Resumed& r, const std::filesystem::path& index, gf::RankOutputs& outputs,
+                    gf::RankCheckpoints& checkpoints, const gf::MpiContext& mpi) {
+  outputs.restore(*r.part);
+  gf::on_every_rank(mpi, [&] { checkpoints.restore(*r.part, index); });
+}
+
+// A checkpoint that cannot be resumed: rank 0 says why (the message names the file and the fix).
+int refuse_resume(const gf::RankFailure& e, const gf::MpiContext& mpi) {
+  if (mpi.rank() == 0) std::fprintf(stderr, "grainflow_mpi: error: cannot resume: %s\n", e.what());
+  return 2;
 }
 
 nlohmann::json final_row(const gf::SeriesRow& row) {
@@ -87,10 +132,15 @@ nlohmann::json final_row(const gf::SeriesRow& row) {
 }
 
 // A file that could not be written: what rank 0 says and records, with the fix.
-std::string write_failure(const gf::RankFailure& e, const Options& o) {
+// With a checkpoint on disk (this run's, or the one it resumed), the run can go on from it.
+std::string write_failure(const gf::RankFailure& e, const Options& o, int ranks, const std::filesystem::path& checkpoint) {
+  const std::string then = checkpoint.empty() ? "then run again"
+                                              : "then resume: mpiexec -n " + std::to_string(ranks) +
+                                                    " grainflow_mpi run " + o.scene.string() + " --out " +
+                                                    o.out.string() + " --resume " + checkpoint.string();
   return std::string(e.what()) + ". Fix: make sure the folder '" + o.out.string() +
-         "' is writable and its disk has room (or write less: output.frame_interval, output.series_interval), "
-         "then run again";
+         "' is writable and its disk has room (or write less: output.frame_interval, output.series_interval, "
+         "output.checkpoint_interval), " + then;
 }
 
 // From rank 0. A summary that cannot be written after a completed run stops every rank (the others
@@ -104,6 +154,16 @@ void write_summary(const nlohmann::json& summary, const Options& opt, const gf::
     std::fprintf(stderr, "grainflow_mpi: %s\n", e.what());
     if (abort) MPI_Abort(mpi.comm(), 2);
   }
+}
+
+// A file that could not be written, on every rank: rank 0 records and reports, then all finalise.
+int fail_write(const gf::RankFailure& e, const Options& opt, const gf::MpiContext& mpi, nlohmann::json& summary,
+               const std::filesystem::path& checkpoint) {
+  summary["status"] = "failed";
+  summary["failure"] = write_failure(e, opt, mpi.size(), checkpoint);
+  if (mpi.rank() == 0) std::fprintf(stderr, "grainflow_mpi: error: %s\n", summary["failure"].get<std::string>().c_str());
+  write_summary(summary, opt, mpi, false);
+  return 3;
 }
 
 }  // namespace
@@ -131,23 +191,62 @@ int main(int argc, char** argv) {
     if (mpi.rank() == 0) std::fprintf(stderr, "grainflow_mpi: %s\n", e.what());
     return 2;
   }
+  Resumed resumed;
+  if (opt.resume) {
+    try {
+      resumed = resume(*opt.resume, *sim, mpi);
+    } catch (const gf::RankFailure& e) {
+      return refuse_resume(e, mpi);
+    }
+  }
+  const gf::Clock start = sim->world().clock;
   const std::int64_t grains = sim->total_grains();
-  const std::int64_t steps = opt.steps >= 0 ? opt.steps : sim->scene().main_steps();
-  if (mpi.rank() == 0)
+  // --steps and the scene's duration count the whole main stage: a resumed run ends where the
+  // uninterrupted one would.
+  const std::int64_t total = opt.steps >= 0 ? opt.steps : sim->scene().main_steps();
+  const std::int64_t steps = std::max<std::int64_t>(0, total - start.step);
+  if (mpi.rank() == 0) {
     std::fprintf(stderr, "grainflow_mpi: %s: %lld grains on %d ranks, %d threads each, %lld steps -> %s\n",
                  opt.scene.string().c_str(), static_cast<long long>(grains), mpi.size(), threads,
                  static_cast<long long>(steps), opt.out.string().c_str());
+    if (opt.resume)
+      std::fprintf(stderr, "grainflow_mpi: resuming from %s at step %lld (t = %.6g s)\n", opt.resume->string().c_str(),
+                   static_cast<long long>(start.step), start.t);
+  }
+  const gf::DemScene& scene = sim->scene();
   nlohmann::json summary;
+  if (opt.resume)
+    summary["resumed_from"] = {{"checkpoint", opt.resume->string()}, {"step", start.step}, {"time", start.t}};
+  std::unique_ptr<gf::RankOutputs> outputs;
+  std::unique_ptr<gf::RankCheckpoints> checkpoints;
   try {
-    gf::RankOutputs outputs(sim->scene(), opt.out, mpi);
+    std::optional<std::size_t> rows;
+    if (opt.resume) rows = resumed.series_rows;
+    outputs = std::make_unique<gf::RankOutputs>(scene, opt.out, mpi, rows);
+    checkpoints = std::make_unique<gf::RankCheckpoints>(
+        gf::RankCheckpointSettings{opt.out, scene.output.checkpoint_interval, scene.output.checkpoint_keep_all}, mpi);
+  } catch (const gf::RankFailure& e) {
+    return fail_write(e, opt, mpi, summary, opt.resume ? *opt.resume : std::filesystem::path());
+  }
+  if (opt.resume) {
+    try {
+      resume_outputs(resumed, *opt.resume, *outputs, *checkpoints, mpi);
+    } catch (const gf::RankFailure& e) {
+      return refuse_resume(e, mpi);
+    }
+  }
+  resumed.part.reset();  // the part's bytes are not needed past here
+  try {
     const auto t_settle = std::chrono::steady_clock::now();
-    const std::int64_t settled = sim->settle();
+    const std::int64_t settled = opt.resume ? 0 : sim->settle();
     const double settle_wall = mpi.max(seconds_since(t_settle));
     const gf::RankCounters before = sim->counters();
     mpi.barrier();
     const auto t_run = std::chrono::steady_clock::now();
-    run_main_stage(*sim, outputs, steps);
-    const gf::SeriesRow& last = outputs.finish(sim->world());
+    run_main_stage(*sim, *outputs, *checkpoints, steps);
+    if (scene.output.checkpoint_at_end && !checkpoints->holds(sim->world().clock.step)) checkpoints->write(*sim, *outputs);
+    if (checkpoints->written() > 0) summary["checkpoint"] = checkpoints->index_path().string();
+    const gf::SeriesRow& last = outputs->finish(sim->world());
     const double mine = seconds_since(t_run);
     const double wall = mpi.max(mine);
     const double own_steps = sim->counters().particle_steps - before.particle_steps;
@@ -166,7 +265,8 @@ int main(int argc, char** argv) {
     summary["grains_at_end"] = still;
     summary["settle_steps"] = settled;
     summary["settle_wall_seconds"] = settle_wall;
-    summary["steps"] = steps;
+    summary["steps"] = sim->world().clock.step;
+    summary["steps_this_run"] = steps;
     summary["wall_seconds"] = wall;
     summary["particle_steps_per_second"] = wall > 0 ? all_steps / wall : 0.0;
     summary["rank0_particle_steps_per_second"] = mine > 0 ? own_steps / mine : 0.0;
@@ -177,17 +277,14 @@ int main(int argc, char** argv) {
     summary["ghost_rows_at_end"] = ghosts;
     summary["kinetic_energy"] = energy;
     summary["momentum"] = {p[0], p[1], p[2]};
-    summary["series_rows"] = outputs.series_rows();
-    summary["frames"] = outputs.frames();
+    summary["series_rows"] = outputs->series_rows();
+    summary["frames"] = outputs->frames();
+    summary["checkpoints_written"] = checkpoints->written();
     summary["final"] = final_row(last);
   } catch (const gf::RankFailure& e) {
-    // Every rank is here: rank 0 records and reports, then all finalise.
-    summary["status"] = "failed";
-    summary["failure"] = write_failure(e, opt);
-    if (mpi.rank() == 0)
-      std::fprintf(stderr, "grainflow_mpi: error: %s\n", summary["failure"].get<std::string>().c_str());
-    write_summary(summary, opt, mpi, false);
-    return 3;
+    const bool written = checkpoints->written() > 0;
+    return fail_write(e, opt, mpi, summary,
+                      written ? checkpoints->index_path() : opt.resume ? *opt.resume : std::filesystem::path());
   } catch (const gf::StabilityError& e) {
     std::fprintf(stderr, "grainflow_mpi: rank %d: %s\n", mpi.rank(), e.what());
     MPI_Abort(mpi.comm(), 3);
