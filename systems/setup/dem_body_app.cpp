@@ -80,12 +80,14 @@ std::array<double, 3> outer_edges(const ShapeSpec& shape) {
   return {hi.x() - lo.x() + 2 * shape.radius, hi.y() - lo.y() + 2 * shape.radius, hi.z() - lo.z() + 2 * shape.radius};
 }
 
-// The packing of the final bed (systems/analysis/packing.hpp: bed_packing): its interior lies one
-// grain length (the largest outer edge of any moving shape) inside the bed's walls, above its floor
-// and below its free surface, sampled on voxels of a sixth of the thinnest moving shape's smallest
-// edge. Returns summary.json's "packing" entry and writes packing.csv, the fraction per voxel layer
-// from the floor: height (m, the layer's centre above the floor), interior (within the interior's
-// columns), whole (across the bed's full extent).
+// The packing of the final bed (systems/analysis/packing.hpp: bed_packing), sampled on voxels of a
+// sixth of the thinnest moving shape's smallest edge. Its interior lies half a grain length (the
+// largest outer edge of any moving shape) inside the bed's walls, above its floor and below its free
+// surface: for the seed's flat letters three stroke widths, three letters lying flat on a wall. How
+// the fraction depends on that choice is in "by_margin" (a quarter, a half and a whole grain length)
+// and in packing.csv, the fraction per voxel layer from the floor: height (m, the layer's centre
+// above the floor), interior (within the interior's columns), whole (across the bed's full extent).
+// Returns summary.json's "packing" entry.
 nlohmann::json final_packing(const DemScene& s, World& world, const std::filesystem::path& out) {
   const Gravity& g = world.resources.get<Gravity>();
   const double gv[3] = {g.x, g.y, g.z};
@@ -96,23 +98,32 @@ nlohmann::json final_packing(const DemScene& s, World& world, const std::filesys
       ++along;
     }
   if (along != 1) return {{"valid", false}, {"reason", "gravity is not along one axis"}};
-  double margin = 0;
+  double length = 0;
   for (const BodyPlacement& p : s.bodies->placed)
     if (!p.fixed)
-      for (const double e : outer_edges(s.bodies->shapes[p.shape].shape)) margin = std::max(margin, e);
+      for (const double e : outer_edges(s.bodies->shapes[p.shape].shape)) length = std::max(length, e);
   const double h = s.bodies->output.overlap_scale / 6.0;
-  if (!(margin > 0) || !std::isfinite(h)) return {{"valid", false}, {"reason", "no moving bodies"}};
-  const BedPacking p = bed_packing(world.tables.get<Bodies>(), world.tables.get<Members>(), up, gv[up] < 0 ? 1 : -1,
-                                   margin, h);
-  nlohmann::json j = {{"valid", p.valid}, {"margin", margin}, {"voxel", h}, {"up_axis", up}};
-  if (!p.valid) {
-    j["reason"] = p.reason;
-    return j;
-  }
+  if (!(length > 0) || !std::isfinite(h)) return {{"valid", false}, {"reason", "no moving bodies"}};
   auto vec = [](const std::array<double, 3>& v) { return nlohmann::json::array({v[0], v[1], v[2]}); };
-  j["fraction"] = p.interior.fraction;
-  j["interior_voxels"] = p.interior.voxels;
-  j["region"] = {{"lo", vec(p.lo)}, {"hi", vec(p.hi)}};
+  auto measure = [&](double margin, BedPacking& p) {
+    p = bed_packing(world.tables.get<Bodies>(), world.tables.get<Members>(), up, gv[up] < 0 ? 1 : -1, margin, h);
+    nlohmann::json j = {{"valid", p.valid}, {"margin", margin}};
+    if (!p.valid) {
+      j["reason"] = p.reason;
+      return j;
+    }
+    j["fraction"] = p.interior.fraction;
+    j["interior_voxels"] = p.interior.voxels;
+    j["region"] = {{"lo", vec(p.lo)}, {"hi", vec(p.hi)}};
+    return j;
+  };
+  BedPacking p, other;
+  nlohmann::json j = measure(0.5 * length, p);
+  j["by_margin"] = nlohmann::json::array({measure(0.25 * length, other), j, measure(length, other)});
+  j["grain_length"] = length;
+  j["voxel"] = h;
+  j["up_axis"] = up;
+  if (!p.valid) return j;
   j["whole_bed_fraction"] = p.whole.fraction;
   j["bed"] = {{"lo", vec(p.bed_lo)}, {"hi", vec(p.bed_hi)}};
   j["floor"] = p.floor;
