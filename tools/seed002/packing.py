@@ -266,6 +266,8 @@ def collect(runs, docs, binary):
                 "is shallower than two margins); whole_bed_fraction counts the full width from the floor to the "
                 "free surface",
         "settled_when": "kinetic energy below 1e-4 of sum(m g H) over the last 0.1 s",
+        "wall_s": "wall seconds of a letter's grainflow runs, one thread each, with up to three letters at once on "
+                  "a two-core machine shared with other work: what the runs took here, not a benchmark",
         "shapes": rows,
         "ordering": order_check(fractions) if len(fractions) > 1 else None,
         "missing": [L for L in LETTERS if L not in fractions],
