@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Cost and accuracy of composite grains in seed 002's hopper: one reduced hopper
-(scenes/hopper_seed002_cost.toml, 300 particles) run three times per particle model, each to the end of
+(scenes/hopper_seed002_cost.toml, 300 particles) run several times per particle model, each to the end of
 its discharge on one thread.
 
 Particle models (the scene's [[shape]] "grain" table replaced by each):
@@ -11,8 +11,8 @@ Particle models (the scene's [[shape]] "grain" table replaced by each):
   sphere                                one sphere of the reference prism's volume (one-vertex shape)
   prism_grid1mm, prism_grid2mm          the reference prism with a mass-property grid of 1 mm and
                                         2 mm instead of 0.25 mm (10 and 5 voxels across the side)
-Each model is poured three times (the [[bodies]] seed 7, 11, 12: random centres and orientations),
-so the scatter of one run shows beside the models' differences.
+Each model is poured five times (the [[bodies]] seed 7, 11, 12, 13, 14: random centres and
+orientations), so the scatter of one run shows beside the models' differences.
 
 Same mass: every model except the two grid ones takes the density that gives the reference prism's
 mass (its volume measured by `grainflow check` on the model's own grid); the grid models keep
@@ -33,9 +33,11 @@ Observables, from series.csv's remaining_fraction (t = 0 when the gate opens; cr
 linearly between samples): the times at which it falls to 0.5 and to 0.1, and the mean discharge
 rate (particles/s) between 0.9 and 0.5; also the time to 0.2, since 0.1 lies near what the dead
 zones beside the outlet keep. Cost, from summary.json: wall seconds of the discharge and
-of the settling, and body-steps per second of the discharge.
+of the settling, and body-steps per second of the discharge; and the run's CPU seconds (user and
+system, measured around the process), over its steps times its grains: the CPU time per body-step,
+which the chart plots, since other work sharing the machine inflates wall times unevenly.
 
-    /usr/bin/python3 tools/seed002/cost_chart.py run [--jobs 2] [--only NAME...]   # resumable
+    /usr/bin/python3 tools/seed002/cost_chart.py run [--jobs 2] [--only RUN...]   # resumable
     /usr/bin/python3 tools/seed002/cost_chart.py collect   # cost.json and cost_chart.png
     /usr/bin/python3 tools/seed002/cost_chart.py table     # the README table from cost.json
 
@@ -97,8 +99,12 @@ def write_obj(path, centres):
 
 VARIANTS = ["prism_r0.5", "prism_r0.25", "prism_r1.0", "sphere", "clump_3", "clump_9", "clump_27",
             "prism_grid1mm", "prism_grid2mm"]
-# The pours: the scene's [[bodies]] seed (7) and two others. A run is NAME (seed 7) or NAME_seedS.
-POURS = [7, 11, 12]
+# The pours: the scene's [[bodies]] seed (7) and others. A run is NAME (seed 7) or NAME_seedS.
+POURS = [7, 11, 12, 13, 14]
+
+
+def pours(variant):
+    return POURS
 LABELS = {"prism_r0.5": "prism r = 0.5 mm (reference)", "prism_r0.25": "prism r = 0.25 mm",
           "prism_r1.0": "prism r = 1.0 mm", "sphere": "1 sphere, same volume", "clump_3": "clump of 3 spheres",
           "clump_9": "clump of 9 spheres", "clump_27": "clump of 27 spheres",
@@ -111,7 +117,7 @@ def run_name(variant, pour):
 
 def all_runs():
     """Every variant's first pour, then every variant's second, and so on."""
-    return [run_name(v, p) for p in POURS for v in VARIANTS]
+    return [run_name(v, p) for p in POURS for v in VARIANTS if p in pours(v)]
 
 
 def grainflow():
@@ -259,7 +265,7 @@ def measure(name):
     n = s["bodies"]["moving"]
     shape = json.loads((d / "shape.json").read_text())
     cpu = json.loads((d / "cpu.json").read_text()) if (d / "cpu.json").exists() else None
-    return {"name": name, "label": LABELS[name], "status": s["status"], "bodies": n,
+    return {"name": name, "label": LABELS[name.split("_seed")[0]], "status": s["status"], "bodies": n,
             "members": s["bodies"]["members"], "dt": s["dt"], "critical_term": s["critical_term"],
             "t_0.9_s": t90, "t_0.5_s": t50, "t_0.2_s": t20, "t_0.1_s": t10,
             "rate_0.9_to_0.5_per_s": (0.4 * n / (t50 - t90)) if t50 is not None and t90 is not None else None,
@@ -267,6 +273,8 @@ def measure(name):
             "wall_s": s["wall_seconds"], "settle_wall_s": s["settle"]["wall_seconds"],
             "total_wall_s": s["total_wall_seconds"], "body_steps_per_second": s["body_steps_per_second"],
             "cpu_s": cpu["user_s"] + cpu["sys_s"] if cpu else None,
+            "cpu_us_per_body_step": (cpu["user_s"] + cpu["sys_s"]) * 1e6 / ((s["steps"] + s["settle"]["steps"]) * n)
+            if cpu else None,
             "shape": shape}
 
 
@@ -278,7 +286,7 @@ def stats(values):
 
 
 KEYS = ["t_0.5_s", "t_0.2_s", "t_0.1_s", "rate_0.9_to_0.5_per_s", "remaining_at_end", "wall_s", "settle_wall_s",
-        "total_wall_s", "body_steps_per_second", "cpu_s"]
+        "total_wall_s", "body_steps_per_second", "cpu_s", "cpu_us_per_body_step"]
 
 
 def collect(args):
@@ -286,7 +294,7 @@ def collect(args):
     variants, missing = [], []
     for v in VARIANTS:
         runs = []
-        for pour in POURS:
+        for pour in pours(v):
             n = run_name(v, pour)
             if finished(n):
                 runs.append(dict(measure(n), pour=pour))
@@ -309,6 +317,10 @@ def collect(args):
     print(table(doc), end="")
 
 
+# Where the labels of the three points at the reference's cost go, so that they do not overlap.
+LABEL_OFFSETS = {"prism_r0.5": (8, -12), "prism_grid1mm": (8, 6), "prism_grid2mm": (-10, -3)}
+
+
 def chart(rows, path):
     import matplotlib
     matplotlib.use("Agg")
@@ -317,7 +329,7 @@ def chart(rows, path):
     colours = {"prism": "#0072B2", "clump": "#D55E00", "spher": "#009E73"}
     for r in rows:
         col = colours[r["name"][:5]]
-        x = r["wall_s"]["mean"]
+        x = r["cpu_us_per_body_step"]["mean"]
         mk = "s" if "grid" in r["name"] else "o"
         for key, fill in (("t_0.5_s", col), ("t_0.2_s", "none")):
             st = r[key]
@@ -327,9 +339,14 @@ def chart(rows, path):
                         color=col, mfc=fill, ms=8, capsize=3, lw=1)
         y = r["t_0.5_s"]["mean"]
         if y is not None:
-            ax.annotate(r["label"], (x, y), textcoords="offset points", xytext=(8, -3), fontsize=8)
+            dx, dy = LABEL_OFFSETS.get(r["name"], (8, -3))
+            ax.annotate(r["label"], (x, y), textcoords="offset points", xytext=(dx, dy), fontsize=8,
+                        ha="left" if dx > 0 else "right")
     ax.set_xscale("log")
-    ax.set_xlabel("wall time of the 1.5 s discharge (s, one thread, mean of the pours; log scale)")
+    xs = [r["cpu_us_per_body_step"]["mean"] for r in rows]
+    if xs:
+        ax.set_xlim(min(xs) / 1.5, max(xs) * 3)
+    ax.set_xlabel("CPU time per body-step (µs, one thread, settling and discharge, mean of the pours; log scale)")
     ax.set_ylabel("time after the gate opens (s)")
     ax.set_title("Reduced seed-002 hopper, 300 grains of the same mass: discharge time against cost\n"
                  "filled: remaining fraction 0.5; open: 0.2; bars: range over the pours; squares: coarse "
@@ -337,6 +354,10 @@ def chart(rows, path):
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
+
+
+def fmt(v, spec):
+    return "–" if v is None else format(v, spec)
 
 
 def span(st, spec):
@@ -348,8 +369,11 @@ def span(st, spec):
 
 def table(doc):
     rows = ["| particle model | members | mass (mg) | moments (1e-9 kg m²) | t(0.5) (s) | t(0.2) (s) | "
-            "t(0.1) (s) | rate 0.9→0.5 (grains/s) | left at 1.5 s | wall, discharge (s) | body-steps/s | pours |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+            "t(0.1) (s) | rate 0.9→0.5 (grains/s) | left at 1.5 s | wall, discharge (s) | body-steps/s | "
+            "CPU per body-step (µs) | × sphere | pours |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    sphere = next((r for r in doc["variants"] if r["name"] == "sphere"), None)
+    base = sphere["cpu_us_per_body_step"]["mean"] if sphere else None
     for r in doc["variants"]:
         sh, n = r["shape"], r["pours"]
         t10 = r["t_0.1_s"]
@@ -359,11 +383,16 @@ def table(doc):
                     f"{' '.join(f'{m * 1e9:.2f}' for m in sh['moments_kg_m2'])} | {span(r['t_0.5_s'], '.2f')} | "
                     f"{t20} | {t10s} | {span(r['rate_0.9_to_0.5_per_s'], '.0f')} | "
                     f"{span(r['remaining_at_end'], '.2f')} | {r['wall_s']['mean']:.0f} | "
-                    f"{r['body_steps_per_second']['mean']:,.0f} | {n} |")
+                    f"{r['body_steps_per_second']['mean']:,.0f} | {fmt(r['cpu_us_per_body_step']['mean'], '.2f')} | "
+                    f"{fmt(r['cpu_us_per_body_step']['mean'] / base if base and r['cpu_us_per_body_step']['mean'] else None, '.1f')} | "
+                    f"{n} |")
     rows.append("")
     rows.append("Mean (smallest–largest) over the pours; t(x): time after the gate opens at which the remaining "
-                "fraction falls to x. Wall time on a 2-core machine shared with other runs (not a benchmark: "
-                "compare the variants with one another).")
+                "fraction falls to x. Wall time of the discharge and body-steps/s from summary.json (body-steps "
+                "counted with the grains present when the gate opens); CPU per body-step: the run's CPU seconds "
+                "(settling and discharge) over its steps times 300 grains, and its ratio to the sphere's. The "
+                "machine's 2 cores were shared with other runs (load about 7), so wall times are inflated and "
+                "vary; compare the variants with one another, not with other tables.")
     if doc.get("missing"):
         rows.append("")
         rows.append("Not measured (runs not finished): " + ", ".join(doc["missing"]) + ".")
