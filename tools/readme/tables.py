@@ -71,6 +71,11 @@ def pulsation_table(path="docs/seed000/pulsation_w0.50/pulsation.json"):
     return "\n".join(rows) + "\n"
 
 
+def seed002_cost(path="docs/seed002/cost/cost.json"):
+    """Seed 002's cost chart: discharge times and cost per particle model (tools/seed002/cost_chart.py)."""
+    return script("tools/seed002/cost_chart.py", "table", path)
+
+
 def time_split_table(path="docs/bench/drum_time_split.json"):
     s = json.loads((ROOT / path).read_text())
     steps, grains = s["steps"], s["grains"]
@@ -140,6 +145,7 @@ TABLES = {
     "pulsation": pulsation_table,
     "mixer": lambda: script("tools/seed004/mixer_report.py", "table", "docs/seed004/mixer.json"),
     "mixer_compartments": lambda: script("tools/seed004/compartments.py", "table", "docs/seed004/compartments.json"),
+    "seed002_cost": seed002_cost,
     "mesh_drum": lambda: script("tools/walls/mesh_drum_compare.py", "table", "docs/walls/mesh_drum_compare.json"),
     "kiln_map": lambda: script("tools/seed001/map_table.py", "docs/seed001/map.json"),
     "kiln_stiffness": lambda: script("tools/seed001/map_table.py", "--stiffness", "docs/seed001/stiffness.json"),
