@@ -267,6 +267,19 @@ ShapeSpec box_shape(const Vector3d& edges, double radius) {
   return {{prism_core(section, edges.z(), radius, "the box")}, radius};
 }
 
+ShapeSpec spheres_shape(std::span<const Vector3d> centres, double radius) {
+  require_length(radius, "a sphere's radius");
+  if (centres.empty() || centres.size() > kMaxShapeParts)
+    throw std::invalid_argument("a shape of spheres needs 1 to " + std::to_string(kMaxShapeParts) + " centres, not " +
+                                std::to_string(centres.size()));
+  ShapeSpec s{{}, radius};
+  for (const Vector3d& c : centres) {
+    if (!c.allFinite()) throw std::invalid_argument("a sphere's centre must be finite");
+    s.parts.push_back({c});
+  }
+  return s;
+}
+
 ShapeSpec prism_shape(std::span<const Vector2d> section, double length, double radius) {
   check_section(section);
   require_length(length, "a prism's length");

@@ -54,6 +54,11 @@ ShapeSpec prism_shape(std::span<const Eigen::Vector2d> section, double length, d
 // +y, extruded along z over [-length/2, length/2].
 ShapeSpec triangular_prism_shape(double side, double length, double radius);
 
+// Spheres of radius `radius` (> 0) centred at `centres` (1 to kMaxShapeParts of them), each a
+// member with a point core: one centre is a sphere, several a clump (the multi-sphere
+// approximation of a shape), the spheres free to overlap (the mass properties count the union).
+ShapeSpec spheres_shape(std::span<const Eigen::Vector3d> centres, double radius);
+
 // The concave "upward-downward cone" element of the seed's hopper case, which names and shows it but
 // gives no dimensions (so they are parameters), read as two cones joined at their tips or bases:
 // two parts on the z axis, each a regular n-gonal frustum (a pyramid when neck_radius is 0) of axial

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -295,6 +296,19 @@ BodyRow body_row(const MassProperties& props, const Vector3d& x, const Eigen::Qu
   row.mass = props.mass;
   row.inertia = {props.moments[0], props.moments[1], props.moments[2]};
   return row;
+}
+
+MassProperties sphere_mass_properties(double radius, double rho) {
+  if (!(std::isfinite(radius) && radius > 0.0 && std::isfinite(rho) && rho > 0.0))
+    throw std::invalid_argument("a sphere's radius and density must be positive and finite");
+  MassProperties m;
+  m.volume = 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+  m.mass = rho * m.volume;
+  m.centre = Eigen::Vector3d::Zero();
+  m.inertia = 0.4 * m.mass * radius * radius * Eigen::Matrix3d::Identity();
+  m.moments = Eigen::Vector3d::Constant(0.4 * m.mass * radius * radius);
+  m.axes = Eigen::Matrix3d::Identity();
+  return m;
 }
 
 }  // namespace gf

@@ -87,6 +87,9 @@ struct MassProperties {
 // finite, or a grid of more than 2^31 voxels.
 MassProperties voxel_mass_properties(std::span<const DilatedPolyhedron> members, double rho, double h);
 
+// The mass properties of one sphere of `radius` at density rho, exact (no voxel grid is needed): mass rho 4/3 pi r^3, every principal moment 2/5 m r^2, the axes the input frame's.
+MassProperties sphere_mass_properties(double radius, double rho);
+
 // The members' rows in the body frame of `props` (origin at the centre of mass, axes the principal
 // axes: x_body = axes^T (x - centre)), each naming body row `body`.
 std::vector<MemberRow> body_frame_members(std::span<const DilatedPolyhedron> members, const MassProperties& props,

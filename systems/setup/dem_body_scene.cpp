@@ -40,6 +40,12 @@ ShapeSpec build_shape(const SceneNode& t, const std::string& kind, double r) {
                  : UpDownCone::Join::wide_ends;
     return up_down_cone_shape(c, r);
   }
+  if (kind == "sphere") return spheres_shape(std::array{Eigen::Vector3d::Zero().eval()}, r);
+  if (kind == "spheres") {
+    std::vector<Eigen::Vector3d> centres;
+    for (const auto& c : t.get_vec3_list("centres")) centres.push_back(to_e(c));
+    return spheres_shape(centres, r);
+  }
   if (kind == "letter") {
     const std::string letter = t.get_choice("letter", {"O", "T", "Z", "K", "A", "C"});
     LetterSize size;
@@ -75,8 +81,10 @@ BodyShape read_shape(const DemScene& s, const SceneNode& t) {
   BodyShape out;
   out.name = t.get_string("name");
   out.line = t.line();
-  const std::string kind = t.get_choice("kind", {"box", "triangular_prism", "up_down_cone", "letter", "file"});
-  const double r = t.get_double("radius", Range::closed(0, 100));
+  const std::string kind =
+      t.get_choice("kind", {"box", "triangular_prism", "up_down_cone", "letter", "file", "sphere", "spheres"});
+  const bool round = kind == "sphere" || kind == "spheres";
+  const double r = t.get_double("radius", round ? Range::open_closed(0, 100) : Range::closed(0, 100));
   if (s.law == "hertz_mindlin" && r == 0.0)
     t.fail("radius", "a sharp shape (radius 0) has no Hertz stiffness", "give the shape a dilation radius > 0 (m)");
   const double rho = t.get_double("density", Range::open_closed(0, 1e6));
@@ -84,6 +92,12 @@ BodyShape read_shape(const DemScene& s, const SceneNode& t) {
     out.shape = build_shape(t, kind, r);
   } catch (const std::invalid_argument& e) {
     t.fail("kind", std::string("the ") + kind + " cannot be built: " + e.what(), "correct its dimensions or radius");
+  }
+  if (kind == "sphere") {  // exact: no grid
+    if (t.has("grid")) t.fail("grid", "a sphere's mass properties are exact, not counted on a grid", "remove grid");
+    out.props = sphere_mass_properties(r, rho);
+    out.bound = r;
+    return out;
   }
   const double h = t.get_double("grid", 0.1 * smallest_edge(out.shape), Range::positive());
   try {
@@ -363,7 +377,9 @@ void require_body_scene(const SceneNode& root) {
   const std::string why = "composite grains do not share a scene with it yet";
   for (const char* key : {"species", "fill"})
     if (!root.tables(key).empty())
-      root.fail(key, std::string("[[") + key + "]] describes spheres: " + why, "remove it, or the [[bodies]] tables");
+      root.fail(key, std::string("[[") + key + "]] describes grains of the sphere tables: " + why,
+                "give spheres in a scene with bodies as [[shape]] kind = \"sphere\" (with radius and density) placed "
+                "by [[bodies]], or remove the [[bodies]] tables");
   for (const char* key : {"periodic"})
     if (root.has(key)) root.fail(key, std::string("[") + key + "]: " + why, "remove it, or the [[bodies]] tables");
   for (const SceneNode& w : root.tables("wall")) {

@@ -3,7 +3,10 @@
 //   [[shape]]   name; kind = "box" (size = [x, y, z]), "triangular_prism" (side, length),
 //               "up_down_cone" (base_radius, neck_radius, height, facets = 12, join = "narrow_ends" or
 //               "wide_ends"), "letter" (letter = O T Z K A C, width, height, depth, stroke), "file"
-//               (path of an .obj or .stl, relative to the scene); radius (dilation, m, >= 0; > 0 under
+//               (path of an .obj or .stl, relative to the scene), "sphere" (a point dilated by
+//               radius: a sphere, with exact mass properties and no grid), "spheres" (centres =
+//               [[x, y, z], ...]: a clump of spheres of that radius, overlapping or not, the
+//               multi-sphere approximation of a shape); radius (dilation, m, >= 0; > 0 under
 //               hertz_mindlin); density (kg/m^3); grid (voxel edge of the mass properties, m, default a
 //               tenth of the shape's smallest bounding-box edge); under hertz_mindlin also
 //               youngs_modulus and poisson_ratio, the same for every shape (one material for all bodies).
@@ -35,8 +38,11 @@
 // run.max_overlap is a fraction of the thinnest moving shape's smallest outer dimension: a member
 // contact overlapping more stops the run (exit status 3), as for grains.
 // Bodies touch each other member by member and the scene's plane and box walls (static: no omega),
-// with the [contact] law. Not yet in one scene with bodies: spheres ([[species]], [[fill]]), cylinder
-// and drum walls, rotating planes and [periodic]; such scenes are refused.
+// with the [contact] law. Spheres share a scene with bodies as [[shape]] kind = "sphere": bodies of
+// one point member, which meet members as any member does (member_geometry.hpp), stepped with the
+// bodies (at a body's cost, not a grain's). Not yet in one scene with bodies: the grain tables'
+// spheres ([[species]], [[fill]]), cylinder and drum walls, rotating planes and [periodic]; such
+// scenes are refused.
 #pragma once
 
 #include <array>
