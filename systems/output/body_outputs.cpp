@@ -8,6 +8,7 @@
 #include <numeric>
 #include <string>
 
+#include "systems/output/sample_grid.hpp"
 #include "engine/atomic_file.hpp"
 #include "systems/setup/dem_body_scene.hpp"
 
@@ -15,12 +16,6 @@ namespace gf {
 
 namespace {
 
-// Due at t >= next, up to round-off of the clock (t = k dt); times stay on the grid k * interval.
-bool due(double t, double next, double dt) { return t >= next - 1e-6 * dt; }
-double next_sample(double t, double next, double interval, double dt) {
-  while (due(t, next, dt)) next += interval;
-  return next;
-}
 
 double height(const Gravity& g, double x, double y, double z) {
   const double gn = std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
@@ -101,7 +96,7 @@ void BodySeriesOutput::restore(const CheckpointReader& in) {
 }
 
 void BodySeriesOutput::run(World& world, const StepContext& now) {
-  if (!due(now.t, next_, now.dt)) return;
+  if (!sample_due(now.t, next_, now.dt)) return;
   next_ = next_sample(now.t, next_, s_.interval, now.dt);
   sample(world, now.t);
 }
@@ -159,7 +154,7 @@ void BodyFrameOutput::restore(const CheckpointReader& in) {
 }
 
 void BodyFrameOutput::run(World& world, const StepContext& now) {
-  if (!due(now.t, next_, now.dt)) return;
+  if (!sample_due(now.t, next_, now.dt)) return;
   next_ = next_sample(now.t, next_, interval_, now.dt);
   write(world.tables.get<Bodies>(), now.t);
 }
@@ -221,7 +216,7 @@ void BodyPictureOutput::restore(const CheckpointReader& in) {
 }
 
 void BodyPictureOutput::run(World& world, const StepContext& now) {
-  if (!due(now.t, next_, now.dt)) return;
+  if (!sample_due(now.t, next_, now.dt)) return;
   const double target = next_;
   next_ = next_sample(now.t, next_, interval_, now.dt);
   const Image img = render_body_picture(world.tables.get<Bodies>(), world.tables.get<Members>(), colour_, view_);

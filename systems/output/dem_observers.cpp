@@ -4,22 +4,15 @@
 #include <cstdio>
 #include <string>
 
+#include "systems/output/sample_grid.hpp"
 #include "engine/atomic_file.hpp"
+#include "systems/setup/dem_scene.hpp"
 
 namespace gf {
 
-namespace {
-// Due at t >= next, up to round-off of the clock (t = k dt).
-bool due(double t, double next, double dt) { return t >= next - 1e-6 * dt; }
-// Sampling times stay on the grid k * interval even when the interval is not a multiple of dt.
-double next_sample(double t, double next, double interval, double dt) {
-  while (due(t, next, dt)) next += interval;
-  return next;
-}
-
 // Rotation angle (rad) of the first rotating wall at time t, else of the first rotating mesh wall
 // (omega t while rotation is on, as the mesh contacts place it); 0 if none rotates.
-double rotation_angle(const Walls& walls, double t, const MeshWalls* meshes = nullptr) {
+double rotation_angle(const Walls& walls, double t, const MeshWalls* meshes) {
   for (std::size_t w = 0; w < walls.list.size(); ++w)
     if (walls.list[w].omega != 0.0) return walls.angle(w, t);
   if (meshes != nullptr && walls.rotation_enabled)
@@ -28,22 +21,37 @@ double rotation_angle(const Walls& walls, double t, const MeshWalls* meshes = nu
   return 0.0;
 }
 
-}  // namespace
+
+std::vector<std::string> series_columns(const SeriesSettings& s) {
+  std::vector<std::string> c{"time",     "angle",         "ke_translational",  "ke_rotational",
+                             "contacts", "wall_contacts", "max_overlap_ratio", "segregation_index"};
+  if (s.mixing_cell > 0) c.insert(c.end(), {"lacey_index", "lacey_cell_grains"});
+  if (s.pattern)
+    c.insert(c.end(), {"pattern", "petals", "pattern_contrast", "surface_angle", "radial_segregation",
+                       "depth_segregation"});
+  if (s.flow) c.insert(c.end(), {"grains", "holdup_mass", "fed_mass", "discharged_mass", "feed_backlog"});
+  return c;
+}
+
+SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::path& out) {
+  SeriesSettings ss;
+  if (s.output.series_interval > 0) ss.csv = out / "series.csv";
+  ss.interval = s.output.series_interval > 0 ? s.output.series_interval : 1000 * s.dt;
+  ss.segregation_type = s.segregation_type;
+  ss.segregation_cell = s.segregation_cell;
+  ss.pattern = s.pattern;
+  ss.pattern_settings.large_type = s.segregation_type;
+  ss.mixing_cell = s.mixing_cell;
+  ss.mixing_min_grains = s.mixing_min_grains;
+  ss.flow = s.flow.any();
+  return ss;
+}
 
 SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
   if (mixing() && s_.segregation_type < 0)
     throw std::logic_error("series: Lacey's index requested without a species to measure (segregation_type)");
   if (!s_.csv) return;
-  std::vector<std::string> columns{"time",           "angle",         "ke_translational",  "ke_rotational",
-                                   "contacts",       "wall_contacts", "max_overlap_ratio", "segregation_index"};
-  if (mixing())
-    for (const char* c : {"lacey_index", "lacey_cell_grains"}) columns.push_back(c);
-  if (s_.pattern)
-    for (const char* c : {"pattern", "petals", "pattern_contrast", "surface_angle", "radial_segregation",
-                          "depth_segregation"})
-      columns.push_back(c);
-  if (s_.flow)
-    for (const char* c : {"grains", "holdup_mass", "fed_mass", "discharged_mass", "feed_backlog"}) columns.push_back(c);
+  std::vector<std::string> columns = series_columns(s_);
   if (s_.resume_rows)
     csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, std::move(columns), *s_.resume_rows));
   else
@@ -61,7 +69,7 @@ void SeriesOutput::restore(const CheckpointReader& in) {
 
 void SeriesOutput::run(World& world, const StepContext& now) {
   const double t = now.t;
-  if (!due(t, next_, now.dt)) return;
+  if (!sample_due(t, next_, now.dt)) return;
   next_ = next_sample(t, next_, s_.interval, now.dt);
   sample(world, t);
 }
@@ -179,7 +187,7 @@ void FrameOutput::restore(const CheckpointReader& in) {
 
 void FrameOutput::run(World& world, const StepContext& now) {
   const double t = now.t;
-  if (!due(t, next_, now.dt)) return;
+  if (!sample_due(t, next_, now.dt)) return;
   next_ = next_sample(t, next_, interval_, now.dt);
   series_.write(world.grains, t, fields_);
   last_written_ = t;

@@ -26,6 +26,8 @@
 
 namespace gf {
 
+struct DemScene;
+
 
 struct SeriesRow {
   double time = 0, angle = 0, ke_translational = 0, ke_rotational = 0;
@@ -66,6 +68,16 @@ struct SeriesSettings {
   int mixing_min_grains = 10;  // cells with fewer grains are left out of it
   bool flow = false;           // hold-up columns from the FlowState resource (a scene with feeds or outlets)
 };
+
+// Rotation angle (rad) of the first rotating wall at time t, else of the first rotating mesh wall
+// (omega t while rotation is on, as the mesh contacts place it); 0 if none rotates.
+double rotation_angle(const Walls& walls, double t, const MeshWalls* meshes = nullptr);
+
+// The columns of series.csv for these settings, in order.
+std::vector<std::string> series_columns(const SeriesSettings& s);
+
+// The settings `grainflow run` gives its SeriesOutput for a scene (the csv under out, if any).
+SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::path& out);
 
 class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
  public:

@@ -198,16 +198,7 @@ int run_dem_command(const CliOptions& opt) {
 
   Schedule observe;
   world.resources.emplace<SeriesRow>();
-  SeriesSettings ss;
-  if (s.output.series_interval > 0) ss.csv = out / "series.csv";
-  ss.interval = s.output.series_interval > 0 ? s.output.series_interval : 1000 * s.dt;
-  ss.segregation_type = s.segregation_type;
-  ss.segregation_cell = s.segregation_cell;
-  ss.pattern = s.pattern;
-  ss.pattern_settings.large_type = s.segregation_type;
-  ss.mixing_cell = s.mixing_cell;
-  ss.mixing_min_grains = s.mixing_min_grains;
-  ss.flow = s.flow.any();
+  SeriesSettings ss = scene_series_settings(s, out);
   if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");
   SeriesOutput& series = observe.emplace<SeriesOutput>(ss);
   FrameOutput* frames = nullptr;

@@ -2,14 +2,13 @@
 
 #include <system_error>
 
+#include "systems/output/sample_grid.hpp"
 #include "engine/atomic_file.hpp"
 #include "engine/mpi/rank_failure.hpp"
 
 namespace gf {
 
 namespace {
-// As CheckpointOutput: due at t >= next up to round-off of the clock, on the grid k * interval.
-bool due(double t, double next, double dt) { return t >= next - 1e-6 * dt; }
 
 bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
   std::error_code ec;
@@ -26,8 +25,8 @@ RankCheckpoints::RankCheckpoints(RankCheckpointSettings s, const MpiContext& mpi
 void RankCheckpoints::observe(RankSimulation& sim, const RankOutputs& outputs) {
   if (s_.interval <= 0) return;
   const Clock& c = sim.world().clock;
-  if (!due(c.t, next_, c.dt)) return;
-  while (due(c.t, next_, c.dt)) next_ += s_.interval;
+  if (!sample_due(c.t, next_, c.dt)) return;
+  while (sample_due(c.t, next_, c.dt)) next_ += s_.interval;
   write(sim, outputs);
 }
 

@@ -4,15 +4,11 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "systems/output/sample_grid.hpp"
 #include "engine/atomic_file.hpp"
 #include "engine/mpi/rank_failure.hpp"
 
 namespace gf {
-
-namespace {
-// As FrameOutput: due at t >= next up to round-off of the clock, frame times on the grid k * interval.
-bool due(double t, double next, double dt) { return t >= next - 1e-6 * dt; }
-}  // namespace
 
 RankFrames::RankFrames(std::filesystem::path out, double interval, FrameFields fields, const MpiContext& mpi)
     : out_(std::move(out)), interval_(interval), fields_(fields), mpi_(&mpi) {
@@ -34,8 +30,8 @@ std::string RankFrames::piece_name(std::size_t k, int rank) {
 }
 
 void RankFrames::observe(const Grains& g, double t, double dt) {
-  if (!due(t, next_, dt)) return;
-  while (due(t, next_, dt)) next_ += interval_;
+  if (!sample_due(t, next_, dt)) return;
+  while (sample_due(t, next_, dt)) next_ += interval_;
   write(g, t);
 }
 

@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "systems/output/sample_grid.hpp"
 #include "engine/mpi/rank_failure.hpp"
 #include "systems/analysis/drum_section.hpp"
 #include "systems/output/mpi/gathered_grains.hpp"
@@ -11,36 +12,6 @@
 namespace gf {
 
 namespace {
-
-// As SeriesOutput: due at t >= next up to round-off of the clock, and the sampling times on the
-// grid k * interval.
-bool due(double t, double next, double dt) { return t >= next - 1e-6 * dt; }
-double next_sample(double t, double next, double interval, double dt) {
-  while (due(t, next, dt)) next += interval;
-  return next;
-}
-
-// As SeriesOutput: the first rotating wall's angle, else the first rotating mesh wall's; 0 if none.
-double rotation_angle(const Walls& walls, double t, const MeshWalls* meshes) {
-  for (std::size_t w = 0; w < walls.list.size(); ++w)
-    if (walls.list[w].omega != 0.0) return walls.angle(w, t);
-  if (meshes != nullptr && walls.rotation_enabled)
-    for (const MeshWall& m : meshes->list)
-      if (m.omega != 0.0) return m.omega * t;
-  return 0.0;
-}
-
-// The columns SeriesOutput writes for these settings, in its order (a scene with feeds or outlets
-// does not run on several ranks, so never the hold-up columns).
-std::vector<std::string> series_columns(const SeriesSettings& s) {
-  std::vector<std::string> c{"time",     "angle",         "ke_translational",  "ke_rotational",
-                             "contacts", "wall_contacts", "max_overlap_ratio", "segregation_index"};
-  if (s.mixing_cell > 0) c.insert(c.end(), {"lacey_index", "lacey_cell_grains"});
-  if (s.pattern)
-    c.insert(c.end(), {"pattern", "petals", "pattern_contrast", "surface_angle", "radial_segregation",
-                       "depth_segregation"});
-  return c;
-}
 
 std::vector<double> series_values(const SeriesRow& row, const SeriesSettings& s) {
   std::vector<double> v{row.time,
@@ -59,20 +30,6 @@ std::vector<double> series_values(const SeriesRow& row, const SeriesSettings& s)
 }
 
 }  // namespace
-
-SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::path& out) {
-  SeriesSettings ss;
-  if (s.output.series_interval > 0) ss.csv = out / "series.csv";
-  ss.interval = s.output.series_interval > 0 ? s.output.series_interval : 1000 * s.dt;
-  ss.segregation_type = s.segregation_type;
-  ss.segregation_cell = s.segregation_cell;
-  ss.pattern = s.pattern;
-  ss.pattern_settings.large_type = s.segregation_type;
-  ss.mixing_cell = s.mixing_cell;
-  ss.mixing_min_grains = s.mixing_min_grains;
-  ss.flow = s.flow.any();
-  return ss;
-}
 
 RankSeries::RankSeries(SeriesSettings s, const MpiContext& mpi) : s_(std::move(s)), mpi_(&mpi) {
   if (s_.flow) throw std::invalid_argument("the hold-up columns of feeds and outlets are not written across ranks");
@@ -103,7 +60,7 @@ void RankSeries::restore(const CheckpointReader& in) {
 void RankSeries::observe(World& w) {
   if (!s_.csv) return;  // no file: only the final row is sampled
   const double t = w.clock.t;
-  if (!due(t, next_, w.clock.dt)) return;
+  if (!sample_due(t, next_, w.clock.dt)) return;
   next_ = next_sample(t, next_, s_.interval, w.clock.dt);
   sample(w, t);
 }

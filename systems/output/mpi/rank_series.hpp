@@ -21,9 +21,6 @@
 
 namespace gf {
 
-// The settings `grainflow run` gives its SeriesOutput for this scene (the csv under out, if any).
-SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::path& out);
-
 class RankSeries {
  public:
   // Rank 0 creates the csv with its header (none when the scene has no series_interval), or with
