@@ -61,12 +61,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 std::string load_error(const std::string& text) {
-  try {
-    gf::DemSimulation::from_text(text);
-  } catch (const gf::SceneError& e) {
-    return e.what();
-  }
-  return "";
+  return gf::test::scene_error_of([&] { gf::DemSimulation::from_text(text); });
 }
 
 }  // namespace

@@ -30,12 +30,7 @@ const std::string kBall =
     "[[shape]]\nname = \"ball\"\nkind = \"sphere\"\nradius = 0.005\ndensity = 2500.0\n\n";
 
 std::string load_error(const std::string& text) {
-  try {
-    gf::DemSimulation::from_text(text);
-  } catch (const gf::SceneError& e) {
-    return e.what();
-  }
-  return "";
+  return gf::test::scene_error_of([&] { gf::DemSimulation::from_text(text); });
 }
 
 }  // namespace

@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include "engine/grains.hpp"
+#include "engine/scene.hpp"
 #include "systems/analysis/drum_section.hpp"
 #include "systems/contact/vec3.hpp"
 
@@ -59,6 +60,17 @@ struct TempDir {
     return p;
   }
 };
+
+// The message of the SceneError that f() throws, or "" when it throws none.
+template <class F>
+std::string scene_error_of(F&& f) {
+  try {
+    f();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
 
 // The whole file as bytes; "" if it cannot be opened.
 inline std::string read_file(const std::filesystem::path& p) {
