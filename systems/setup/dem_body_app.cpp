@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <nlohmann/json.hpp>
@@ -14,6 +15,7 @@
 
 #include "engine/atomic_file.hpp"
 #include "engine/run_loop.hpp"
+#include "systems/analysis/body_repose.hpp"
 #include "systems/analysis/packing.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/output/body_outputs.hpp"
@@ -88,6 +90,31 @@ std::array<double, 3> outer_edges(const ShapeSpec& shape) {
 // and in packing.csv, the fraction per voxel layer from the floor: height (m, the layer's centre
 // above the floor), interior (within the interior's columns), whole (across the bed's full extent).
 // Returns summary.json's "packing" entry.
+// The angle of repose of each [[analysis.repose]] heap in the final state (body_repose.hpp), in
+// degrees, per flank with its slope, the columns fitted and their span; summary.json's "repose".
+nlohmann::json final_repose(const DemScene& s, World& world) {
+  const Gravity& g = world.resources.get<Gravity>();
+  const double norm = std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
+  nlohmann::json out = nlohmann::json::object();
+  if (s.bodies->output.repose.empty() || !(norm > 0)) return out;
+  const V3<double> up{-g.x / norm, -g.y / norm, -g.z / norm};
+  auto flank = [](const ReposeFlank& f) {
+    nlohmann::json j = {{"columns", f.columns}, {"s_from", f.s_from}, {"s_to", f.s_to}};
+    j["angle_deg"] = std::isfinite(f.angle) ? nlohmann::json(f.angle * 180.0 / std::numbers::pi) : nlohmann::json();
+    j["slope"] = std::isfinite(f.slope) ? nlohmann::json(f.slope) : nlohmann::json();
+    return j;
+  };
+  for (const ReposeSpec& spec : s.bodies->output.repose) {
+    const Repose r = body_repose(world.tables.get<Bodies>(), world.tables.get<Members>(), up, spec);
+    nlohmann::json j = {{"first", flank(r.first)}};
+    if (spec.geometry != ReposeSpec::Geometry::heap) j["second"] = flank(r.second);
+    j["extreme_height"] = std::isfinite(r.extreme_height) ? nlohmann::json(r.extreme_height) : nlohmann::json();
+    j["column"] = spec.settings.column;
+    out[spec.name] = j;
+  }
+  return out;
+}
+
 nlohmann::json final_packing(const DemScene& s, World& world, const std::filesystem::path& out) {
   const Gravity& g = world.resources.get<Gravity>();
   const double gv[3] = {g.x, g.y, g.z};
@@ -194,6 +221,9 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
   summary["scene"] = s.file.string();
   summary["overrides"] = opt.overrides;
   summary["bodies"] = {{"moving", counts.moving}, {"fixed", counts.fixed}, {"members", counts.members}};
+  for (const BodyShape& sh : s.bodies->shapes)
+    summary["shapes"][sh.name] = {{"parts", sh.shape.parts.size()}, {"mass", sh.props.mass}, {"volume", sh.props.volume},
+                                  {"moments", {sh.props.moments[0], sh.props.moments[1], sh.props.moments[2]}}};
   summary["threads"] = threads_in_use();
   summary["dt"] = s.dt;
   summary["critical_period"] = s.critical.period;
@@ -329,13 +359,14 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
       rc = 3;
     }
   }
-  nlohmann::json packing;
+  nlohmann::json packing, repose;
   if (status != "failed") {
     try {
       packing = final_packing(s, world, out);
+      repose = final_repose(s, world);
     } catch (const std::exception& e) {
       status = "failed";
-      failure = std::string("the final packing: ") + e.what();
+      failure = std::string("the final packing or repose: ") + e.what();
       rc = 3;
     }
   }
@@ -364,6 +395,7 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
                       {"moving", row.moving}};
   if (bo.has_outlet) summary["final"]["remaining_fraction"] = number_or_null(row.remaining_fraction);
   if (!packing.is_null()) summary["packing"] = packing;
+  if (!repose.empty()) summary["repose"] = repose;
   double total = 0;
   for (auto& t : step.timings()) total += t.seconds;
   for (auto& t : observe.timings()) total += t.seconds;

@@ -11,6 +11,7 @@
 
 #include "engine/read_file.hpp"
 #include "systems/analysis/metrics.hpp"
+#include "systems/setup/repose_scene.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/bodies/body_integrate.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
@@ -146,9 +147,14 @@ void read_body_outputs(const DemScene& s, const SceneNode& root, BodiesSpec& b) 
     for (const char* key : {"species", "mixing_cell", "mixing_min_grains"})
       if (an->has(key))
         an->fail(key, "the mixing measures compare species of grains, and a body scene has none",
-                 "remove it; bodies take outlet_height (m)");
+                 "remove it; bodies take outlet_height (m) and [[analysis.repose]]");
     o.has_outlet = an->has("outlet_height");
     if (o.has_outlet) o.outlet_height = read_height(*an, "outlet_height");
+    if (an->has("repose")) {
+      const double g = std::sqrt(s.gravity.x * s.gravity.x + s.gravity.y * s.gravity.y + s.gravity.z * s.gravity.z);
+      if (!(g > 0)) an->fail("repose", "a heap's slope is measured against gravity, and run.gravity is zero", "give run.gravity");
+      o.repose = read_repose(*an, {-s.gravity.x / g, -s.gravity.y / g, -s.gravity.z / g});
+    }
   }
   if (const auto sink = root.maybe_table("sink")) {
     o.has_sink = true;

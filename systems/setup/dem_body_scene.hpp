@@ -32,7 +32,8 @@
 //               (dem_body_checkpoint.hpp: a resumed run is bit-identical).
 //   [analysis]  outlet_height (m, along -gravity, i.e. y under the default gravity): series.csv adds
 //               remaining_fraction, the moving bodies whose centre of mass lies above it over those
-//               moving at the start of the main stage.
+//               moving at the start of the main stage. [[analysis.repose]]: heaps, ridges or craters
+//               whose angle of repose summary.json reports at the end (systems/setup/repose_scene.hpp).
 //   [sink]      height (m, along -gravity): a moving body whose centre falls below it is removed (so
 //               grains discharged from a hopper need no floor to pile on).
 // run.max_overlap is a fraction of the thinnest moving shape's smallest outer dimension: a member
@@ -53,6 +54,7 @@
 #include "engine/scene.hpp"
 #include "engine/schedule.hpp"
 #include "engine/world.hpp"
+#include "systems/analysis/body_repose.hpp"
 #include "systems/bodies/body_shapes.hpp"
 #include "systems/bodies/mass_properties.hpp"
 #include "systems/contact/contact_table.hpp"
@@ -92,6 +94,7 @@ struct BodyOutputSpec {
   bool has_sink = false;
   double sink_height = 0;       // m along -gravity
   double overlap_scale = 0;     // m, the thinnest moving shape's smallest outer dimension
+  std::vector<ReposeSpec> repose;  // [[analysis.repose]]: heaps measured at the end of the run
 };
 
 struct BodiesSpec {
