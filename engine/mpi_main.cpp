@@ -13,7 +13,9 @@
 // (rebuilds, rows migrated, ghost rows at the end), the final kinetic energy and momentum and the
 // last series row. --resume continues a checkpoint's run on as many ranks bit for bit (no settling;
 // series.csv and the frames go on from the checkpoint, rows and frames the stopped run wrote after it
-// are replaced). Exit status 2 for a scene, usage or checkpoint error (every rank stops; rank 0 names
+// are replaced); on another number of ranks (one included) it continues to round-off, the rows and
+// springs shared out to the new boxes (RankSimulation::restore_portable), and the parts it read are
+// left on disk. Exit status 2 for a scene, usage or checkpoint error (every rank stops; rank 0 names
 // the file), 3 when the run became unphysical (every rank is stopped by MPI_Abort) or an output could
 // not be written (every rank stops and finalises; rank 0 names the file).
 #include <chrono>
@@ -89,17 +91,29 @@ void run_main_stage(gf::RankSimulation& sim, gf::RankOutputs& outputs, gf::RankC
 // A checkpoint's state on every rank: each rank's part opened and restored. Collective; a
 // RankFailure on every rank when any part cannot be (rank 0's message names the files).
 struct Resumed {
-  std::unique_ptr<gf::CheckpointReader> part;
+  std::unique_ptr<gf::CheckpointReader> part;  // this rank's, or part 0 when the rank count differs
   std::size_t series_rows = 0;
+  int other_ranks = 0;  // the rank count that wrote the checkpoint, when it differs from this run's
 };
 
 Resumed resume(const std::filesystem::path& index, gf::RankSimulation& sim, const gf::MpiContext& mpi) {
   Resumed r;
-  r.part = gf::open_rank_part(index, mpi);
-  gf::on_every_rank(mpi, [&] {
-    sim.restore(*r.part);
-    r.series_rows = gf::RankOutputs::series_rows(*r.part);
-  });
+  gf::RankCheckpointIndex idx;
+  gf::on_every_rank(mpi, [&] { idx = gf::read_rank_index(index); });
+  if (idx.ranks == mpi.size()) {
+    r.part = gf::open_rank_part(index, mpi);
+    gf::on_every_rank(mpi, [&] { sim.restore(*r.part); });
+  } else {
+    // Another rank count: part 0 gives every rank the clock and the outputs' state, and the parts
+    // are shared out among the ranks to be read (RankSimulation::restore_portable).
+    gf::on_every_rank(mpi, [&] { r.part = std::make_unique<gf::CheckpointReader>(index.parent_path() / idx.parts[0]); });
+    std::vector<std::filesystem::path> mine;
+    for (std::size_t k = static_cast<std::size_t>(mpi.rank()); k < idx.parts.size(); k += static_cast<std::size_t>(mpi.size()))
+      mine.push_back(index.parent_path() / idx.parts[k]);
+    sim.restore_portable(*r.part, mine);
+    r.other_ranks = idx.ranks;
+  }
+  gf::on_every_rank(mpi, [&] { r.series_rows = gf::RankOutputs::series_rows(*r.part); });
   return r;
 }
 
@@ -107,7 +121,8 @@ Resumed resume(const std::filesystem::path& index, gf::RankSimulation& sim, cons
 void resume_outputs(const Resumed& r, const std::filesystem::path& index, gf::RankOutputs& outputs,
                     gf::RankCheckpoints& checkpoints, const gf::MpiContext& mpi) {
   outputs.restore(*r.part);
-  gf::on_every_rank(mpi, [&] { checkpoints.restore(*r.part, index); });
+  // A set of parts of another rank count is not this run's to replace: the next set leaves it.
+  gf::on_every_rank(mpi, [&] { checkpoints.restore(*r.part, r.other_ranks ? std::filesystem::path() : index); });
 }
 
 // A checkpoint that cannot be resumed: rank 0 says why (the message names the file and the fix).
@@ -210,8 +225,11 @@ int main(int argc, char** argv) {
                  opt.scene.string().c_str(), static_cast<long long>(grains), mpi.size(), threads,
                  static_cast<long long>(steps), opt.out.string().c_str());
     if (opt.resume)
-      std::fprintf(stderr, "grainflow_mpi: resuming from %s at step %lld (t = %.6g s)\n", opt.resume->string().c_str(),
-                   static_cast<long long>(start.step), start.t);
+      std::fprintf(stderr, "grainflow_mpi: resuming from %s at step %lld (t = %.6g s)%s\n", opt.resume->string().c_str(),
+                   static_cast<long long>(start.step), start.t,
+                   resumed.other_ranks ? (", written on " + std::to_string(resumed.other_ranks) +
+                                          " ranks: its rows and springs shared out to this run's boxes").c_str()
+                                       : "");
   }
   const gf::DemScene& scene = sim->scene();
   nlohmann::json summary;

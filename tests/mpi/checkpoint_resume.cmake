@@ -1,8 +1,9 @@
 # grainflow_mpi's checkpoints as a user meets them (cmake -P, from ctest): a run of 200 steps, and the
 # same scene stopped at step 137 (checkpoints every 50 steps and at the end) then resumed with
-# --resume, end with the same final_state.csv, series.csv and frames.pvd, byte for byte; the
-# checkpoint resumed on three ranks is refused (exit status 2) with the index named and the fix.
+# --resume, end with the same final_state.csv, series.csv and frames.pvd, byte for byte; the same
+# checkpoint resumed on three ranks and on one ends within round-off of the uninterrupted run.
 #   -D MPIEXEC=... -D NP_FLAG=... -D PROGRAM=grainflow_mpi -D SCENE=checkpoint_box.toml -D WORK=folder
+#   -D PYTHON=python3
 
 function(run_ranks ranks expect_rc out_var)
   execute_process(COMMAND ${MPIEXEC} --allow-run-as-root --oversubscribe ${NP_FLAG} ${ranks} ${PROGRAM} run ${SCENE}
@@ -19,6 +20,9 @@ set(every_50 --set output.checkpoint_interval=0.0005)
 run_ranks(2 0 out --out ${WORK}/whole --steps 200)
 run_ranks(2 0 out --out ${WORK}/split --steps 137 ${every_50})
 set(index ${WORK}/split/checkpoints/checkpoint_ranks.gfc)
+foreach(ranks 3 1)  # the stopped run as it is now, for the resumes on other rank counts below
+  file(COPY ${WORK}/split/ DESTINATION ${WORK}/on${ranks})
+endforeach()
 run_ranks(2 0 out --out ${WORK}/split --steps 200 ${every_50} --resume ${index})
 if(NOT out MATCHES "resuming from [^\n]*checkpoint_ranks.gfc at step 137")
   message(FATAL_ERROR "the resumed run does not say where it resumed:\n${out}")
@@ -31,11 +35,21 @@ foreach(file final_state.csv series.csv frames.pvd)
   endif()
 endforeach()
 
-run_ranks(3 2 out --out ${WORK}/three --resume ${index})
-foreach(expect "checkpoint_ranks.gfc: it was written by a run on 2 ranks, this run has 3" "mpiexec -n 2")
-  string(FIND "${out}" "${expect}" at)
-  if(at EQUAL -1)
-    message(FATAL_ERROR "the refusal on 3 ranks does not say '${expect}':\n${out}")
+# On three ranks and on one: the rows and springs shared out to the new boxes. The summation order
+# changes, so the run ends within round-off of the uninterrupted one: measured 2e-15 relative in the
+# energies. A lost spring shows far above the bound: with the springs dropped at the resume the
+# rotational energy ends 4e-2 and the translational 2e-5 away (measured once, by hand).
+foreach(ranks 3 1)
+  run_ranks(${ranks} 0 out --out ${WORK}/on${ranks} --steps 200 ${every_50}
+            --resume ${WORK}/on${ranks}/checkpoints/checkpoint_ranks.gfc)
+  if(NOT out MATCHES "at step 137 [^\n]*written on 2 ranks")
+    message(FATAL_ERROR "the run resumed on ${ranks} ranks does not say the checkpoint's rank count:\n${out}")
+  endif()
+  execute_process(COMMAND ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/compare_series_end.py ${WORK}/whole/series.csv
+                          ${WORK}/on${ranks}/series.csv 1e-12
+                  RESULT_VARIABLE differ OUTPUT_VARIABLE said ERROR_VARIABLE said)
+  if(differ)
+    message(FATAL_ERROR "resumed on ${ranks} ranks: ${said}")
   endif()
 endforeach()
-message(STATUS "resumed run identical; 3 ranks refused:\n${out}")
+message(STATUS "resumed run identical on 2 ranks, within round-off on 3 and 1")

@@ -110,33 +110,42 @@ RankSimulation RankSimulation::from_file(const std::filesystem::path& file, cons
 RankSimulation::RankSimulation(RankSimulation&&) noexcept = default;
 RankSimulation::~RankSimulation() = default;
 
+void RankSimulation::pack_spring(std::vector<std::byte>& out, std::int64_t own, std::int64_t other,
+                                 const PairHistory& h, std::size_t e) {
+  put(out, &own, sizeof own);
+  put(out, &other, sizeof other);
+  for (std::size_t c = 0; c < h.width; ++c) put(out, &h.value[c][e], sizeof(double));
+}
+
 void RankSimulation::rebuild() {
   World& w = sim_->world();
   Grains& g = w.grains;
-  NeighborList& list = w.resources.get<NeighborList>();
-  PairHistory& history = w.resources.get<PairHistory>();
-  const MpiContext& mpi = *mpi_;
-  const auto ranks = static_cast<std::size_t>(mpi.size());
-
+  const NeighborList& list = w.resources.get<NeighborList>();
+  const PairHistory& history = w.resources.get<PairHistory>();
   for (std::size_t i = 0; i < g.n_owned; ++i)
     if (!rcb_->box(rcb_->owner_of(position(g, i))).contains(position(g, i)))
       throw StabilityError("grain " + std::to_string(g.pid.id[i]) +
                            " left the domain the ranks' boxes tile (the grains' starting bounds widened a "
                            "thousandfold): the run blew up or a grain escaped the walls");
-
   // Each spring to the rank that evaluates its pair after the migration: the higher owner.
-  const std::size_t width = history.width;
-  std::vector<std::vector<std::byte>> out(ranks);
+  std::vector<std::vector<std::byte>> out(static_cast<std::size_t>(mpi_->size()));
   if (listed_)
     for (std::size_t e = 0; e < history.size(); ++e) {
       const auto k = static_cast<std::size_t>(history.pair[e]);
       const std::uint32_t i = list.i[k], j = list.j[k];
       const int to = std::max(rcb_->owner_of(position(g, i)), rcb_->owner_of(position(g, j)));
-      std::vector<std::byte>& o = out[static_cast<std::size_t>(to)];
-      put(o, &g.pid.id[i], sizeof(std::int64_t));
-      put(o, &g.pid.id[j], sizeof(std::int64_t));
-      for (std::size_t c = 0; c < width; ++c) put(o, &history.value[c][e], sizeof(double));
+      pack_spring(out[static_cast<std::size_t>(to)], g.pid.id[i], g.pid.id[j], history, e);
     }
+  relist(out);
+}
+
+void RankSimulation::relist(const std::vector<std::vector<std::byte>>& out) {
+  World& w = sim_->world();
+  Grains& g = w.grains;
+  NeighborList& list = w.resources.get<NeighborList>();
+  PairHistory& history = w.resources.get<PairHistory>();
+  const MpiContext& mpi = *mpi_;
+  const std::size_t width = history.width;
   const std::vector<std::vector<std::byte>> in = mpi.exchange(out);
   const std::size_t record = 2 * sizeof(std::int64_t) + width * sizeof(double);
   std::vector<SpringRecord> springs;
@@ -151,7 +160,6 @@ void RankSimulation::rebuild() {
       springs.push_back(r);
     }
   }
-
   // The rows to their owners, then the sorted owned rows, the ghost rows and the list.
   const MigrationCount moved = migrate_rows(g, row_owners(g, *rcb_), mpi);
   counters_.migrated += static_cast<std::int64_t>(moved.sent);

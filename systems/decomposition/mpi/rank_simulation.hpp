@@ -29,7 +29,10 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "engine/checkpoint_file.hpp"
 #include "engine/mpi/mpi_context.hpp"
@@ -39,6 +42,8 @@
 #include "systems/setup/dem_simulation.hpp"
 
 namespace gf {
+
+struct PairHistory;
 
 struct RankCounters {
   std::int64_t rebuilds = 0;  // neighbour rebuilds (every rank makes the same number)
@@ -76,6 +81,14 @@ class RankSimulation {
   // scene on as many ranks; the steps then continue bit for bit. A part of another rank, rank count,
   // scene or boxes is a CheckpointError naming the file, what differs and the fix. Local.
   void restore(const CheckpointReader& in);
+  // Replaces the state by a checkpoint written on another number of ranks (rank_state.cpp): this
+  // rank reads the parts `mine` (each part read by one rank), keeps their owned rows and the
+  // springs of their lists, and both then go to the ranks that own and evaluate them under this
+  // run's boxes, through a neighbour rebuild. The run continues as the stopped one would have to
+  // round-off, not bit for bit (the boxes change the order of the force sums). `first` is part 0,
+  // whose clock and settings every rank checks; a part of another scene or step is a
+  // CheckpointError naming the file and the fix. Collective.
+  void restore_portable(const CheckpointReader& first, std::span<const std::filesystem::path> mine);
 
   // This rank's rows: owned first (grains().n_owned), then the ghost rows.
   Grains& grains() { return sim_->grains(); }
@@ -93,7 +106,15 @@ class RankSimulation {
 
  private:
   void step_once(const StepContext& c);
+  // The domain check, then relist with every spring sent to the rank that evaluates its pair next.
   void rebuild();
+  // Sends out[r] (packed springs) to rank r, migrates the rows to their owners, makes the ghost rows
+  // and the list, and attaches the springs that arrived to their pairs. Collective.
+  void relist(const std::vector<std::vector<std::byte>>& out);
+  // One spring packed for relist: its pair's ids (`own` the grain whose view the values are in) and
+  // entry e of h's values.
+  static void pack_spring(std::vector<std::byte>& out, std::int64_t own, std::int64_t other, const PairHistory& h,
+                          std::size_t e);
 
   const MpiContext* mpi_;
   std::unique_ptr<DemSimulation> sim_;

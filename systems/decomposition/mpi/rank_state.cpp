@@ -3,9 +3,13 @@
 // owners, the list, the springs, the skin's reference positions), so the row order, the pair order
 // and every floating-point sum after a resume are those of the run that was not stopped.
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
+#include <filesystem>
+#include <span>
 #include <string>
 
+#include "engine/mpi/rank_failure.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/decomposition/mpi/rank_simulation.hpp"
 #include "systems/decomposition/row_bytes.hpp"
@@ -102,8 +106,23 @@ void check_list(const CheckpointReader& in, const NeighborList& l, const PairHis
           "skin reference positions");
 }
 
-// The rank, the rank count, the boxes, the law, dt and the skin of the part against this run's.
-void check_run(const CheckpointReader& in, const MpiContext& mpi, const Rcb& rcb, const DemScene& s, double skin) {
+// The law, dt, the skin, spins and the grains' columns of the part against this run's.
+void check_settings(const CheckpointReader& in, const DemScene& s, double skin, Grains& g) {
+  std::vector<char> law;
+  in.vector("rank.contact.law", law);
+  if (std::string(law.begin(), law.end()) != s.law)
+    in.fail("it was written with the contact law '" + std::string(law.begin(), law.end()) + "', the scene now uses '" +
+                s.law + "'",
+            kSameRun);
+  if (in.value<double>("rank.clock.dt") != s.dt) in.fail("it was written with another run.dt", kSameRun);
+  if (in.value<double>("rank.broadphase.skin") != skin) in.fail("it was written with another run.skin", kSameRun);
+  if (in.value<bool>("rank.grains.spin") != g.spin) in.fail("it was written for grains that rotate otherwise", kSameRun);
+  if (in.value<std::uint64_t>("rank.grains.columns") != raw_row_columns(g).size())
+    in.fail("its grains have other columns than this scene's", kSameRun);
+}
+
+// The rank, the rank count and the boxes of the part against this run's.
+void check_run(const CheckpointReader& in, const MpiContext& mpi, const Rcb& rcb) {
   const auto ranks = in.value<std::int32_t>("rank.ranks");
   if (ranks != mpi.size())
     in.fail("it is a part of a checkpoint of " + std::to_string(ranks) + " ranks, this run has " +
@@ -113,19 +132,22 @@ void check_run(const CheckpointReader& in, const MpiContext& mpi, const Rcb& rcb
     in.fail("it is rank " + std::to_string(in.value<std::int32_t>("rank.rank")) + "'s part, read by rank " +
                 std::to_string(mpi.rank()),
             "resume from the checkpoint's index file, which names each rank's part");
-  std::vector<char> law;
-  in.vector("rank.contact.law", law);
-  if (std::string(law.begin(), law.end()) != s.law)
-    in.fail("it was written with the contact law '" + std::string(law.begin(), law.end()) + "', the scene now uses '" +
-                s.law + "'",
-            kSameRun);
-  if (in.value<double>("rank.clock.dt") != s.dt) in.fail("it was written with another run.dt", kSameRun);
-  if (in.value<double>("rank.broadphase.skin") != skin) in.fail("it was written with another run.skin", kSameRun);
   std::vector<DomainBox> boxes;
   in.vector("rank.boxes", boxes);
   const std::vector<DomainBox>& now = rcb.boxes();
   if (boxes.size() != now.size() || std::memcmp(boxes.data(), now.data(), boxes.size() * sizeof(DomainBox)) != 0)
     in.fail("its ranks' boxes are not those this scene's grains give (another fill, seed or grain count)", kSameRun);
+}
+
+// The clock and the walls' state (the same in every part of one checkpoint).
+void restore_clock(const CheckpointReader& in, World& w) {
+  w.clock.t = in.value<double>("rank.clock.t");
+  w.clock.dt = in.value<double>("rank.clock.dt");
+  w.clock.step = in.value<std::int64_t>("rank.clock.step");
+  w.clock.t0 = in.value<double>("rank.clock.t0");
+  Walls& walls = w.resources.get<Walls>();
+  walls.rotation_enabled = in.value<bool>("rank.walls.rotation_enabled");
+  walls.place(w.clock.t);
 }
 
 }  // namespace
@@ -167,8 +189,8 @@ void RankSimulation::restore(const CheckpointReader& in) {
   World& w = sim_->world();
   Grains& g = w.grains;
   BroadphaseState& bp = w.resources.get<BroadphaseState>();
-  check_run(in, *mpi_, *rcb_, sim_->scene(), bp.skin);
-  if (in.value<bool>("rank.grains.spin") != g.spin) in.fail("it was written for grains that rotate otherwise", kSameRun);
+  check_run(in, *mpi_, *rcb_);
+  check_settings(in, sim_->scene(), bp.skin, g);
   const auto n_owned = in.value<std::uint64_t>("rank.grains.n_owned");
   const auto n = in.value<std::uint64_t>("rank.grains.n");
   // Every row takes at least 8 bytes per column: a larger count is corrupt, not a reason to allocate.
@@ -176,21 +198,13 @@ void RankSimulation::restore(const CheckpointReader& in) {
   g.resize(n);
   g.n_owned = n_owned;
   const std::vector<RawColumn> cols = raw_row_columns(g);
-  if (in.value<std::uint64_t>("rank.grains.columns") != cols.size())
-    in.fail("its grains have other columns than this scene's", kSameRun);
   for (std::size_t k = 0; k < cols.size(); ++k) in.copy_raw(column_name(k), cols[k].data, cols[k].elem_size, n);
-  w.clock.t = in.value<double>("rank.clock.t");
-  w.clock.dt = in.value<double>("rank.clock.dt");
-  w.clock.step = in.value<std::int64_t>("rank.clock.step");
-  w.clock.t0 = in.value<double>("rank.clock.t0");
+  restore_clock(in, w);
   bp.valid = in.value<bool>("rank.broadphase.valid");
   bp.force_rebuild = in.value<bool>("rank.broadphase.force_rebuild");
   bp.rebuilds = in.value<std::int64_t>("rank.broadphase.rebuilds");
   bp.checks = in.value<std::int64_t>("rank.broadphase.checks");
   bp.cover.kept = in.value<std::int64_t>("rank.broadphase.kept");
-  Walls& walls = w.resources.get<Walls>();
-  walls.rotation_enabled = in.value<bool>("rank.walls.rotation_enabled");
-  walls.place(w.clock.t);
   NeighborList& list = w.resources.get<NeighborList>();
   PairHistory& history = w.resources.get<PairHistory>();
   list_sections(in, list, history, bp);
@@ -199,6 +213,68 @@ void RankSimulation::restore(const CheckpointReader& in) {
   listed_ = in.value<bool>("rank.listed");
   primed_ = in.value<bool>("rank.primed");
   counters_ = in.value<RankCounters>("rank.counters");
+}
+
+void RankSimulation::restore_portable(const CheckpointReader& first, std::span<const std::filesystem::path> mine) {
+  World& w = sim_->world();
+  Grains& g = w.grains;
+  BroadphaseState& bp = w.resources.get<BroadphaseState>();
+  const std::int64_t grains = total_grains();  // the scene's, placed by the constructor
+  const auto step = first.value<std::int64_t>("rank.clock.step");
+  const std::size_t ranks = static_cast<std::size_t>(mpi_->size());
+  std::vector<std::vector<std::byte>> out(ranks);
+  std::vector<std::uint32_t> keep;
+  RankCounters sum;
+  g.resize(0);
+  NeighborList list;
+  PairHistory history = w.resources.get<PairHistory>();  // the law's fields; the values are read
+  BroadphaseState scratch = bp;
+  // Local reading first, its failure shared (no rank may be left waiting in the collectives after).
+  on_every_rank(*mpi_, [&] { for (const std::filesystem::path& file : mine) {
+    const CheckpointReader in(file);
+    check_settings(in, sim_->scene(), bp.skin, g);
+    if (in.value<std::int64_t>("rank.clock.step") != step)
+      in.fail("it holds another step than part 0 of its checkpoint", "resume from an index and parts of one checkpoint");
+    const auto n_owned = in.value<std::uint64_t>("rank.grains.n_owned");
+    const auto n = in.value<std::uint64_t>("rank.grains.n");
+    require(in, n_owned <= n && n <= in.bytes() / 8, "grain counts");
+    const std::size_t base = g.n;
+    g.resize(base + n);
+    const std::vector<RawColumn> cols = raw_row_columns(g);
+    for (std::size_t k = 0; k < cols.size(); ++k)
+      in.copy_raw(column_name(k), static_cast<std::byte*>(cols[k].data) + base * cols[k].elem_size, cols[k].elem_size, n);
+    // The part's springs, by its rows' ids, each to the rank that evaluates its pair under this run's boxes.
+    list_sections(in, list, history, scratch);
+    require(in, list.i.size() == list.j.size() && all_below(list.i, n_owned) && all_below(list.j, n) &&
+                    all_below(history.pair, list.i.size()),
+            "neighbour list rows");
+    for (std::size_t e = 0; e < history.size(); ++e) {
+      const auto k = static_cast<std::size_t>(history.pair[e]);
+      const std::size_t i = base + list.i[k], j = base + list.j[k];
+      const int to = std::max(rcb_->owner_of({g.pos.x[i], g.pos.y[i], g.pos.z[i]}),
+                              rcb_->owner_of({g.pos.x[j], g.pos.y[j], g.pos.z[j]}));
+      pack_spring(out[static_cast<std::size_t>(to)], g.pid.id[i], g.pid.id[j], history, e);
+    }
+    for (std::size_t i = 0; i < n_owned; ++i) keep.push_back(static_cast<std::uint32_t>(base + i));
+    const auto c = in.value<RankCounters>("rank.counters");
+    sum.migrated += c.migrated;
+    sum.particle_steps += c.particle_steps;
+  } });
+  keep_and_append(g, keep, {});  // the parts' ghost rows dropped
+  const std::int64_t held = mpi_->sum(static_cast<std::int64_t>(g.n_owned));
+  on_every_rank(*mpi_, [&] {
+    if (held != grains)
+      first.fail("its parts hold " + std::to_string(held) + " grains, this scene places " + std::to_string(grains),
+                 kSameRun);
+  });
+  restore_clock(first, w);
+  bp.rebuilds = first.value<std::int64_t>("rank.broadphase.rebuilds");
+  bp.checks = first.value<std::int64_t>("rank.broadphase.checks");
+  bp.cover.kept = first.value<std::int64_t>("rank.broadphase.kept");
+  counters_ = sum;
+  counters_.rebuilds = first.value<RankCounters>("rank.counters").rebuilds;
+  relist(out);  // rows to their owners, ghosts, the list, the springs attached
+  primed_ = true;
 }
 
 }  // namespace gf

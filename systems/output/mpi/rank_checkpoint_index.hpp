@@ -3,8 +3,9 @@
 // file format of engine/checkpoint_file.hpp), and the index checkpoint_ranks.gfc naming the parts of
 // the latest whole set with its step, time and rank count. The parts are written first and the
 // index last, each atomically, so the index only ever names a set whose every part is on disk.
-// A part is raw memory of the build that wrote it, read back on as many ranks: the portable state
-// of the run is its gathered final_state.csv.
+// A part is raw memory of the build that wrote it (read back by the same build): on as many ranks
+// each rank reads its own part; on another number of ranks the parts are shared out among the
+// ranks and their rows and springs go to the new boxes (RankSimulation::restore_portable).
 #pragma once
 
 #include <cstdint>
