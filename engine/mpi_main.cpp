@@ -11,7 +11,8 @@
 // from rank 0: the grains, steps and wall time (outputs included), the particle-steps per second of
 // rank 0's own grains and of all ranks together, the decomposition's counters over the main stage
 // (rebuilds, rows migrated, ghost rows at the end), the final kinetic energy and momentum and the
-// last series row. --resume continues a checkpoint's run on as many ranks bit for bit (no settling;
+// last series row. SIGINT/SIGTERM stop the main stage after the same step on every rank, with the
+// checkpoint written and the summary "interrupted". --resume continues a checkpoint's run on as many ranks bit for bit (no settling;
 // series.csv and the frames go on from the checkpoint, rows and frames the stopped run wrote after it
 // are replaced); on another number of ranks (one included) it continues to round-off, the rows and
 // springs shared out to the new boxes (RankSimulation::restore_portable), and the parts it read are
@@ -77,15 +78,20 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 // The main stage's steps with the outputs, then the checkpoints, observing the start and every step
 // after it.
-void run_main_stage(gf::RankSimulation& sim, gf::RankOutputs& outputs, gf::RankCheckpoints& checkpoints,
+// Returns whether a rank was asked to stop (SIGINT or SIGTERM): every rank then ends after the same
+// step, since each step's check is a collective maximum over the ranks.
+bool run_main_stage(gf::RankSimulation& sim, gf::RankOutputs& outputs, gf::RankCheckpoints& checkpoints,
                     std::int64_t steps) {
+  const gf::MpiContext& mpi = sim.mpi();
   outputs.observe(sim.world());
   checkpoints.observe(sim, outputs);
   for (std::int64_t k = 0; k < steps; ++k) {
+    if (mpi.max(gf::stop_requested() ? 1.0 : 0.0) > 0.0) return true;
     sim.advance(1);
     outputs.observe(sim.world());
     checkpoints.observe(sim, outputs);
   }
+  return false;
 }
 
 // A checkpoint's state on every rank: each rank's part opened and restored. Collective; a
@@ -185,6 +191,7 @@ int fail_write(const gf::RankFailure& e, const Options& opt, const gf::MpiContex
 
 int main(int argc, char** argv) {
   gf::MpiContext mpi(&argc, &argv);
+  gf::install_stop_handlers();
   Options opt;
   try {
     if (!parse(argc, argv, opt)) {
@@ -261,7 +268,7 @@ int main(int argc, char** argv) {
     const gf::RankCounters before = sim->counters();
     mpi.barrier();
     const auto t_run = std::chrono::steady_clock::now();
-    run_main_stage(*sim, *outputs, *checkpoints, steps);
+    const bool interrupted = run_main_stage(*sim, *outputs, *checkpoints, steps);
     if (scene.output.checkpoint_at_end && !checkpoints->holds(sim->world().clock.step)) checkpoints->write(*sim, *outputs);
     if (checkpoints->written() > 0) summary["checkpoint"] = checkpoints->index_path().string();
     const gf::SeriesRow& last = outputs->finish(sim->world());
@@ -274,7 +281,7 @@ int main(int argc, char** argv) {
     const std::int64_t still = sim->total_grains();
     const std::int64_t migrated = mpi.sum(sim->counters().migrated - before.migrated);
     const std::int64_t ghosts = mpi.sum(sim->counters().ghosts);
-    summary["status"] = "completed";
+    summary["status"] = interrupted ? "interrupted" : "completed";
     summary["scene"] = opt.scene.string();
     summary["overrides"] = opt.overrides;
     summary["ranks"] = mpi.size();
@@ -284,7 +291,7 @@ int main(int argc, char** argv) {
     summary["settle_steps"] = settled;
     summary["settle_wall_seconds"] = settle_wall;
     summary["steps"] = sim->world().clock.step;
-    summary["steps_this_run"] = steps;
+    summary["steps_this_run"] = sim->world().clock.step - start.step;
     summary["wall_seconds"] = wall;
     summary["particle_steps_per_second"] = wall > 0 ? all_steps / wall : 0.0;
     summary["rank0_particle_steps_per_second"] = mine > 0 ? own_steps / mine : 0.0;
@@ -313,9 +320,13 @@ int main(int argc, char** argv) {
   write_summary(summary, opt, mpi, true);
   if (mpi.rank() == 0) {
     std::fprintf(stderr, "grainflow_mpi: %lld steps in %.2f s wall: %.3g particle-steps/s on all ranks, %.3g on rank 0\n",
-                 static_cast<long long>(steps), summary["wall_seconds"].get<double>(),
+                 static_cast<long long>(summary["steps_this_run"].get<std::int64_t>()), summary["wall_seconds"].get<double>(),
                  summary["particle_steps_per_second"].get<double>(),
                  summary["rank0_particle_steps_per_second"].get<double>());
+    if (summary["status"] == "interrupted" && summary.contains("checkpoint"))
+      std::fprintf(stderr, "grainflow_mpi: stopped by a signal at step %lld; go on with: mpiexec -n %d grainflow_mpi run %s --out %s --resume %s\n",
+                   static_cast<long long>(summary["steps"].get<std::int64_t>()), mpi.size(), opt.scene.string().c_str(),
+                   opt.out.string().c_str(), summary["checkpoint"].get<std::string>().c_str());
   }
   return 0;
 }

@@ -53,3 +53,30 @@ foreach(ranks 3 1)
   endif()
 endforeach()
 message(STATUS "resumed run identical on 2 ranks, within round-off on 3 and 1")
+
+# Ctrl-C on mpiexec (SIGINT, which Open MPI passes to the ranks): every rank stops after the same
+# step and the run writes its checkpoint and an "interrupted" summary; resumed from it for 100 more
+# steps, it ends byte for byte as a run of as many steps that was never stopped.
+file(REMOVE_RECURSE ${WORK}/signal ${WORK}/signal_whole)
+execute_process(COMMAND sh -c "${MPIEXEC} --allow-run-as-root --oversubscribe ${NP_FLAG} 2 ${PROGRAM} run ${SCENE} \
+--threads 1 --out ${WORK}/signal --steps 100000000 & pid=$!; sleep 3; kill -INT $pid; wait $pid"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out TIMEOUT 100)
+# (mpiexec itself exits with status 1 once it has passed on a SIGINT, whatever the ranks return.)
+if(NOT EXISTS ${WORK}/signal/summary.json)
+  message(FATAL_ERROR "the run stopped by SIGINT exited with ${rc}:\n${out}")
+endif()
+file(READ ${WORK}/signal/summary.json summary)
+string(JSON status GET "${summary}" status)
+string(JSON stopped GET "${summary}" steps)
+if(NOT status STREQUAL "interrupted" OR NOT out MATCHES "stopped by a signal at step ${stopped}")
+  message(FATAL_ERROR "the run stopped by SIGINT reports status '${status}':\n${out}")
+endif()
+math(EXPR last "${stopped} + 100")
+run_ranks(2 0 out --out ${WORK}/signal --steps ${last} --resume ${WORK}/signal/checkpoints/checkpoint_ranks.gfc)
+run_ranks(2 0 out --out ${WORK}/signal_whole --steps ${last})
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/signal/final_state.csv
+                        ${WORK}/signal_whole/final_state.csv RESULT_VARIABLE differ)
+if(differ)
+  message(FATAL_ERROR "the run stopped by SIGINT at step ${stopped} and resumed differs from the run never stopped")
+endif()
+message(STATUS "stopped by SIGINT at step ${stopped}, resumed to ${last}: identical")
