@@ -1,7 +1,7 @@
 // grainflow_mpi: a DEM scene stepped on several ranks (RankSimulation), launched by mpiexec.
 //
 //   mpiexec -n P grainflow_mpi run SCENE --out DIR [--steps N] [--threads T] [--set key=value]...
-//                                  [--resume DIR/checkpoints/checkpoint_ranks.gfc]
+//                                  [--resume DIR/checkpoints/checkpoint_ranks.gfc] [--rebalance RATIO]
 //
 // Runs the scene's settling stage, then its main stage (or up to step N of it). Into DIR, as
 // `grainflow run` on one rank: series.csv (rank 0, at output.series_interval), VTK frames at
@@ -49,11 +49,14 @@ struct Options {
   int threads = 0;
   std::vector<std::string> overrides;
   std::optional<std::filesystem::path> resume;
+  double rebalance = 1.25;  // the boxes are cut again past this ratio of most to mean rows; 0: never
 };
 
 const char* kUsage =
     "usage: mpiexec -n P grainflow_mpi run SCENE --out DIR [--steps N] [--threads T] [--set key=value]...\n"
-    "                                   [--resume DIR/checkpoints/checkpoint_ranks.gfc]\n";
+    "                                   [--resume DIR/checkpoints/checkpoint_ranks.gfc] [--rebalance RATIO]\n"
+    "  --rebalance RATIO  cut the ranks' boxes again at a neighbour rebuild where the rank holding the most\n"
+    "                     grains holds more than RATIO times the mean (default 1.25; 0: never)\n";
 
 bool parse(int argc, char** argv, Options& o) {
   if (argc < 3 || std::string(argv[1]) != "run") return false;
@@ -67,6 +70,7 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--threads") o.threads = std::stoi(v);
     else if (a == "--set") o.overrides.push_back(v);
     else if (a == "--resume") o.resume = v;
+    else if (a == "--rebalance") o.rebalance = std::stod(v);
     else return false;
   }
   return !o.out.empty();
@@ -213,6 +217,12 @@ int main(int argc, char** argv) {
     if (mpi.rank() == 0) std::fprintf(stderr, "grainflow_mpi: %s\n", e.what());
     return 2;
   }
+  try {
+    sim->set_rebalance(opt.rebalance);
+  } catch (const std::exception& e) {
+    if (mpi.rank() == 0) std::fprintf(stderr, "grainflow_mpi: --rebalance %g: %s\n%s", opt.rebalance, e.what(), kUsage);
+    return 2;
+  }
   Resumed resumed;
   if (opt.resume) {
     try {
@@ -299,6 +309,8 @@ int main(int argc, char** argv) {
     summary["settle_neighbour_rebuilds"] = before.rebuilds;
     summary["neighbour_rebuilds"] = sim->counters().rebuilds - before.rebuilds;
     summary["rows_migrated"] = migrated;
+    summary["rebalances"] = sim->counters().rebalances - before.rebalances;
+    summary["rebalance_ratio"] = opt.rebalance;
     summary["ghost_rows_at_end"] = ghosts;
     summary["kinetic_energy"] = energy;
     summary["momentum"] = {p[0], p[1], p[2]};

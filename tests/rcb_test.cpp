@@ -1,10 +1,12 @@
 // Recursive coordinate bisection: each rank's weight is within one row's weight of an equal share,
 // the boxes tile the domain (volumes add up, and every point has exactly one box, the one owner_of
-// names), the result is the same when computed again, for 1 to 8 ranks.
+// names), the result is the same when computed again, for 1 to 8 ranks, and when rebuilt from its
+// tree and boxes; a broken tree is refused.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "systems/decomposition/rcb.hpp"
@@ -103,4 +105,24 @@ TEST_CASE("RCB with more ranks than points leaves some boxes empty but still til
   CHECK(volume == Approx(kDomain.volume()).epsilon(1e-12));
   const int owner = rcb.owner_of({0.1, 0.05, 0.1});
   CHECK(rcb.box(owner).contains({0.1, 0.05, 0.1}));
+}
+
+TEST_CASE("RCB rebuilt from its tree and boxes (a checkpoint's) names the same owners", "[rcb]") {
+  const Points p = make_points(2000, false, 5);
+  for (int ranks = 1; ranks <= 8; ++ranks) {
+    const gf::Rcb rcb = split(p, ranks);
+    const gf::Rcb again(rcb.nodes(), rcb.boxes());
+    REQUIRE(again.ranks() == ranks);
+    for (std::size_t i = 0; i < p.x.size(); ++i)
+      REQUIRE(again.owner_of({p.x[i], p.y[i], p.z[i]}) == rcb.owner_of({p.x[i], p.y[i], p.z[i]}));
+  }
+  // A tree that loops, names a rank twice or misses one is refused.
+  const gf::Rcb rcb = split(p, 4);
+  std::vector<gf::RcbNode> loop = rcb.nodes(), twice = rcb.nodes();
+  loop[0].lower = 0;
+  for (gf::RcbNode& n : twice)
+    if (n.axis < 0 && n.rank == 3) n.rank = 2;
+  CHECK_THROWS_AS(gf::Rcb(loop, rcb.boxes()), std::invalid_argument);
+  CHECK_THROWS_AS(gf::Rcb(twice, rcb.boxes()), std::invalid_argument);
+  CHECK_THROWS_AS(gf::Rcb(rcb.nodes(), {rcb.boxes().begin(), rcb.boxes().begin() + 3}), std::invalid_argument);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace gf {
 
@@ -81,6 +82,31 @@ int Rcb::split(const DomainBox& box, std::vector<std::size_t>& rows, std::size_t
   nodes_[id].lower = lower;
   nodes_[id].upper = upper;
   return id;
+}
+
+Rcb::Rcb(std::vector<RcbNode> nodes, std::vector<DomainBox> boxes) : nodes_(std::move(nodes)), boxes_(std::move(boxes)) {
+  // Every node reached once from the root, children after their parent, each rank a leaf once.
+  const auto n = static_cast<int>(nodes_.size());
+  std::vector<int> seen_rank(boxes_.size(), 0), reached(nodes_.size(), 0);
+  bool ok = n > 0 && !boxes_.empty();
+  std::vector<int> todo{0};
+  while (ok && !todo.empty()) {
+    const int k = todo.back();
+    todo.pop_back();
+    ok = k >= 0 && k < n && reached[static_cast<std::size_t>(k)]++ == 0;
+    if (!ok) break;
+    const RcbNode& node = nodes_[static_cast<std::size_t>(k)];
+    if (node.axis < 0) {
+      ok = node.rank >= 0 && static_cast<std::size_t>(node.rank) < boxes_.size() &&
+           seen_rank[static_cast<std::size_t>(node.rank)]++ == 0;
+    } else {
+      ok = node.axis < 3 && node.lower > k && node.upper > k;
+      todo.push_back(node.lower);
+      todo.push_back(node.upper);
+    }
+  }
+  for (const int r : seen_rank) ok = ok && r == 1;
+  if (!ok) throw std::invalid_argument("the cut tree is not one of these boxes' ranks");
 }
 
 int Rcb::owner_of(const std::array<double, 3>& p) const {

@@ -33,11 +33,23 @@ struct DomainBox {
   double volume() const { return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
 };
 
+// One node of the cut tree: a cut (axis >= 0) with its two children, or a leaf holding a rank.
+struct RcbNode {
+  int axis = -1;      // -1: a leaf
+  double cut = 0.0;   // m; below goes to `lower`, at or above to `upper`
+  int lower = -1, upper = -1;  // children (node indices)
+  int rank = 0;       // a leaf's rank
+};
+
 class Rcb {
  public:
   // Splits `domain` among `ranks` by the points (x, y, z) with weights w (empty: every weight 1).
   Rcb(const DomainBox& domain, std::span<const double> x, std::span<const double> y, std::span<const double> z,
       std::span<const double> w, int ranks);
+  // The same split again from its tree and boxes (a checkpoint's); std::invalid_argument when they
+  // are not a tree whose leaves name each of the boxes' ranks once.
+  Rcb(std::vector<RcbNode> nodes, std::vector<DomainBox> boxes);
+  const std::vector<RcbNode>& nodes() const { return nodes_; }
 
   int ranks() const { return static_cast<int>(boxes_.size()); }
   const DomainBox& box(int rank) const { return boxes_[static_cast<std::size_t>(rank)]; }
@@ -46,12 +58,7 @@ class Rcb {
   int owner_of(const std::array<double, 3>& p) const;
 
  private:
-  struct Node {
-    int axis = -1;      // -1: a leaf
-    double cut = 0.0;   // m; below goes to `lower`, at or above to `upper`
-    int lower = -1, upper = -1;  // children (node indices)
-    int rank = 0;       // a leaf's rank
-  };
+  using Node = RcbNode;
   int split(const DomainBox& box, std::vector<std::size_t>& rows, std::size_t begin, std::size_t end, int ranks,
             int first_rank);
 

@@ -1,6 +1,7 @@
 #include "systems/decomposition/mpi/rank_simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -68,8 +69,8 @@ RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mp
   const DemScene& s = sim_->scene();
 
   // Every rank placed the same grains: the same boxes everywhere, then this rank's rows kept.
-  const DomainBox domain = padded_bounds(g);
-  rcb_ = std::make_unique<Rcb>(domain, g.pos.x.span().first(g.n_owned), g.pos.y.span().first(g.n_owned),
+  domain_ = padded_bounds(g);
+  rcb_ = std::make_unique<Rcb>(domain_, g.pos.x.span().first(g.n_owned), g.pos.y.span().first(g.n_owned),
                                g.pos.z.span().first(g.n_owned), std::span<const double>{}, mpi.size());
   std::vector<std::uint32_t> keep;
   for (std::size_t i = 0; i < g.n_owned; ++i)
@@ -127,6 +128,7 @@ void RankSimulation::rebuild() {
       throw StabilityError("grain " + std::to_string(g.pid.id[i]) +
                            " left the domain the ranks' boxes tile (the grains' starting bounds widened a "
                            "thousandfold): the run blew up or a grain escaped the walls");
+  maybe_rebalance();
   // Each spring to the rank that evaluates its pair after the migration: the higher owner.
   std::vector<std::vector<std::byte>> out(static_cast<std::size_t>(mpi_->size()));
   if (listed_)
@@ -137,6 +139,39 @@ void RankSimulation::rebuild() {
       pack_spring(out[static_cast<std::size_t>(to)], g.pid.id[i], g.pid.id[j], history, e);
     }
   relist(out);
+}
+
+void RankSimulation::set_rebalance(double ratio) {
+  if (!(ratio == 0.0 || (ratio > 1.0 && std::isfinite(ratio))))
+    throw std::invalid_argument("the rebalance ratio must be 0 (never) or above 1");
+  rebalance_ = ratio;
+}
+
+void RankSimulation::maybe_rebalance() {
+  if (rebalance_ <= 0.0) return;
+  const Grains& g = sim_->grains();
+  const double rows = static_cast<double>(g.n_owned);
+  const double most = mpi_->max(rows), mean = mpi_->sum(rows) / mpi_->size();
+  if (!(most > rebalance_ * mean)) return;
+  // Every rank's owned positions to every rank, in rank order: the same points, so the same boxes.
+  std::vector<std::byte> mine;
+  for (std::size_t i = 0; i < g.n_owned; ++i) {
+    const std::array<double, 3> p = position(g, i);
+    put(mine, p.data(), sizeof p);
+  }
+  const std::vector<std::vector<std::byte>> all =
+      mpi_->exchange(std::vector<std::vector<std::byte>>(static_cast<std::size_t>(mpi_->size()), mine));
+  std::vector<double> x, y, z;
+  for (const auto& bytes : all)
+    for (std::size_t at = 0; at + 3 * sizeof(double) <= bytes.size(); at += 3 * sizeof(double)) {
+      double p[3];
+      std::memcpy(p, bytes.data() + at, sizeof p);
+      x.push_back(p[0]);
+      y.push_back(p[1]);
+      z.push_back(p[2]);
+    }
+  rcb_ = std::make_unique<Rcb>(domain_, x, y, z, std::span<const double>{}, mpi_->size());
+  ++counters_.rebalances;
 }
 
 void RankSimulation::relist(const std::vector<std::vector<std::byte>>& out) {

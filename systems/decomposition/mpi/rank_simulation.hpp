@@ -2,10 +2,11 @@
 // coordinate bisection and copies (ghost rows) of its lower-numbered neighbours' grains near it.
 //
 // Every rank loads the scene and places the same grains; the boxes are cut from those starting
-// positions (rcb.hpp, every grain weighing 1) and stay fixed for the run, and each rank keeps the
+// positions (rcb.hpp, every grain weighing 1), and each rank keeps the
 // grains in its box. The domain the boxes tile is the grains' bounding box widened by a thousand
 // times its largest side on every side (the same margin on every axis keeps the cuts' order); a
-// grain that leaves it stops the run.
+// grain that leaves it stops the run. The boxes are cut again when the load drifts out of balance
+// (set_rebalance).
 //
 // One step, on the thread that made the MpiContext (the oneTBB graphs run inside each phase):
 //   1. the opening half-kick and drift of the owned rows (IntegratePositions);
@@ -49,6 +50,7 @@ struct RankCounters {
   std::int64_t rebuilds = 0;  // neighbour rebuilds (every rank makes the same number)
   std::int64_t migrated = 0;  // rows this rank sent away over the run
   std::int64_t ghosts = 0;    // ghost rows held now
+  std::int64_t rebalances = 0;  // times the boxes were cut again (every rank the same)
   double particle_steps = 0;  // owned rows summed over the steps advanced
 };
 
@@ -62,6 +64,13 @@ class RankSimulation {
                                   const std::vector<std::string>& overrides = {});
   RankSimulation(RankSimulation&&) noexcept;
   ~RankSimulation();
+
+  // Rebalancing: at a neighbour rebuild where the rank holding the most rows holds more than `ratio`
+  // times the mean, the boxes are cut again from the grains' present positions (every rank gathers
+  // them all: a few MB at a million grains; a parallel median search would replace it at thousands
+  // of ranks), and the rows and springs then move to their new owners with the rebuild's migration.
+  // 0 (the default) never rebalances; otherwise ratio > 1.
+  void set_rebalance(double ratio);
 
   // Forces of the initial state (nothing moves); the springs then restart from zero, as in
   // DemSimulation::prime. Collective.
@@ -111,6 +120,8 @@ class RankSimulation {
   // Sends out[r] (packed springs) to rank r, migrates the rows to their owners, makes the ghost rows
   // and the list, and attaches the springs that arrived to their pairs. Collective.
   void relist(const std::vector<std::vector<std::byte>>& out);
+  // The boxes cut again when the rows are out of balance (set_rebalance). Collective.
+  void maybe_rebalance();
   // One spring packed for relist: its pair's ids (`own` the grain whose view the values are in) and
   // entry e of h's values.
   static void pack_spring(std::vector<std::byte>& out, std::int64_t own, std::int64_t other, const PairHistory& h,
@@ -121,6 +132,8 @@ class RankSimulation {
   std::unique_ptr<Rcb> rcb_;
   std::unique_ptr<Schedule> drift_, contacts_, kick_;
   DomainGhosts ghosts_;
+  DomainBox domain_;    // the box the ranks' boxes tile: the starting grains' bounds widened
+  double rebalance_ = 0.0;
   double reach_ = 0.0;  // m, how far from a box a ghost row may lie
   bool listed_ = false;
   bool primed_ = false;

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 
@@ -106,6 +107,8 @@ void check_list(const CheckpointReader& in, const NeighborList& l, const PairHis
           "skin reference positions");
 }
 
+void check_domain(const CheckpointReader& in, const DomainBox& now_domain);
+
 // The law, dt, the skin, spins and the grains' columns of the part against this run's.
 void check_settings(const CheckpointReader& in, const DemScene& s, double skin, Grains& g) {
   std::vector<char> law;
@@ -121,8 +124,8 @@ void check_settings(const CheckpointReader& in, const DemScene& s, double skin, 
     in.fail("its grains have other columns than this scene's", kSameRun);
 }
 
-// The rank, the rank count and the boxes of the part against this run's.
-void check_run(const CheckpointReader& in, const MpiContext& mpi, const Rcb& rcb) {
+// The rank, the rank count and the domain of the part against this run's.
+void check_run(const CheckpointReader& in, const MpiContext& mpi, const DomainBox& now_domain) {
   const auto ranks = in.value<std::int32_t>("rank.ranks");
   if (ranks != mpi.size())
     in.fail("it is a part of a checkpoint of " + std::to_string(ranks) + " ranks, this run has " +
@@ -132,11 +135,30 @@ void check_run(const CheckpointReader& in, const MpiContext& mpi, const Rcb& rcb
     in.fail("it is rank " + std::to_string(in.value<std::int32_t>("rank.rank")) + "'s part, read by rank " +
                 std::to_string(mpi.rank()),
             "resume from the checkpoint's index file, which names each rank's part");
+  check_domain(in, now_domain);
+}
+
+// The domain the part's boxes tile against this run's: the scene's starting grains give it.
+void check_domain(const CheckpointReader& in, const DomainBox& now_domain) {
+  const auto domain = in.value<DomainBox>("rank.domain");
+  if (std::memcmp(&domain, &now_domain, sizeof domain) != 0)
+    in.fail("the domain its ranks' boxes tile is not the one this scene's grains give (another fill, seed or grain "
+            "count)",
+            kSameRun);
+}
+
+// The ranks' boxes and their cut tree as the part holds them (cut again when the run rebalanced).
+std::unique_ptr<Rcb> restore_rcb(const CheckpointReader& in, int ranks) {
   std::vector<DomainBox> boxes;
+  std::vector<RcbNode> nodes;
   in.vector("rank.boxes", boxes);
-  const std::vector<DomainBox>& now = rcb.boxes();
-  if (boxes.size() != now.size() || std::memcmp(boxes.data(), now.data(), boxes.size() * sizeof(DomainBox)) != 0)
-    in.fail("its ranks' boxes are not those this scene's grains give (another fill, seed or grain count)", kSameRun);
+  in.vector("rank.rcb.nodes", nodes);
+  if (boxes.size() != static_cast<std::size_t>(ranks)) in.fail("it holds another number of boxes than ranks", kSameRun);
+  try {
+    return std::make_unique<Rcb>(std::move(nodes), std::move(boxes));
+  } catch (const std::invalid_argument& e) {
+    in.fail(std::string("its boxes are inconsistent: ") + e.what(), "resume from an earlier checkpoint");
+  }
 }
 
 // The clock and the walls' state (the same in every part of one checkpoint).
@@ -158,7 +180,9 @@ void RankSimulation::save(CheckpointWriter& out) {
   const DemScene& s = sim_->scene();
   out.value("rank.ranks", static_cast<std::int32_t>(mpi_->size()));
   out.value("rank.rank", static_cast<std::int32_t>(mpi_->rank()));
+  out.value("rank.domain", domain_);
   out.vector("rank.boxes", rcb_->boxes());
+  out.vector("rank.rcb.nodes", rcb_->nodes());
   out.vector("rank.contact.law", std::vector<char>(s.law.begin(), s.law.end()));
   out.value("rank.clock.t", w.clock.t);
   out.value("rank.clock.dt", w.clock.dt);
@@ -189,8 +213,9 @@ void RankSimulation::restore(const CheckpointReader& in) {
   World& w = sim_->world();
   Grains& g = w.grains;
   BroadphaseState& bp = w.resources.get<BroadphaseState>();
-  check_run(in, *mpi_, *rcb_);
+  check_run(in, *mpi_, domain_);
   check_settings(in, sim_->scene(), bp.skin, g);
+  std::unique_ptr<Rcb> rcb = restore_rcb(in, mpi_->size());
   const auto n_owned = in.value<std::uint64_t>("rank.grains.n_owned");
   const auto n = in.value<std::uint64_t>("rank.grains.n");
   // Every row takes at least 8 bytes per column: a larger count is corrupt, not a reason to allocate.
@@ -210,6 +235,7 @@ void RankSimulation::restore(const CheckpointReader& in) {
   list_sections(in, list, history, bp);
   check_list(in, list, history, bp, g);
   restore_ghosts(in, ghosts_, g, static_cast<std::size_t>(mpi_->size()));
+  rcb_ = std::move(rcb);
   listed_ = in.value<bool>("rank.listed");
   primed_ = in.value<bool>("rank.primed");
   counters_ = in.value<RankCounters>("rank.counters");
@@ -220,6 +246,7 @@ void RankSimulation::restore_portable(const CheckpointReader& first, std::span<c
   Grains& g = w.grains;
   BroadphaseState& bp = w.resources.get<BroadphaseState>();
   const std::int64_t grains = total_grains();  // the scene's, placed by the constructor
+  on_every_rank(*mpi_, [&] { check_domain(first, domain_); });
   const auto step = first.value<std::int64_t>("rank.clock.step");
   const std::size_t ranks = static_cast<std::size_t>(mpi_->size());
   std::vector<std::vector<std::byte>> out(ranks);
