@@ -1,0 +1,160 @@
+#!/usr/bin/python3
+"""Seed 002's second hopper: the four composite shapes of tools/seed002/armour_shapes.py discharged
+from scenes/hopper_seed002_shapes.toml, each run in resumable pieces (tools/common/resumable.py).
+
+    /usr/bin/python3 tools/seed002/shapes_hopper.py run [--budget-minutes 30] [--shapes NAME ...]
+    /usr/bin/python3 tools/seed002/shapes_hopper.py report     # docs/seed002/shapes/shapes.json, remaining.png
+    /usr/bin/python3 tools/seed002/shapes_hopper.py table      # the README table from shapes.json
+
+Working runs under runs/seed002_shapes/NAME; after each piece a run's results (and, unfinished, its
+checkpoint) are archived under docs/seed002/shapes/NAME, from which a new checkout resumes.
+
+Observables per shape, from series.csv's remaining_fraction (t = 0 when the orifice opens,
+crossings interpolated linearly between rows): the mean discharge rate between fractions 0.9 and
+0.5, in grains/s and kg/s (the shape's mass from summary.json's moving mass over the grains), the
+fraction left at the end, and the angle of repose of the crater left about the orifice:
+summary.json's `repose` (across x and across z, two flanks each), their mean and range.
+"""
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "tools" / "common"))
+from resumable import archive, load_series, pieces, restore, run_piece  # noqa: E402
+
+SCENE = REPO / "scenes" / "hopper_seed002_shapes.toml"
+SHAPES = ["hollow_block", "tetrapod", "twisted_i", "twisted_king"]  # the seed's order, simplest first
+DURATION = 12.0  # s after the orifice opens, the scene's run.duration
+
+
+def done(series):
+    return float(series[-1]["time"]) >= DURATION - 1e-9
+
+
+def overrides(shape):
+    return [f'shape.0.path="data/shapes/{shape}.obj"', "output.checkpoint_interval=1.0"]
+
+
+def crossing(t, f, level):
+    for k in range(1, len(t)):
+        if f[k] <= level < f[k - 1]:
+            return t[k - 1] + (t[k] - t[k - 1]) * (f[k - 1] - level) / (f[k - 1] - f[k])
+    return None
+
+
+def measure(folder):
+    s = load_series(folder)
+    if s is None or not done(s):
+        return None
+    summary = json.loads((folder / "summary.json").read_text())
+    t, f = list(s["time"]), list(s["remaining_fraction"])
+    t9, t5 = crossing(t, f, 0.9), crossing(t, f, 0.5)
+    grains = summary["bodies"]["moving"]
+    mass = summary["shapes"]["grain"]["mass"] if "shapes" in summary else None
+    angles = []
+    for name, r in summary.get("repose", {}).items():
+        for side in ("first", "second"):
+            a = r.get(side, {}).get("angle_deg")
+            if a is not None:
+                angles.append(a)
+    rate = 0.4 * grains / (t5 - t9) if t9 is not None and t5 is not None else None
+    return {"grains": grains, "t_0.9": t9, "t_0.5": t5, "rate_grains_per_s": rate,
+            "rate_kg_per_s": rate * mass if rate is not None and mass else None, "grain_mass": mass,
+            "left_at_end": f[-1], "repose": summary.get("repose", {}),
+            "repose_mean_deg": sum(angles) / len(angles) if angles else None,
+            "repose_range_deg": [min(angles), max(angles)] if angles else None,
+            "wall_seconds": sum((p["wall_seconds"] or 0) + p.get("settle_wall_seconds", 0.0) for p in pieces(folder))}
+
+
+def report(out, docs):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rows = {}
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for shape in SHAPES:
+        folder = out / shape
+        restore(folder, docs / shape)
+        m = measure(folder)
+        if m is None:
+            s = load_series(folder)
+            if s is not None:  # running: how far it got
+                rows[shape] = {"in_progress": float(s[-1]["time"])}
+            continue
+        rows[shape] = m
+        s = load_series(folder)
+        ax.plot(s["time"], s["remaining_fraction"], label=shape.replace("_", " "))
+    docs.mkdir(parents=True, exist_ok=True)
+    if rows:
+        ax.set_xlabel("time after the orifice opens (s)")
+        ax.set_ylabel("remaining fraction")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(docs / "remaining.png", dpi=110)
+    (docs / "shapes.json").write_text(json.dumps({"shapes": rows, "of": SHAPES}, indent=1))
+    print(f"shapes hopper: {len(rows)} of {len(SHAPES)} shapes finished")
+
+
+def fmt(v, spec):
+    return "—" if v is None else format(v, spec)
+
+
+def table(path):
+    doc = json.loads(Path(path).read_text())
+    lines = ["| shape | grains | t(0.9) (s) | t(0.5) (s) | rate 0.9→0.5 (grains/s) | rate (t/s) | left at 12 s | "
+             "angle of repose (°, mean of 4 flanks) | range (°) | wall time (h, one thread) |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for shape in doc["of"]:
+        r = doc["shapes"].get(shape)
+        if r is None or "in_progress" in r:
+            state = "not run yet" if r is None else f"running: {r['in_progress']:.2f} s of {DURATION:g}"
+            lines.append(f"| {shape.replace('_', ' ')} | {state} | | | | | | | | |")
+            continue
+        rng = r["repose_range_deg"]
+        lines.append(f"| {shape.replace('_', ' ')} | {r['grains']} | {fmt(r['t_0.9'], '.2f')} | {fmt(r['t_0.5'], '.2f')} | "
+                     f"{fmt(r['rate_grains_per_s'], '.0f')} | "
+                     f"{fmt(None if r['rate_kg_per_s'] is None else r['rate_kg_per_s'] / 1000, '.0f')} | "
+                     f"{r['left_at_end']:.3f} | {fmt(r['repose_mean_deg'], '.1f')} | "
+                     f"{'—' if rng is None else f'{rng[0]:.1f}–{rng[1]:.1f}'} | {r['wall_seconds'] / 3600:.2f} |")
+    print("\n".join(lines))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("command", choices=["run", "report", "table"])
+    ap.add_argument("path", nargs="?", default=str(REPO / "docs" / "seed002" / "shapes" / "shapes.json"))
+    ap.add_argument("--out", type=Path, default=REPO / "runs" / "seed002_shapes")
+    ap.add_argument("--docs", type=Path, default=REPO / "docs" / "seed002" / "shapes")
+    ap.add_argument("--binary", type=Path, default=REPO / "build" / "grainflow")
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--budget-minutes", type=float, default=30.0)
+    ap.add_argument("--shapes", nargs="*", default=SHAPES)
+    a = ap.parse_args()
+    unknown = set(a.shapes) - set(SHAPES)
+    if unknown:
+        sys.exit(f"shapes_hopper: unknown shape(s) {sorted(unknown)}; shapes are {SHAPES}")
+    if a.command == "table":
+        table(a.path)
+        return
+    if a.command == "report":
+        report(a.out, a.docs)
+        return
+    if not a.binary.is_file():
+        sys.exit(f"shapes_hopper: {a.binary} not found: build grainflow first (README)")
+    for shape in [s for s in SHAPES if s in a.shapes]:
+        folder = a.out / shape
+        restore(folder, a.docs / shape)
+        run_piece(shape, a.binary, SCENE, folder, overrides(shape), a.threads, 60 * a.budget_minutes, done)
+        s = load_series(folder)
+        finished = s is not None and done(s)
+        pics = sorted((folder / "pictures").glob("time_*.png")) if (folder / "pictures").is_dir() else []
+        archive(folder, a.docs / shape, finished, [p.name for p in pics])
+
+
+if __name__ == "__main__":
+    main()
