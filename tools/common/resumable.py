@@ -5,8 +5,14 @@ checkpoint when there is one) for at most a wall-time budget, then stops it with
 finishes the step in flight and writes its checkpoint, so the next piece continues where this one
 stopped, bit-identical to an uninterrupted run. Every piece is logged in FOLDER/pieces.jsonl.
 Used by tools/seed000/study.py and tools/seed001/kiln_map.py.
+
+Run folders live under runs/, which git ignores, so a new checkout has none. `archive` copies a
+case's results (and, while it is unfinished, its last checkpoint) into a committed folder under
+docs/, and `restore` rebuilds a missing run folder from that copy, so a study continues on another
+machine where it stopped and its report never depends on runs/ alone.
 """
 import json
+import shutil
 import signal
 import subprocess
 import sys
@@ -28,6 +34,39 @@ def pieces(folder):
     """The pieces logged so far, oldest first."""
     path = folder / "pieces.jsonl"
     return [json.loads(line) for line in path.read_text().splitlines() if line.strip()] if path.is_file() else []
+
+
+ARCHIVED = ("series.csv", "summary.json", "pieces.jsonl", "end_snapshot.json", "log.txt")
+
+
+def archive(folder, dest, finished, pictures=()):
+    """Copies the case's result files and the named pictures (file names under folder/pictures) into
+    dest; an unfinished case also keeps its checkpoint there, a finished one drops it."""
+    if not (folder / "series.csv").is_file():
+        return
+    dest.mkdir(parents=True, exist_ok=True)
+    for name in ARCHIVED:
+        if (folder / name).is_file():
+            shutil.copy2(folder / name, dest / name)
+    for name in pictures:
+        if (folder / "pictures" / name).is_file():
+            (dest / "pictures").mkdir(exist_ok=True)
+            shutil.copy2(folder / "pictures" / name, dest / "pictures" / name)
+    ckpt = folder / "checkpoints" / "checkpoint.gfc"
+    if finished or not ckpt.is_file():
+        shutil.rmtree(dest / "checkpoints", ignore_errors=True)
+    else:
+        (dest / "checkpoints").mkdir(exist_ok=True)
+        shutil.copy2(ckpt, dest / "checkpoints" / "checkpoint.gfc")
+
+
+def restore(folder, dest):
+    """Rebuilds a run folder that is missing (a new checkout) from its archive; a folder that
+    exists is left alone."""
+    if folder.exists() or not (dest / "series.csv").is_file():
+        return
+    shutil.copytree(dest, folder)
+    print(f"{folder.name}: restored from {dest}", file=sys.stderr)
 
 
 def run_piece(name, binary, scene, folder, overrides, threads, budget_s, done):

@@ -10,6 +10,9 @@ map's own setting (E/1000) from three fill seeds for the case-to-case noise.
 Each variant runs REVS revolutions in resumable pieces (tools/common/resumable.py); `report`
 writes stiffness.json (per variant: the Lacey and radial indices over the last revolution, wall
 time, particle-steps/s) and stiffness.png (index against wall time, the seeds' spread shaded).
+Each variant's results (and an unfinished one's checkpoint) are archived under
+docs/seed001/stiffness_cases/NAME after each piece and restored from there into a missing run
+folder; a variant of the committed stiffness.json with nothing archived keeps its row.
 """
 import argparse
 import json
@@ -21,7 +24,7 @@ import numpy as np
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tools" / "common"))
-from resumable import load_series, pieces, run_piece  # noqa: E402
+from resumable import archive, load_series, pieces, restore, run_piece  # noqa: E402
 
 SCENE = REPO / "scenes" / "kiln_seed001.toml"
 E_GLASS = 4.8e10  # Pa, Chung & Ooi (2011)
@@ -97,9 +100,15 @@ def report(out, docs):
     import matplotlib.pyplot as plt
 
     rows = {}
+    path = docs / "stiffness.json"
+    earlier = json.loads(path.read_text())["variants"] if path.is_file() else {}
     for name, v in VARIANTS.items():
         folder = out / name
+        restore(folder, docs / "stiffness_cases" / name)
         s = load_series(folder)
+        if s is None and name in earlier:
+            rows[name] = {**earlier[name], "series_archived": False}
+            continue
         ps = pieces(folder)
         if ps and ps[-1]["status"] == "failed":  # the run stopped itself: the reason is the log's last line
             reason = (folder / "log.txt").read_text().strip().splitlines()[-1].replace("grainflow: error: ", "")
@@ -179,7 +188,12 @@ def main():
         v = VARIANTS[name]
         folder = a.out / name
         scene = linear_scene(folder) if v["law"] != "hertz_mindlin" else SCENE
+        restore(folder, a.docs / "stiffness_cases" / name)
         run_piece(name, a.binary, scene, folder, overrides(v), a.threads, 60 * a.budget_minutes, done)
+        s = load_series(folder)
+        ps = pieces(folder)
+        finished = (s is not None and done(s)) or bool(ps and ps[-1]["status"] == "failed")
+        archive(folder, a.docs / "stiffness_cases" / name, finished)
 
 
 if __name__ == "__main__":
