@@ -4,6 +4,7 @@
 // tree and boxes; a broken tree is refused.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -125,4 +126,22 @@ TEST_CASE("RCB rebuilt from its tree and boxes (a checkpoint's) names the same o
   CHECK_THROWS_AS(gf::Rcb(loop, rcb.boxes()), std::invalid_argument);
   CHECK_THROWS_AS(gf::Rcb(twice, rcb.boxes()), std::invalid_argument);
   CHECK_THROWS_AS(gf::Rcb(rcb.nodes(), {rcb.boxes().begin(), rcb.boxes().begin() + 3}), std::invalid_argument);
+}
+
+TEST_CASE("box peers: the ranks whose boxes lie within a distance, a symmetric relation", "[rcb]") {
+  // Three boxes in a row along x (the long axis of a 0.6 m domain): cuts at 0.2 and 0.4 m, so 0
+  // and 2 are 0.2 m apart and each touches 1.
+  const std::vector<double> x{0.1, 0.3, 0.5}, y{0.05, 0.05, 0.05}, z{0.1, 0.1, 0.1};
+  const gf::Rcb rcb(gf::DomainBox{{0.0, 0.0, 0.0}, {0.6, 0.1, 0.2}}, x, y, z, {}, 3);
+  CHECK(gf::box_peers(rcb, 0, 0.05) == std::vector<int>{1});
+  CHECK(gf::box_peers(rcb, 1, 0.05) == std::vector<int>{0, 2});
+  CHECK(gf::box_peers(rcb, 2, 0.05) == std::vector<int>{1});
+  CHECK(gf::box_peers(rcb, 0, 0.2) == std::vector<int>{1, 2});  // the gap itself counts as within
+  const Points p = make_points(3000, false, 9);
+  const gf::Rcb eight = split(p, 8);
+  for (int a = 0; a < 8; ++a)
+    for (const int b : gf::box_peers(eight, a, 0.02)) {
+      const std::vector<int> back = gf::box_peers(eight, b, 0.02);
+      CHECK(std::find(back.begin(), back.end(), a) != back.end());
+    }
 }

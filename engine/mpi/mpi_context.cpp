@@ -1,5 +1,6 @@
 #include "engine/mpi/mpi_context.hpp"
 
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -76,6 +77,42 @@ std::vector<std::vector<std::byte>> MpiContext::exchange(const std::vector<std::
   std::vector<std::vector<std::byte>> out(p);
   for (std::size_t r = 0; r < p; ++r)
     out[r].assign(rbuf.begin() + rdispl[r], rbuf.begin() + rdispl[r] + rcount[r]);
+  return out;
+}
+
+std::vector<std::vector<std::byte>> MpiContext::exchange(const std::vector<std::vector<std::byte>>& send,
+                                                      const std::vector<int>& peers) const {
+  const auto p = static_cast<std::size_t>(size_);
+  if (send.size() != p) throw std::invalid_argument("exchange needs one message per rank");
+  std::vector<char> peer(p, 0);
+  for (const int r : peers) {
+    if (r < 0 || r >= size_ || r == rank_) throw std::invalid_argument("a peer is not another rank");
+    peer[static_cast<std::size_t>(r)] = 1;
+  }
+  for (std::size_t r = 0; r < p; ++r)
+    if (!peer[r] && static_cast<int>(r) != rank_ && !send[r].empty())
+      throw std::invalid_argument("a message for rank " + std::to_string(r) + ", which is not a peer");
+  constexpr int kSizeTag = 7101, kDataTag = 7102;
+  std::vector<std::vector<std::byte>> out(p);
+  out[static_cast<std::size_t>(rank_)] = send[static_cast<std::size_t>(rank_)];
+  const std::size_t n = peers.size();
+  std::vector<std::uint64_t> ssize(n), rsize(n);
+  std::vector<MPI_Request> req(2 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    ssize[k] = send[static_cast<std::size_t>(peers[k])].size();
+    check(MPI_Irecv(&rsize[k], 1, MPI_UINT64_T, peers[k], kSizeTag, comm_, &req[k]), "MPI_Irecv");
+    check(MPI_Isend(&ssize[k], 1, MPI_UINT64_T, peers[k], kSizeTag, comm_, &req[n + k]), "MPI_Isend");
+  }
+  check(MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
+  for (std::size_t k = 0; k < n; ++k) {
+    auto& in = out[static_cast<std::size_t>(peers[k])];
+    in.resize(static_cast<std::size_t>(rsize[k]));
+    const auto& mine = send[static_cast<std::size_t>(peers[k])];
+    check(MPI_Irecv(in.data(), byte_count(in.size()), MPI_BYTE, peers[k], kDataTag, comm_, &req[k]), "MPI_Irecv");
+    check(MPI_Isend(mine.data(), byte_count(mine.size()), MPI_BYTE, peers[k], kDataTag, comm_, &req[n + k]),
+          "MPI_Isend");
+  }
+  check(MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
   return out;
 }
 

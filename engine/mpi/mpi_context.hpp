@@ -43,6 +43,13 @@ class MpiContext {
   // Sends send[r] (bytes) to rank r for every rank; returns, per rank, what it sent here. Each
   // message is at most 2 GiB (an int count of bytes).
   std::vector<std::vector<std::byte>> exchange(const std::vector<std::vector<std::byte>>& send) const;
+  // The same with the ranks this one talks to given (`peers`, this rank left out): point-to-point
+  // messages with them alone, no collective over all ranks, so its cost follows the peers, not the
+  // rank count. The relation must be symmetric (each peer lists this rank) and every rank of the
+  // communicator must make the call. A non-empty message for a rank outside `peers` is
+  // std::invalid_argument (before anything is sent).
+  std::vector<std::vector<std::byte>> exchange(const std::vector<std::vector<std::byte>>& send,
+                                               const std::vector<int>& peers) const;
   // Every rank's bytes on `root` (element r from rank r); an empty list on the other ranks
   // (MPI_Gatherv). At most 2 GiB in all.
   std::vector<std::vector<std::byte>> gather(const std::vector<std::byte>& send, int root = 0) const;

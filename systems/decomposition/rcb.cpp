@@ -109,6 +109,22 @@ Rcb::Rcb(std::vector<RcbNode> nodes, std::vector<DomainBox> boxes) : nodes_(std:
   if (!ok) throw std::invalid_argument("the cut tree is not one of these boxes' ranks");
 }
 
+double DomainBox::gap(const DomainBox& other) const {
+  double d2 = 0.0;
+  for (std::size_t d = 0; d < 3; ++d) {
+    const double gap = std::max({0.0, other.lo[d] - hi[d], lo[d] - other.hi[d]});
+    d2 += gap * gap;
+  }
+  return std::sqrt(d2);
+}
+
+std::vector<int> box_peers(const Rcb& rcb, int rank, double within) {
+  std::vector<int> out;
+  for (int r = 0; r < rcb.ranks(); ++r)
+    if (r != rank && rcb.box(rank).gap(rcb.box(r)) <= within) out.push_back(r);
+  return out;
+}
+
 int Rcb::owner_of(const std::array<double, 3>& p) const {
   int n = 0;
   while (nodes_[n].axis >= 0) n = p[nodes_[n].axis] < nodes_[n].cut ? nodes_[n].lower : nodes_[n].upper;

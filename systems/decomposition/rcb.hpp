@@ -30,6 +30,8 @@ struct DomainBox {
   bool contains(const std::array<double, 3>& p) const;
   // Distance (m) from p to the box, 0 inside.
   double distance(const std::array<double, 3>& p) const;
+  // Distance (m) between the two boxes, 0 where they touch or overlap.
+  double gap(const DomainBox& other) const;
   double volume() const { return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
 };
 
@@ -67,5 +69,9 @@ class Rcb {
   std::vector<Node> nodes_;
   std::vector<DomainBox> boxes_;
 };
+
+// The ranks other than `rank` whose boxes lie within `within` (m) of its box, ascending: the ranks
+// a rank exchanges with when nothing travels farther (a symmetric relation).
+std::vector<int> box_peers(const Rcb& rcb, int rank, double within);
 
 }  // namespace gf

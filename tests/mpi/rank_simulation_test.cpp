@@ -239,7 +239,8 @@ TEST_CASE("a pile that slides into one rank's box is rebalanced and still tracks
   const double stuck = imbalance(fixed), balanced = imbalance(cut);
   if (mpi.rank() == 0)
     std::cout << "sliding: most rows over the mean " << stuck << " with the first boxes, " << balanced << " after "
-              << cut.counters().rebalances << " rebalances; largest relative kinetic-energy difference against one "
+              << cut.counters().rebalances << " rebalances (" << cut.counters().wide_rebuilds
+              << " rebuilds exchanged among all ranks); largest relative kinetic-energy difference against one "
               << "rank " << worst_e << "\n";
   // Without rebalancing the pile sits in the first rank's box (all of it on two ranks: 2); cut again
   // at 1.2, the last rebuild left the ranks within 1.2 of the mean, and a few steps of settling

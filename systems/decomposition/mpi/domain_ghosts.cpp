@@ -69,15 +69,16 @@ void make_domain_ghosts(Grains& g, const Rcb& rcb, double reach, const MpiContex
   g.set_ghosts(0);
   const auto ranks = static_cast<std::size_t>(mpi.size());
   gh.send.assign(ranks, {});
+  gh.peers = box_peers(rcb, mpi.rank(), reach);
   std::vector<std::vector<std::byte>> out(ranks);
-  for (int r = 0; r < mpi.size(); ++r) {
-    if (r == mpi.rank() || (shell == GhostShell::half && r < mpi.rank())) continue;
+  for (const int r : gh.peers) {
+    if (shell == GhostShell::half && r < mpi.rank()) continue;
     auto& rows = gh.send[static_cast<std::size_t>(r)];
     for (std::size_t i = 0; i < g.n_owned; ++i)
       if (rcb.box(r).distance({g.pos.x[i], g.pos.y[i], g.pos.z[i]}) <= reach) rows.push_back(static_cast<std::uint32_t>(i));
     pack_rows(g, rows, out[static_cast<std::size_t>(r)], true);
   }
-  const std::vector<std::vector<std::byte>> in = mpi.exchange(out);
+  const std::vector<std::vector<std::byte>> in = mpi.exchange(out, gh.peers);
   gh.first.assign(ranks, 0);
   gh.count.assign(ranks, 0);
   std::size_t ghosts = 0;
@@ -94,7 +95,7 @@ void refresh_domain_ghosts(Grains& g, const DomainGhosts& gh, const MpiContext& 
   const std::vector<ColumnD*> cols = state_columns(g);
   std::vector<std::vector<std::byte>> out(gh.send.size());
   for (std::size_t r = 0; r < out.size(); ++r) out[r] = gather(cols, gh.send[r]);
-  const std::vector<std::vector<std::byte>> in = mpi.exchange(out);
+  const std::vector<std::vector<std::byte>> in = mpi.exchange(out, gh.peers);
   for (std::size_t r = 0; r < in.size(); ++r) scatter(cols, RowRange{gh.first[r], gh.count[r]}, in[r], false);
 }
 
@@ -102,7 +103,7 @@ void fold_domain_ghost_forces(Grains& g, const DomainGhosts& gh, const MpiContex
   const std::vector<ColumnD*> cols = force_columns(g);
   std::vector<std::vector<std::byte>> out(gh.count.size());
   for (std::size_t r = 0; r < out.size(); ++r) out[r] = gather(cols, RowRange{gh.first[r], gh.count[r]});
-  const std::vector<std::vector<std::byte>> in = mpi.exchange(out);
+  const std::vector<std::vector<std::byte>> in = mpi.exchange(out, gh.peers);
   for (std::size_t r = 0; r < in.size(); ++r) scatter(cols, gh.send[r], in[r], true);
 }
 

@@ -14,9 +14,9 @@
 // partner side left on the ghosts back to their owners, which add it (as PeriodicFold does for
 // images), in sending-rank then row order.
 //
-// Every rank exchanges with every other (MPI_Alltoallv, empty messages included); at many ranks the
-// exchange would go to the neighbouring boxes only. Periodic images and domain ghosts do not share a
-// table yet.
+// The messages go to the neighbouring boxes only: the ranks whose boxes lie within `reach` of this
+// rank's box (box_peers), point to point, so a rank's exchange costs what its neighbours hold, not
+// what the rank count is. Periodic images and domain ghosts do not share a table yet.
 #pragma once
 
 #include <cstddef>
@@ -34,6 +34,7 @@ enum class GhostShell { full, half };
 struct DomainGhosts {
   std::vector<std::vector<std::uint32_t>> send;  // per rank: the owned rows it holds copies of
   std::vector<std::size_t> first, count;         // per rank: its ghost rows here (from n_owned)
+  std::vector<int> peers;                        // the ranks whose boxes lie within reach of this one
   std::size_t size() const;
 };
 

@@ -12,7 +12,7 @@ std::vector<int> row_owners(const Grains& g, const Rcb& rcb) {
   return out;
 }
 
-MigrationCount migrate_rows(Grains& g, std::span<const int> owner, const MpiContext& mpi) {
+MigrationCount migrate_rows(Grains& g, std::span<const int> owner, const MpiContext& mpi, const std::vector<int>* peers) {
   if (owner.size() != g.n_owned) throw std::invalid_argument("migrate_rows needs one owner per owned row");
   const auto ranks = static_cast<std::size_t>(mpi.size());
   std::vector<std::vector<std::uint32_t>> leaving(ranks);
@@ -29,7 +29,7 @@ MigrationCount migrate_rows(Grains& g, std::span<const int> owner, const MpiCont
     pack_rows(g, leaving[r], send[r]);
     count.sent += leaving[r].size();
   }
-  const std::vector<std::vector<std::byte>> recv = mpi.exchange(send);
+  const std::vector<std::vector<std::byte>> recv = peers ? mpi.exchange(send, *peers) : mpi.exchange(send);
   std::vector<std::byte> arriving;
   for (const auto& bytes : recv) arriving.insert(arriving.end(), bytes.begin(), bytes.end());
   count.received = keep_and_append(g, keep, arriving);

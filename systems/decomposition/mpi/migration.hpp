@@ -27,7 +27,9 @@ struct MigrationCount {
 std::vector<int> row_owners(const Grains& g, const Rcb& rcb);
 
 // Sends every owned row whose owner[row] is another rank there and appends the rows other ranks
-// send here. owner holds one rank per owned row.
-MigrationCount migrate_rows(Grains& g, std::span<const int> owner, const MpiContext& mpi);
+// send here. owner holds one rank per owned row. With `peers` (see MpiContext::exchange) the rows
+// may only go to those ranks, and only they are exchanged with; without, every rank.
+MigrationCount migrate_rows(Grains& g, std::span<const int> owner, const MpiContext& mpi,
+                            const std::vector<int>* peers = nullptr);
 
 }  // namespace gf

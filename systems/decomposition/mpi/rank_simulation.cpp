@@ -70,8 +70,9 @@ RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mp
 
   // Every rank placed the same grains: the same boxes everywhere, then this rank's rows kept.
   domain_ = padded_bounds(g);
-  rcb_ = std::make_unique<Rcb>(domain_, g.pos.x.span().first(g.n_owned), g.pos.y.span().first(g.n_owned),
-                               g.pos.z.span().first(g.n_owned), std::span<const double>{}, mpi.size());
+  std::unique_ptr<Rcb> rcb = std::make_unique<Rcb>(domain_, g.pos.x.span().first(g.n_owned), g.pos.y.span().first(g.n_owned),
+                                                   g.pos.z.span().first(g.n_owned), std::span<const double>{}, mpi.size());
+  rcb_ = std::move(rcb);
   std::vector<std::uint32_t> keep;
   for (std::size_t i = 0; i < g.n_owned; ++i)
     if (rcb_->owner_of(position(g, i)) == mpi.rank()) keep.push_back(static_cast<std::uint32_t>(i));
@@ -81,6 +82,7 @@ RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mp
   for (const SpeciesSpec& sp : s.species) rmax = std::max(rmax, 0.5 * sp.diameter);
   const BroadphaseState& bs = w.resources.get<BroadphaseState>();
   reach_ = 2.0 * rmax + bs.skin + bs.reach;
+  set_boxes(std::move(rcb_));
 
   drift_ = std::make_unique<Schedule>();
   contacts_ = std::make_unique<Schedule>();
@@ -141,6 +143,11 @@ void RankSimulation::rebuild() {
   relist(out);
 }
 
+void RankSimulation::set_boxes(std::unique_ptr<Rcb> rcb) {
+  rcb_ = std::move(rcb);
+  near_ = box_peers(*rcb_, mpi_->rank(), 2.0 * reach_);
+}
+
 void RankSimulation::set_rebalance(double ratio) {
   if (!(ratio == 0.0 || (ratio > 1.0 && std::isfinite(ratio))))
     throw std::invalid_argument("the rebalance ratio must be 0 (never) or above 1");
@@ -170,7 +177,7 @@ void RankSimulation::maybe_rebalance() {
       y.push_back(p[1]);
       z.push_back(p[2]);
     }
-  rcb_ = std::make_unique<Rcb>(domain_, x, y, z, std::span<const double>{}, mpi_->size());
+  set_boxes(std::make_unique<Rcb>(domain_, x, y, z, std::span<const double>{}, mpi_->size()));
   ++counters_.rebalances;
 }
 
@@ -181,7 +188,17 @@ void RankSimulation::relist(const std::vector<std::vector<std::byte>>& out) {
   PairHistory& history = w.resources.get<PairHistory>();
   const MpiContext& mpi = *mpi_;
   const std::size_t width = history.width;
-  const std::vector<std::vector<std::byte>> in = mpi.exchange(out);
+  // The rows' new owners; whether any row or spring must go past the near boxes (then, on every
+  // rank alike, this rebuild exchanges among all ranks).
+  const std::vector<int> owners = row_owners(g, *rcb_);
+  std::vector<char> near(static_cast<std::size_t>(mpi.size()), 0);
+  near[static_cast<std::size_t>(mpi.rank())] = 1;
+  for (const int r : near_) near[static_cast<std::size_t>(r)] = 1;
+  bool far = false;
+  for (std::size_t r = 0; r < out.size(); ++r) far = far || (!near[r] && !out[r].empty());
+  for (const int r : owners) far = far || !near[static_cast<std::size_t>(r)];
+  const bool all = mpi.max(far ? 1.0 : 0.0) > 0.0;
+  const std::vector<std::vector<std::byte>> in = all ? mpi.exchange(out) : mpi.exchange(out, near_);
   const std::size_t record = 2 * sizeof(std::int64_t) + width * sizeof(double);
   std::vector<SpringRecord> springs;
   for (const auto& bytes : in) {
@@ -196,7 +213,8 @@ void RankSimulation::relist(const std::vector<std::vector<std::byte>>& out) {
     }
   }
   // The rows to their owners, then the sorted owned rows, the ghost rows and the list.
-  const MigrationCount moved = migrate_rows(g, row_owners(g, *rcb_), mpi);
+  const MigrationCount moved = migrate_rows(g, owners, mpi, all ? nullptr : &near_);
+  counters_.wide_rebuilds += all ? 1 : 0;
   counters_.migrated += static_cast<std::int64_t>(moved.sent);
   history.clear();
   PeriodicImages none;

@@ -8,6 +8,12 @@
 // grain that leaves it stops the run. The boxes are cut again when the load drifts out of balance
 // (set_rebalance).
 //
+// Messages go to the neighbouring boxes only (MpiContext::exchange with peers): the ghost rows to
+// the boxes within reach, and at a rebuild the migrating rows and the springs to the boxes within
+// two reaches (a row moves less than half the skin between rebuilds, a spring's pair spans at most
+// one reach); when the boxes were cut again, or a row or spring must go farther, that rebuild's
+// rows and springs go through an exchange among all ranks, which every rank agrees on first.
+//
 // One step, on the thread that made the MpiContext (the oneTBB graphs run inside each phase):
 //   1. the opening half-kick and drift of the owned rows (IntegratePositions);
 //   2. the ghost rows refreshed from their owners (position, velocity, spin); then, when any rank
@@ -51,6 +57,7 @@ struct RankCounters {
   std::int64_t migrated = 0;  // rows this rank sent away over the run
   std::int64_t ghosts = 0;    // ghost rows held now
   std::int64_t rebalances = 0;  // times the boxes were cut again (every rank the same)
+  std::int64_t wide_rebuilds = 0;  // rebuilds whose rows and springs went among all ranks (the same)
   double particle_steps = 0;  // owned rows summed over the steps advanced
 };
 
@@ -122,6 +129,8 @@ class RankSimulation {
   void relist(const std::vector<std::vector<std::byte>>& out);
   // The boxes cut again when the rows are out of balance (set_rebalance). Collective.
   void maybe_rebalance();
+  // Takes the ranks' boxes, and with them the ranks near this one.
+  void set_boxes(std::unique_ptr<Rcb> rcb);
   // One spring packed for relist: its pair's ids (`own` the grain whose view the values are in) and
   // entry e of h's values.
   static void pack_spring(std::vector<std::byte>& out, std::int64_t own, std::int64_t other, const PairHistory& h,
@@ -133,6 +142,7 @@ class RankSimulation {
   std::unique_ptr<Schedule> drift_, contacts_, kick_;
   DomainGhosts ghosts_;
   DomainBox domain_;    // the box the ranks' boxes tile: the starting grains' bounds widened
+  std::vector<int> near_;  // the ranks whose boxes lie within two reaches of this one (set_boxes)
   double rebalance_ = 0.0;
   double reach_ = 0.0;  // m, how far from a box a ghost row may lie
   bool listed_ = false;

@@ -235,7 +235,8 @@ void RankSimulation::restore(const CheckpointReader& in) {
   list_sections(in, list, history, bp);
   check_list(in, list, history, bp, g);
   restore_ghosts(in, ghosts_, g, static_cast<std::size_t>(mpi_->size()));
-  rcb_ = std::move(rcb);
+  set_boxes(std::move(rcb));
+  ghosts_.peers = box_peers(*rcb_, mpi_->rank(), reach_);  // as make_domain_ghosts found them
   listed_ = in.value<bool>("rank.listed");
   primed_ = in.value<bool>("rank.primed");
   counters_ = in.value<RankCounters>("rank.counters");
