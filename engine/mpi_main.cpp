@@ -316,6 +316,8 @@ int main(int argc, char** argv) {
     summary["momentum"] = {p[0], p[1], p[2]};
     summary["series_rows"] = outputs->series_rows();
     summary["frames"] = outputs->frames();
+    summary["pictures"] = outputs->pictures();
+    if (!outputs->last_picture().empty()) summary["last_picture"] = outputs->last_picture().string();
     summary["checkpoints_written"] = checkpoints->written();
     summary["final"] = final_row(last);
   } catch (const gf::RankFailure& e) {
@@ -335,6 +337,8 @@ int main(int argc, char** argv) {
                  static_cast<long long>(summary["steps_this_run"].get<std::int64_t>()), summary["wall_seconds"].get<double>(),
                  summary["particle_steps_per_second"].get<double>(),
                  summary["rank0_particle_steps_per_second"].get<double>());
+    if (summary.contains("last_picture"))
+      std::fprintf(stderr, "grainflow_mpi: picture of the drum: %s\n", summary["last_picture"].get<std::string>().c_str());
     if (summary["status"] == "interrupted" && summary.contains("checkpoint"))
       std::fprintf(stderr, "grainflow_mpi: stopped by a signal at step %lld; go on with: mpiexec -n %d grainflow_mpi run %s --out %s --resume %s\n",
                    static_cast<long long>(summary["steps"].get<std::int64_t>()), mpi.size(), opt.scene.string().c_str(),

@@ -199,6 +199,25 @@ void FrameOutput::finish(World& world) {
   last_written_ = world.clock.t;
 }
 
+bool scene_draws_pictures(const DemScene& s) {
+  return !s.output.picture_angles.empty() || s.output.picture_interval > 0;
+}
+
+PictureSettings scene_picture_settings(const DemScene& s, const std::filesystem::path& out) {
+  PictureSettings ps;
+  ps.dir = out / "pictures";
+  ps.angles = s.output.picture_angles;
+  ps.interval = s.output.picture_interval;
+  ps.options = s.output.picture;
+  for (std::size_t k = 0; k < s.species.size(); ++k) {
+    char hex[16];
+    const Rgb& c = ps.options.palette[k];
+    std::snprintf(hex, sizeof hex, "#%02X%02X%02X", c[0], c[1], c[2]);
+    ps.legend += (k ? ", " : "") + s.species[k].name + " " + hex;
+  }
+  return ps;
+}
+
 PictureOutput::PictureOutput(PictureSettings s) : s_(std::move(s)) {}
 
 void PictureOutput::save(CheckpointWriter& out) const {
@@ -222,7 +241,10 @@ double PictureOutput::next_target() const {
 
 void PictureOutput::run(World& world, const StepContext& now) {
   const Walls& walls = world.resources.get<Walls>();
-  const double t = now.t;
+  if (const auto angle = due(walls, now)) draw(world.grains, walls, world.resources.get<Gravity>(), now, *angle);
+}
+
+std::optional<double> PictureOutput::due(const Walls& walls, const StepContext& now) const {
   double omega = 0;
   for (const Wall& w : walls.list)
     if (w.omega != 0.0) {
@@ -230,13 +252,20 @@ void PictureOutput::run(World& world, const StepContext& now) {
       break;
     }
   // Reached up to round-off of the clock, as the time-based observers are.
-  const double angle = std::abs(rotation_angle(walls, t)) + 1e-6 * std::abs(omega) * now.dt;
-  if (next_target() > angle) return;
+  const double angle = std::abs(rotation_angle(walls, now.t)) + 1e-6 * std::abs(omega) * now.dt;
+  if (next_target() > angle) return std::nullopt;
+  return angle;
+}
 
+void PictureOutput::draw(const Grains& g, const Walls& walls, const Gravity& gr, const StepContext& now, double angle,
+                         bool write) {
+  if (!write) {
+    for (double target = next_target(); target <= angle; target = next_target()) pass(target);
+    return;
+  }
+  const double t = now.t;
   const auto drum = find_drum(walls);
   if (!drum) throw std::logic_error("pictures requested for a scene without a drum wall");
-  const Gravity& gr = world.resources.get<Gravity>();
-  const Grains& g = world.grains;
   const std::size_t n = g.n_owned;
   PictureGrains pg{{g.pos.x.data(), n}, {g.pos.y.data(), n}, {g.pos.z.data(), n}, {g.radius.r.data(), n},
                    {g.species.type.data(), n}, {}};
@@ -259,10 +288,14 @@ void PictureOutput::run(World& world, const StepContext& now) {
   for (double target = next_target(); target <= angle; target = next_target()) {
     last_ = s_.dir / picture_name(target);
     write_png(last_, img, {{"Title", title}, {"Comment", comment}, {"Software", "grainflow"}});
-    ++written_;
-    if (next_angle_ < s_.angles.size() && s_.angles[next_angle_] == target) ++next_angle_;
-    if (s_.interval > 0 && static_cast<double>(next_multiple_) * s_.interval == target) ++next_multiple_;
+    pass(target);
   }
+}
+
+void PictureOutput::pass(double target) {
+  ++written_;
+  if (next_angle_ < s_.angles.size() && s_.angles[next_angle_] == target) ++next_angle_;
+  if (s_.interval > 0 && static_cast<double>(next_multiple_) * s_.interval == target) ++next_multiple_;
 }
 
 }  // namespace gf

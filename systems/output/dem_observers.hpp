@@ -138,6 +138,11 @@ struct PictureSettings {
   std::string legend;           // species colours, for the PNG's Comment entry
 };
 
+// Whether the scene asks for drum pictures (output.picture_angles or output.picture_interval), and
+// the settings it gives them, into out/pictures.
+bool scene_draws_pictures(const DemScene& s);
+PictureSettings scene_picture_settings(const DemScene& s, const std::filesystem::path& out);
+
 // Draws the drum (the first rotating inner cylinder, else the first one) when the rotation angle of
 // the first rotating wall reaches each requested angle: pictures/angle_XX.XX.png, named after the
 // requested angle (the state drawn is the first step at or past it, at most omega dt later).
@@ -148,6 +153,13 @@ class PictureOutput : public SystemBase<PictureOutput>, public Checkpointable {
   explicit PictureOutput(PictureSettings s);
   std::string_view name() const override { return "picture_output"; }
   void run(World& world, const StepContext& now) override;
+  // The drum's rotation angle now when a picture is due there (every rank of a run on several ranks
+  // computes the same), else nothing.
+  std::optional<double> due(const Walls& walls, const StepContext& now) const;
+  // Every target up to `angle` drawn from g's owned rows and written, then passed; with write =
+  // false only passed (the ranks that do not hold the gathered grains).
+  void draw(const Grains& g, const Walls& walls, const Gravity& gravity, const StepContext& now, double angle,
+            bool write = true);
   std::size_t pictures() const { return written_; }
   // The file this run drew last (empty if it drew none).
   const std::filesystem::path& last_picture() const { return last_; }
@@ -156,6 +168,7 @@ class PictureOutput : public SystemBase<PictureOutput>, public Checkpointable {
 
  private:
   double next_target() const;
+  void pass(double target);  // the target counted as drawn
   PictureSettings s_;
   std::size_t next_angle_ = 0;
   std::int64_t next_multiple_ = 0;

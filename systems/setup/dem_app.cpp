@@ -204,20 +204,7 @@ int run_dem_command(const CliOptions& opt) {
   FrameOutput* frames = nullptr;
   if (s.output.frame_interval > 0) frames = &observe.emplace<FrameOutput>(out, s.output.frame_interval, s.output.fields);
   PictureOutput* pictures = nullptr;
-  if (!s.output.picture_angles.empty() || s.output.picture_interval > 0) {
-    PictureSettings ps;
-    ps.dir = out / "pictures";
-    ps.angles = s.output.picture_angles;
-    ps.interval = s.output.picture_interval;
-    ps.options = s.output.picture;
-    for (std::size_t k = 0; k < s.species.size(); ++k) {
-      char hex[16];
-      const Rgb& c = ps.options.palette[k];
-      std::snprintf(hex, sizeof hex, "#%02X%02X%02X", c[0], c[1], c[2]);
-      ps.legend += (k ? ", " : "") + s.species[k].name + " " + hex;
-    }
-    pictures = &observe.emplace<PictureOutput>(std::move(ps));
-  }
+  if (scene_draws_pictures(s)) pictures = &observe.emplace<PictureOutput>(scene_picture_settings(s, out));
   ResidenceOutput* residence = nullptr;
   if (!s.flow.outlets.empty()) {
     std::optional<std::size_t> keep;

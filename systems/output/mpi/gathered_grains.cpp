@@ -12,7 +12,7 @@ namespace {
 struct ShapeRecord {
   std::int64_t id = 0;
   std::int32_t type = 0, unused = 0;
-  double x[3] = {}, r = 0;
+  double x[3] = {}, r = 0, v[3] = {};
 };
 
 struct StateRecord {
@@ -43,7 +43,8 @@ std::vector<T> gather_by_id(const std::vector<T>& mine, const MpiContext& mpi) {
 Grains gather_shapes(const Grains& g, const MpiContext& mpi) {
   std::vector<ShapeRecord> mine(g.n_owned);
   for (std::size_t i = 0; i < g.n_owned; ++i)
-    mine[i] = {g.pid.id[i], g.species.type[i], 0, {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, g.radius.r[i]};
+    mine[i] = {g.pid.id[i], g.species.type[i], 0, {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, g.radius.r[i],
+               {g.vel.x[i], g.vel.y[i], g.vel.z[i]}};
   const std::vector<ShapeRecord> all = gather_by_id(mine, mpi);
   Grains out;
   out.spin = false;
@@ -53,6 +54,7 @@ Grains gather_shapes(const Grains& g, const MpiContext& mpi) {
     out.species.type[i] = all[i].type;
     out.pos.x[i] = all[i].x[0], out.pos.y[i] = all[i].x[1], out.pos.z[i] = all[i].x[2];
     out.radius.r[i] = all[i].r;
+    out.vel.x[i] = all[i].v[0], out.vel.y[i] = all[i].v[1], out.vel.z[i] = all[i].v[2];
   }
   return out;
 }

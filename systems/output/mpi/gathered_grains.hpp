@@ -13,8 +13,8 @@
 
 namespace gf {
 
-// Every rank's grains as one table on rank 0, in id order: position, radius, species and id (no
-// spin columns; velocities, masses and forces zero). An empty table on the other ranks. Collective.
+// Every rank's grains as one table on rank 0, in id order: position, velocity, radius, species and
+// id (no spin columns; masses and forces zero). An empty table on the other ranks. Collective.
 Grains gather_shapes(const Grains& g, const MpiContext& mpi);
 
 // Every rank's grains on rank 0 as rows of final_state.csv, in id order: id, type (species from 1),

@@ -2,6 +2,7 @@
 
 #include "engine/atomic_file.hpp"
 #include "engine/mpi/rank_failure.hpp"
+#include "systems/output/mpi/gathered_grains.hpp"
 #include "systems/output/mpi/rank_final_state.hpp"
 
 namespace gf {
@@ -27,6 +28,7 @@ RankOutputs::RankOutputs(const DemScene& s, std::filesystem::path out, const Mpi
                          std::optional<std::size_t> series_rows)
     : scene_(&s), out_(made_folder(out, mpi)), mpi_(&mpi), series_(series_settings(s, out_, series_rows), mpi) {
   if (s.output.frame_interval > 0) frames_.emplace(out_, s.output.frame_interval, s.output.fields, mpi);
+  if (scene_draws_pictures(s)) pictures_.emplace(scene_picture_settings(s, out_));
 }
 
 std::size_t RankOutputs::series_rows(const CheckpointReader& part) {
@@ -36,6 +38,7 @@ std::size_t RankOutputs::series_rows(const CheckpointReader& part) {
 void RankOutputs::save(CheckpointWriter& out) const {
   series_.save(out);
   if (frames_) frames_->save(out);
+  if (pictures_) pictures_->save(out);
 }
 
 void RankOutputs::restore(const CheckpointReader& part) {
@@ -46,12 +49,28 @@ void RankOutputs::restore(const CheckpointReader& part) {
       part.fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
     frames_->restore(part);
   });
+  on_every_rank(*mpi_, [&] {
+    if (!pictures_) return;
+    if (!part.has("picture_output.next_angle"))
+      part.fail("the run that wrote it drew no pictures",
+                "resume without output.picture_angles and output.picture_interval, as that run had");
+    pictures_->restore(part);
+  });
   if (frames_) frames_->rewrite_index();
 }
 
 void RankOutputs::observe(World& w) {
   series_.observe(w);
   if (frames_) frames_->observe(w.grains, w.clock.t, w.clock.dt);
+  if (!pictures_) return;
+  const Walls& walls = w.resources.get<Walls>();
+  const StepContext now = next_step(w.clock);
+  const auto angle = pictures_->due(walls, now);
+  if (!angle) return;
+  const Grains all = gather_shapes(w.grains, *mpi_);
+  on_every_rank(*mpi_, [&] {
+    pictures_->draw(all, walls, w.resources.get<Gravity>(), now, *angle, mpi_->rank() == 0);
+  });
 }
 
 const SeriesRow& RankOutputs::finish(World& w) {

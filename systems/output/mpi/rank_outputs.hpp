@@ -1,6 +1,7 @@
 // What a run on several ranks writes into its folder besides summary.json, as `grainflow run` does
 // on one: series.csv (rank_series.hpp), the VTK frames in pieces with their .pvtp and frames.pvd
-// (rank_frames.hpp) and final_state.csv (rank_final_state.hpp). Every call is collective; a file
+// (rank_frames.hpp), the drum pictures (PictureOutput, drawn by rank 0 from the gathered grains at
+// the angles every rank finds due alike) and final_state.csv (rank_final_state.hpp). Every call is collective; a file
 // that cannot be written stops every rank with a RankFailure (rank_failure.hpp) naming it.
 #pragma once
 
@@ -9,6 +10,7 @@
 
 #include "engine/mpi/mpi_context.hpp"
 #include "engine/world.hpp"
+#include "systems/output/dem_observers.hpp"
 #include "systems/output/mpi/rank_frames.hpp"
 #include "systems/output/mpi/rank_series.hpp"
 #include "systems/setup/dem_scene.hpp"
@@ -30,6 +32,9 @@ class RankOutputs {
   const SeriesRow& finish(World& w);
   std::size_t series_rows() const { return series_.rows(); }
   std::size_t frames() const { return frames_ ? frames_->count() : 0; }
+  std::size_t pictures() const { return pictures_ ? pictures_->pictures() : 0; }
+  // The picture rank 0 drew last (empty on the other ranks and when none was drawn).
+  std::filesystem::path last_picture() const { return pictures_ ? pictures_->last_picture() : std::filesystem::path(); }
   // The series' and frames' state (next due times, rows and frames so far) in a checkpoint part.
   void save(CheckpointWriter& out) const;
   // Takes that state back from this rank's part and rewrites frames.pvd to list the frames written
@@ -43,6 +48,7 @@ class RankOutputs {
   const MpiContext* mpi_;
   RankSeries series_;
   std::optional<RankFrames> frames_;
+  std::optional<PictureOutput> pictures_;
 };
 
 }  // namespace gf
