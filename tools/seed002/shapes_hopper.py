@@ -23,7 +23,13 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tools" / "common"))
-from resumable import archive, load_series, pieces, restore, run_piece  # noqa: E402
+
+
+def resumable():
+    """tools/common/resumable.py, imported where runs are read (it needs numpy; the table does not)."""
+    import resumable as r
+
+    return r
 
 SCENE = REPO / "scenes" / "hopper_seed002_shapes.toml"
 SHAPES = ["hollow_block", "tetrapod", "twisted_i", "twisted_king"]  # the seed's order, simplest first
@@ -46,7 +52,8 @@ def crossing(t, f, level):
 
 
 def measure(folder):
-    s = load_series(folder)
+    r = resumable()
+    s = r.load_series(folder)
     if s is None or not done(s):
         return None
     summary = json.loads((folder / "summary.json").read_text())
@@ -55,9 +62,9 @@ def measure(folder):
     grains = summary["bodies"]["moving"]
     mass = summary["shapes"]["grain"]["mass"] if "shapes" in summary else None
     angles = []
-    for name, r in summary.get("repose", {}).items():
+    for heap in summary.get("repose", {}).values():
         for side in ("first", "second"):
-            a = r.get(side, {}).get("angle_deg")
+            a = heap.get(side, {}).get("angle_deg")
             if a is not None:
                 angles.append(a)
     rate = 0.4 * grains / (t5 - t9) if t9 is not None and t5 is not None else None
@@ -66,7 +73,7 @@ def measure(folder):
             "left_at_end": f[-1], "repose": summary.get("repose", {}),
             "repose_mean_deg": sum(angles) / len(angles) if angles else None,
             "repose_range_deg": [min(angles), max(angles)] if angles else None,
-            "wall_seconds": sum((p["wall_seconds"] or 0) + p.get("settle_wall_seconds", 0.0) for p in pieces(folder))}
+            "wall_seconds": sum((p["wall_seconds"] or 0) + p.get("settle_wall_seconds", 0.0) for p in r.pieces(folder))}
 
 
 def report(out, docs):
@@ -75,19 +82,20 @@ def report(out, docs):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    r = resumable()
     rows = {}
     fig, ax = plt.subplots(figsize=(6.5, 4))
     for shape in SHAPES:
         folder = out / shape
-        restore(folder, docs / shape)
+        r.restore(folder, docs / shape)
         m = measure(folder)
         if m is None:
-            s = load_series(folder)
+            s = r.load_series(folder)
             if s is not None:  # running: how far it got
                 rows[shape] = {"in_progress": float(s[-1]["time"])}
             continue
         rows[shape] = m
-        s = load_series(folder)
+        s = r.load_series(folder)
         ax.plot(s["time"], s["remaining_fraction"], label=shape.replace("_", " "))
     docs.mkdir(parents=True, exist_ok=True)
     if rows:
@@ -146,14 +154,15 @@ def main():
         return
     if not a.binary.is_file():
         sys.exit(f"shapes_hopper: {a.binary} not found: build grainflow first (README)")
+    r = resumable()
     for shape in [s for s in SHAPES if s in a.shapes]:
         folder = a.out / shape
-        restore(folder, a.docs / shape)
-        run_piece(shape, a.binary, SCENE, folder, overrides(shape), a.threads, 60 * a.budget_minutes, done)
-        s = load_series(folder)
+        r.restore(folder, a.docs / shape)
+        r.run_piece(shape, a.binary, SCENE, folder, overrides(shape), a.threads, 60 * a.budget_minutes, done)
+        s = r.load_series(folder)
         finished = s is not None and done(s)
         pics = sorted((folder / "pictures").glob("time_*.png")) if (folder / "pictures").is_dir() else []
-        archive(folder, a.docs / shape, finished, [p.name for p in pics])
+        r.archive(folder, a.docs / shape, finished, [p.name for p in pics])
 
 
 if __name__ == "__main__":
