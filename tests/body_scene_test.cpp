@@ -92,7 +92,7 @@ TEST_CASE("malformed shape and bodies keys are refused naming the key") {
   CHECK_THAT(load_error(replaced(kScene, "positions = [[0.0, 0.04, 0.0]]", "positions = [[0.0, -0.04, 0.0]]")),
              Catch::Contains("behind wall"));
   CHECK_THAT(load_error(kScene + "\n[[fill]]\nkind = \"random\"\n"), Catch::Contains("fill"));
-  CHECK_THAT(load_error(replaced(kScene, "type = \"plane\"", "type = \"cylinder\"")), Catch::Contains("wall[0].type"));
+  CHECK_THAT(load_error(replaced(kScene, "type = \"plane\"", "type = \"mesh\"")), Catch::Contains("wall[0].type"));
 }
 
 TEST_CASE("bodies placed by count in a region keep their bounding spheres apart") {

@@ -188,12 +188,12 @@ Vector3d eig(const V3<double>& v) { return {v.x, v.y, v.z}; }
 // law's constants k and history h (read and written).
 template <class L>
 Outcome evaluate(const Bodies& bodies, const MemberContact& c, std::size_t body_a, std::ptrdiff_t body_b,
-                 const double* k, double* h, double dt) {
+                 const double* k, double* h, double dt, const Vector3d& wall_spin = Vector3d::Zero()) {
   const bool wall = body_b < 0;
   const auto b = static_cast<std::size_t>(wall ? 0 : body_b);
   const ContactGeometry<double> g =
       contact_geometry(c, body_velocity(bodies, body_a), body_spin(bodies, body_a),
-                       wall ? Vector3d::Zero() : body_velocity(bodies, b), wall ? Vector3d::Zero() : body_spin(bodies, b));
+                       wall ? Vector3d::Zero() : body_velocity(bodies, b), wall ? wall_spin : body_spin(bodies, b));
   std::array<double, L::kConstants> kc;
   std::copy(k, k + L::kConstants, kc.begin());
   std::array<double, L::kHistory> hs;
@@ -233,7 +233,8 @@ std::vector<Outcome> evaluate_pairs(const Bodies& bodies, const Members& members
 // Per member, its walls' forces and torques summed in plane order.
 template <class L>
 std::vector<Outcome> evaluate_walls(const Bodies& bodies, const Members& members, const BodyPlanes& planes,
-                                    const std::vector<MemberShape>& shapes, BodyContactState& s, double dt) {
+                                    const std::vector<MemberShape>& shapes, BodyContactState& s, double dt,
+                                    bool turning) {
   std::vector<Outcome> out(members.n);
   MemberWallHistory& w = s.walls;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.n, 16), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -245,14 +246,19 @@ std::vector<Outcome> evaluate_walls(const Bodies& bodies, const Members& members
           std::fill(h, h + w.width, 0.0);
           continue;
         }
-        const MemberContact c = member_plane(shapes[m], planes.list[p].point, planes.list[p].normal);
+        const BodyPlane& wall = planes.list[p];
+        MemberContact c = wall.cylinder ? member_cylinder(shapes[m], wall.point, wall.normal, wall.radius)
+                                        : member_plane(shapes[m], wall.point, wall.normal);
         w.touching[m * w.planes + p] = c.touching();
         if (!c.touching()) {
           std::fill(h, h + w.width, 0.0);
           continue;
         }
+        // A turning wall's surface moves at omega rot_axis x (point - rot_point) under the contact.
+        const double omega = turning ? wall.omega : 0.0;
+        if (omega != 0.0) c.arm_b = c.point - wall.rot_point;
         const Outcome o = evaluate<L>(bodies, c, members.body.row[m], -1, &s.list.wall_constants[m * L::kConstants],
-                                      h, dt);
+                                      h, dt, omega * wall.rot_axis);
         std::copy(o.history.begin(), o.history.begin() + static_cast<std::ptrdiff_t>(w.width), h);
         out[m].touching = true;
         out[m].delta = std::max(out[m].delta, o.delta);
@@ -354,7 +360,8 @@ void rebuild_member_pairs(const Members& members, BodyContactState& state) {
 
 template <class L>
 BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, const BodyPlanes& planes,
-                                        const BodyContactModel<L>& model, BodyContactState& state, double dt) {
+                                        const BodyContactModel<L>& model, BodyContactState& state, double dt,
+                                        bool turning) {
   check_members(bodies, members);
   adopt_layout<L>(state.history);
   BodyContactReport report;
@@ -381,7 +388,7 @@ BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, 
   std::vector<MemberShape> shapes(members.n);
   tbb::parallel_for(std::size_t(0), members.n, [&](std::size_t m) { shapes[m] = member_shape(bodies, members, m); });
   const std::vector<Outcome> pairs = evaluate_pairs<L>(bodies, members, shapes, state, dt);
-  const std::vector<Outcome> walls = evaluate_walls<L>(bodies, members, planes, shapes, state, dt);
+  const std::vector<Outcome> walls = evaluate_walls<L>(bodies, members, planes, shapes, state, dt, turning);
   zero_loads(bodies);
   sum_pairs(bodies, members, pairs, state, report);
   sum_walls(bodies, members, walls, state, report);

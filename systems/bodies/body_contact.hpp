@@ -67,14 +67,24 @@
 #include "systems/broadphase/cell_grid.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/contact/contact_law.hpp"
+#include "systems/walls/walls.hpp"
 
 namespace gf {
 
-// A static plane wall: a point on it and its unit normal pointing out of the wall, to the side the
-// bodies are on (as member_plane takes it, and as a scene's plane walls state theirs).
+// A wall the bodies meet: a plane through `point` whose unit `normal` points out of the wall, to the
+// side the bodies are on (as member_plane takes it, and as a scene's plane walls state theirs); or,
+// with `cylinder`, the inside of a cylinder of `radius` about the axis through `point` along the
+// unit `normal` (member_cylinder). Its surface stays in place while it may turn at `omega` (rad/s)
+// about the axis through `rot_point` along `rot_axis` (a drum's mantle, its end plates): the contact
+// then feels the surface's velocity there.
 struct BodyPlane {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
+  bool cylinder = false;
+  double radius = 0;  // m
+  double omega = 0;   // rad/s
+  Eigen::Vector3d rot_point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rot_axis = Eigen::Vector3d::UnitZ();
 };
 struct BodyPlanes {
   std::vector<BodyPlane> list;
@@ -154,9 +164,11 @@ void rebuild_member_pairs(const Members& members, BodyContactState& state);
 // (place_members) at the bodies' current pose. dt is the step (the springs' increment). Instantiated
 // for every law of ContactLaws. Throws std::invalid_argument for a skin that is not positive, a
 // member naming no body, or law constants that are not finite.
+// With turning = false the walls stand still (a drum while its fill settles).
 template <class L>
 BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, const BodyPlanes& planes,
-                                        const BodyContactModel<L>& model, BodyContactState& state, double dt);
+                                        const BodyContactModel<L>& model, BodyContactState& state, double dt,
+                                        bool turning = true);
 
 // compute_body_contacts as a system: after the members are placed, before the bodies' closing kick.
 template <class L>
@@ -164,14 +176,19 @@ class BodyContact : public SystemBase<BodyContact<L>> {
  public:
   using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMass, BodyInertia,
                           BodyMotion, MemberBody, MemberCore, MemberDilation, MemberBound, MemberCentre, CoreVertices, BodyPlanes,
-                          BodyContactModel<L>>;
+                          BodyContactModel<L>, Walls>;
   using Writes = gf::Writes<BodyForce, BodyTorque, BodyContactState>;
   std::string_view name() const override { return "body_contact"; }
+  // The walls turn unless the scene's walls have their rotation off (while a fill settles).
+  static bool turning(World& world) {
+    const Walls* w = world.resources.find<Walls>();
+    return !w || w->rotation_enabled;
+  }
   void run(World& world, const StepContext& step) override {
     BodyContactState& state = world.resources.get<BodyContactState>();
     compute_body_contacts<L>(world.tables.get<Bodies>(), world.tables.get<Members>(),
                              world.resources.get<BodyPlanes>(), world.resources.get<BodyContactModel<L>>(), state,
-                             step.dt);
+                             step.dt, turning(world));
     if (state.last.max_overlap > state.overlap_limit) check_body_overlap(state, step);
   }
 };

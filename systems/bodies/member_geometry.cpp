@@ -480,6 +480,42 @@ MemberContact member_plane(const MemberShape& a, const Vector3d& point, const Ve
   return c;
 }
 
+MemberContact member_cylinder(const MemberShape& a, const Vector3d& point, const Vector3d& axis, double radius) {
+  const auto radial = [&](const Vector3d& x) {
+    const Vector3d d = x - point;
+    return Vector3d(d - d.dot(axis) * axis);
+  };
+  const double centre = radial(a.bound_centre).norm();
+  if (centre + a.bound_radius <= radius) {
+    MemberContact c;
+    c.delta = centre + a.bound_radius - radius;
+    return c;
+  }
+  double deepest = -std::numeric_limits<double>::infinity(), farthest = 0, weight = 0;
+  Vector3d at = Vector3d::Zero(), dir = Vector3d::Zero();
+  for (std::size_t i = 0; i < a.vertices(); ++i) {
+    const Vector3d x = a.vertex(i), out = radial(x);
+    const double rho = out.norm(), depth = rho + a.radius - radius;
+    deepest = std::max(deepest, depth);
+    farthest = std::max(farthest, rho);
+    if (depth <= 0 || rho <= 0) continue;
+    const Vector3d u = out / rho;
+    at += depth * (x + (a.radius - 0.5 * depth) * u);
+    dir += depth * u;
+    weight += depth;
+  }
+  MemberContact c;
+  c.kind = farthest > radius ? MemberProximity::penetrating : MemberProximity::separated;
+  c.delta = deepest;
+  c.core_distance = a.radius - deepest;
+  if (!(deepest > 0) || !(dir.norm() > 0)) return c;
+  c.n = dir.normalized();
+  c.point = at / weight;
+  c.arm_a = c.point - a.centre_of_mass;
+  c.arm_b = Vector3d::Zero();
+  return c;
+}
+
 ContactGeometry<double> contact_geometry(const MemberContact& c, const Vector3d& v_a, const Vector3d& w_a,
                                          const Vector3d& v_b, const Vector3d& w_b) {
   const Vector3d v = v_a + w_a.cross(c.arm_a) - v_b - w_b.cross(c.arm_b);

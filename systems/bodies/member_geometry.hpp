@@ -130,6 +130,15 @@ MemberContact member_sphere(const MemberShape& a, const Eigen::Vector3d& centre,
 // the side the grains are on. n = -normal; delta = r - h, h the height of the core's lowest vertex
 // above the plane; the point is midway between the member's surface and the plane.
 MemberContact member_plane(const MemberShape& a, const Eigen::Vector3d& point, const Eigen::Vector3d& normal);
+// A member inside a cylinder wall (a drum's mantle) of `radius` about the axis through `point` along
+// the unit `axis`. Each core vertex at distance rho from the axis reaches rho + r - radius through
+// the wall; delta is the largest such depth (exact: a convex core is farthest from an axis at a
+// vertex). n is the outward radial direction averaged over the vertices through the wall, weighted
+// by their depth, and the point their depth-weighted mean, each midway between the member's surface
+// and the wall along its own radial direction: a face resting across the curved wall, touching it
+// along two edges, is pushed at its middle, as member_plane pushes a face lying on a floor.
+MemberContact member_cylinder(const MemberShape& a, const Eigen::Vector3d& point, const Eigen::Vector3d& axis,
+                              double radius);
 
 // The contact as a law consumes it, from the bodies' velocities and angular velocities (world): the
 // relative velocity of A's contact point, v = (v_A + w_A × arm_a) - (v_B + w_B × arm_b), and the

@@ -168,6 +168,16 @@ void read_body_outputs(const DemScene& s, const SceneNode& root, BodiesSpec& b) 
   o.overlap_scale = std::numeric_limits<double>::infinity();
   for (const BodyPlacement& p : b.placed)
     if (!p.fixed) o.overlap_scale = std::min(o.overlap_scale, smallest_edge(b.shapes[p.shape].shape));
+  // A turning drum's mantle may move at most 0.1 of the thinnest shape per step (as for grains).
+  for (const SceneNode& w : root.tables("wall")) {
+    const std::string type = w.get_string("type", "plane");
+    if ((type != "cylinder" && type != "drum") || !w.has("omega")) continue;
+    const double step = std::abs(w.get_double("omega", Range::any())) * w.get_double("radius", Range::positive()) * s.dt;
+    if (step > 0.1 * o.overlap_scale)
+      w.fail("omega", "the wall's surface moves " + short_number(step) + " m per step, more than 0.1 of the thinnest "
+                      "moving shape (" + short_number(o.overlap_scale) + " m)",
+             "lower omega (rad/s) or run.dt");
+  }
 }
 
 std::size_t shape_index(const BodiesSpec& b, const SceneNode& t) {
@@ -389,11 +399,17 @@ void require_body_scene(const SceneNode& root) {
   for (const char* key : {"periodic"})
     if (root.has(key)) root.fail(key, std::string("[") + key + "]: " + why, "remove it, or the [[bodies]] tables");
   for (const SceneNode& w : root.tables("wall")) {
-    const std::string type = w.get_choice("type", {"plane", "box", "cylinder", "drum"});
-    if (type != "plane" && type != "box")
-      w.fail("type", "bodies meet plane and box walls only, not a " + type, "use plane or box walls");
-    if (w.has("omega") && w.get_double("omega", Range::any()) != 0.0)
-      w.fail("omega", "bodies meet static walls only", "remove omega");
+    const std::string type = w.get_choice("type", {"plane", "box", "cylinder", "drum", "mesh"});
+    if (type == "mesh") w.fail("type", "bodies do not meet mesh walls yet", "use plane, box, cylinder or drum walls");
+    // A turning plane keeps its place only when it turns about its own normal (a drum's end plate).
+    if (type == "plane" && w.has("omega") && w.get_double("omega", Range::any()) != 0.0 && w.has("rotation_axis")) {
+      const auto n = w.get_vec3("normal"), a = w.get_vec3("rotation_axis");
+      const Eigen::Vector3d cross = Eigen::Vector3d(n[0], n[1], n[2]).cross(Eigen::Vector3d(a[0], a[1], a[2]));
+      if (cross.norm() > 1e-9 * Eigen::Vector3d(n[0], n[1], n[2]).norm() * Eigen::Vector3d(a[0], a[1], a[2]).norm())
+        w.fail("rotation_axis", "a plane turning about another axis than its normal sweeps through the bodies, "
+                                "which meet only walls whose surface stays in place",
+               "turn the plane about its normal, or remove omega");
+    }
   }
 }
 
@@ -498,8 +514,18 @@ void build_body_world(const DemScene& s, World& world) {
   }
   place_members(bodies, members);
   BodyPlanes& planes = world.resources.emplace<BodyPlanes>();
-  for (const Wall& w : s.walls)
-    planes.list.push_back({{w.point.x, w.point.y, w.point.z}, {w.normal.x, w.normal.y, w.normal.z}});
+  const auto e = [](const Vec3d& v) { return Eigen::Vector3d(v.x, v.y, v.z); };
+  for (const Wall& w : s.walls) {
+    BodyPlane b;
+    b.cylinder = w.kind == Wall::Kind::CylinderInner;
+    b.point = e(b.cylinder ? w.center : w.point);
+    b.normal = e(b.cylinder ? w.axis : w.normal);
+    b.radius = w.radius;
+    b.omega = w.omega;
+    b.rot_point = e(w.rot_point);
+    b.rot_axis = e(w.rot_axis);
+    planes.list.push_back(b);
+  }
   BodyContactState& state = world.resources.emplace<BodyContactState>();
   state.skin = s.skin;
   state.overlap_limit = s.max_overlap * s.bodies->output.overlap_scale;

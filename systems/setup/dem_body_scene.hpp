@@ -38,12 +38,14 @@
 //               grains discharged from a hopper need no floor to pile on).
 // run.max_overlap is a fraction of the thinnest moving shape's smallest outer dimension: a member
 // contact overlapping more stops the run (exit status 3), as for grains.
-// Bodies touch each other member by member and the scene's plane and box walls (static: no omega),
-// with the [contact] law. Spheres share a scene with bodies as [[shape]] kind = "sphere": bodies of
+// Bodies touch each other member by member and the scene's plane, box, cylinder and drum walls,
+// with the [contact] law; a cylinder or drum may turn (omega), its surface's velocity felt at the
+// contact, and a plane may turn about its own normal (a drum's end plate); the walls stand still
+// while the fill settles. Spheres share a scene with bodies as [[shape]] kind = "sphere": bodies of
 // one point member, which meet members as any member does (member_geometry.hpp), stepped with the
 // bodies (at a body's cost, not a grain's). Not yet in one scene with bodies: the grain tables'
-// spheres ([[species]], [[fill]]), cylinder and drum walls, rotating planes and [periodic]; such
-// scenes are refused.
+// spheres ([[species]], [[fill]]), mesh walls, planes turning about another axis (they sweep through
+// the bodies) and [periodic]; such scenes are refused.
 #pragma once
 
 #include <array>

@@ -67,6 +67,7 @@ void read_contacts(DemScene& s, const SceneNode& root, const SceneNode& ct) {
 // faster, it passes through grains between two contact evaluations (1e9 rad/s moved the seed drum's
 // wall 750 m per step, reported as an overlap instability).
 void require_wall_step(const DemScene& s, const SceneNode& w, double speed) {
+  if (s.species.empty()) return;  // composite grains: read_bodies checks against the thinnest shape
   double smallest = s.species.front().diameter;
   for (const SpeciesSpec& sp : s.species) smallest = std::min(smallest, sp.diameter);
   const double step = speed * s.dt;
