@@ -44,13 +44,13 @@
 #include "engine/checkpoint_file.hpp"
 #include "engine/mpi/mpi_context.hpp"
 #include "engine/schedule.hpp"
+#include "systems/broadphase/broadphase.hpp"
+#include "systems/broadphase/neighbor_list.hpp"
 #include "systems/decomposition/mpi/domain_ghosts.hpp"
 #include "systems/decomposition/rcb.hpp"
 #include "systems/setup/dem_simulation.hpp"
 
 namespace gf {
-
-struct PairHistory;
 
 struct RankCounters {
   std::int64_t rebuilds = 0;  // neighbour rebuilds (every rank makes the same number)
@@ -127,6 +127,18 @@ class RankSimulation {
   // Sends out[r] (packed springs) to rank r, migrates the rows to their owners, makes the ghost rows
   // and the list, and attaches the springs that arrived to their pairs. Collective.
   void relist(const std::vector<std::vector<std::byte>>& out);
+  // What restore_portable gathers from the parts it reads: springs per destination rank, the owned
+  // rows to keep, the counters summed, and scratch for the parts' lists.
+  struct PortableParts {
+    std::vector<std::vector<std::byte>> springs;
+    std::vector<std::uint32_t> keep;
+    NeighborList list;
+    PairHistory history;
+    BroadphaseState broadphase;
+    RankCounters counters;
+  };
+  // Appends one part's rows (ghosts included, dropped later) and routes its springs. Local.
+  void take_part(const CheckpointReader& in, std::int64_t step, PortableParts& parts);
   // The boxes cut again when the rows are out of balance (set_rebalance). Collective.
   void maybe_rebalance();
   // Takes the ranks' boxes, and with them the ranks near this one.

@@ -242,6 +242,38 @@ void RankSimulation::restore(const CheckpointReader& in) {
   counters_ = in.value<RankCounters>("rank.counters");
 }
 
+void RankSimulation::take_part(const CheckpointReader& in, std::int64_t step, PortableParts& parts) {
+  Grains& g = sim_->grains();
+  check_settings(in, sim_->scene(), parts.broadphase.skin, g);
+  if (in.value<std::int64_t>("rank.clock.step") != step)
+    in.fail("it holds another step than part 0 of its checkpoint", "resume from an index and parts of one checkpoint");
+  const auto n_owned = in.value<std::uint64_t>("rank.grains.n_owned");
+  const auto n = in.value<std::uint64_t>("rank.grains.n");
+  require(in, n_owned <= n && n <= in.bytes() / 8, "grain counts");
+  const std::size_t base = g.n;
+  g.resize(base + n);
+  const std::vector<RawColumn> cols = raw_row_columns(g);
+  for (std::size_t k = 0; k < cols.size(); ++k)
+    in.copy_raw(column_name(k), static_cast<std::byte*>(cols[k].data) + base * cols[k].elem_size, cols[k].elem_size, n);
+  // The part's springs, by its rows' ids, each to the rank that evaluates its pair under this run's boxes.
+  list_sections(in, parts.list, parts.history, parts.broadphase);
+  const NeighborList& list = parts.list;
+  require(in, list.i.size() == list.j.size() && all_below(list.i, n_owned) && all_below(list.j, n) &&
+                  all_below(parts.history.pair, list.i.size()),
+          "neighbour list rows");
+  for (std::size_t e = 0; e < parts.history.size(); ++e) {
+    const auto k = static_cast<std::size_t>(parts.history.pair[e]);
+    const std::size_t i = base + list.i[k], j = base + list.j[k];
+    const int to = std::max(rcb_->owner_of({g.pos.x[i], g.pos.y[i], g.pos.z[i]}),
+                            rcb_->owner_of({g.pos.x[j], g.pos.y[j], g.pos.z[j]}));
+    pack_spring(parts.springs[static_cast<std::size_t>(to)], g.pid.id[i], g.pid.id[j], parts.history, e);
+  }
+  for (std::size_t i = 0; i < n_owned; ++i) parts.keep.push_back(static_cast<std::uint32_t>(base + i));
+  const auto c = in.value<RankCounters>("rank.counters");
+  parts.counters.migrated += c.migrated;
+  parts.counters.particle_steps += c.particle_steps;
+}
+
 void RankSimulation::restore_portable(const CheckpointReader& first, std::span<const std::filesystem::path> mine) {
   World& w = sim_->world();
   Grains& g = w.grains;
@@ -249,46 +281,14 @@ void RankSimulation::restore_portable(const CheckpointReader& first, std::span<c
   const std::int64_t grains = total_grains();  // the scene's, placed by the constructor
   on_every_rank(*mpi_, [&] { check_domain(first, domain_); });
   const auto step = first.value<std::int64_t>("rank.clock.step");
-  const std::size_t ranks = static_cast<std::size_t>(mpi_->size());
-  std::vector<std::vector<std::byte>> out(ranks);
-  std::vector<std::uint32_t> keep;
-  RankCounters sum;
+  PortableParts parts{std::vector<std::vector<std::byte>>(static_cast<std::size_t>(mpi_->size())), {}, {},
+                      w.resources.get<PairHistory>(), bp, {}};
   g.resize(0);
-  NeighborList list;
-  PairHistory history = w.resources.get<PairHistory>();  // the law's fields; the values are read
-  BroadphaseState scratch = bp;
   // Local reading first, its failure shared (no rank may be left waiting in the collectives after).
-  on_every_rank(*mpi_, [&] { for (const std::filesystem::path& file : mine) {
-    const CheckpointReader in(file);
-    check_settings(in, sim_->scene(), bp.skin, g);
-    if (in.value<std::int64_t>("rank.clock.step") != step)
-      in.fail("it holds another step than part 0 of its checkpoint", "resume from an index and parts of one checkpoint");
-    const auto n_owned = in.value<std::uint64_t>("rank.grains.n_owned");
-    const auto n = in.value<std::uint64_t>("rank.grains.n");
-    require(in, n_owned <= n && n <= in.bytes() / 8, "grain counts");
-    const std::size_t base = g.n;
-    g.resize(base + n);
-    const std::vector<RawColumn> cols = raw_row_columns(g);
-    for (std::size_t k = 0; k < cols.size(); ++k)
-      in.copy_raw(column_name(k), static_cast<std::byte*>(cols[k].data) + base * cols[k].elem_size, cols[k].elem_size, n);
-    // The part's springs, by its rows' ids, each to the rank that evaluates its pair under this run's boxes.
-    list_sections(in, list, history, scratch);
-    require(in, list.i.size() == list.j.size() && all_below(list.i, n_owned) && all_below(list.j, n) &&
-                    all_below(history.pair, list.i.size()),
-            "neighbour list rows");
-    for (std::size_t e = 0; e < history.size(); ++e) {
-      const auto k = static_cast<std::size_t>(history.pair[e]);
-      const std::size_t i = base + list.i[k], j = base + list.j[k];
-      const int to = std::max(rcb_->owner_of({g.pos.x[i], g.pos.y[i], g.pos.z[i]}),
-                              rcb_->owner_of({g.pos.x[j], g.pos.y[j], g.pos.z[j]}));
-      pack_spring(out[static_cast<std::size_t>(to)], g.pid.id[i], g.pid.id[j], history, e);
-    }
-    for (std::size_t i = 0; i < n_owned; ++i) keep.push_back(static_cast<std::uint32_t>(base + i));
-    const auto c = in.value<RankCounters>("rank.counters");
-    sum.migrated += c.migrated;
-    sum.particle_steps += c.particle_steps;
-  } });
-  keep_and_append(g, keep, {});  // the parts' ghost rows dropped
+  on_every_rank(*mpi_, [&] {
+    for (const std::filesystem::path& file : mine) take_part(CheckpointReader(file), step, parts);
+  });
+  keep_and_append(g, parts.keep, {});  // the parts' ghost rows dropped
   const std::int64_t held = mpi_->sum(static_cast<std::int64_t>(g.n_owned));
   on_every_rank(*mpi_, [&] {
     if (held != grains)
@@ -299,9 +299,9 @@ void RankSimulation::restore_portable(const CheckpointReader& first, std::span<c
   bp.rebuilds = first.value<std::int64_t>("rank.broadphase.rebuilds");
   bp.checks = first.value<std::int64_t>("rank.broadphase.checks");
   bp.cover.kept = first.value<std::int64_t>("rank.broadphase.kept");
-  counters_ = sum;
+  counters_ = parts.counters;
   counters_.rebuilds = first.value<RankCounters>("rank.counters").rebuilds;
-  relist(out);  // rows to their owners, ghosts, the list, the springs attached
+  relist(parts.springs);  // rows to their owners, ghosts, the list, the springs attached
   primed_ = true;
 }
 
