@@ -89,10 +89,10 @@ Rcb::Rcb(std::vector<RcbNode> nodes, std::vector<DomainBox> boxes) : nodes_(std:
   const auto n = static_cast<int>(nodes_.size());
   std::vector<int> seen_rank(boxes_.size(), 0), reached(nodes_.size(), 0);
   bool ok = n > 0 && !boxes_.empty();
-  std::vector<int> todo{0};
-  while (ok && !todo.empty()) {
-    const int k = todo.back();
-    todo.pop_back();
+  std::vector<int> pending{0};
+  while (ok && !pending.empty()) {
+    const int k = pending.back();
+    pending.pop_back();
     ok = k >= 0 && k < n && reached[static_cast<std::size_t>(k)]++ == 0;
     if (!ok) break;
     const RcbNode& node = nodes_[static_cast<std::size_t>(k)];
@@ -101,8 +101,8 @@ Rcb::Rcb(std::vector<RcbNode> nodes, std::vector<DomainBox> boxes) : nodes_(std:
            seen_rank[static_cast<std::size_t>(node.rank)]++ == 0;
     } else {
       ok = node.axis < 3 && node.lower > k && node.upper > k;
-      todo.push_back(node.lower);
-      todo.push_back(node.upper);
+      pending.push_back(node.lower);
+      pending.push_back(node.upper);
     }
   }
   for (const int r : seen_rank) ok = ok && r == 1;
