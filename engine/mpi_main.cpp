@@ -276,6 +276,8 @@ int main(int argc, char** argv) {
     const std::int64_t settled = opt.resume ? 0 : sim->settle();
     const double settle_wall = mpi.max(seconds_since(t_settle));
     const gf::RankCounters before = sim->counters();
+    const auto& cover = sim->world().resources.get<gf::BroadphaseState>().cover;
+    const std::int64_t kept_before = cover.kept;
     mpi.barrier();
     const auto t_run = std::chrono::steady_clock::now();
     const bool interrupted = run_main_stage(*sim, *outputs, *checkpoints, steps);
@@ -308,6 +310,7 @@ int main(int argc, char** argv) {
     summary["rank0_grains_at_end"] = static_cast<std::int64_t>(sim->grains().n_owned);
     summary["settle_neighbour_rebuilds"] = before.rebuilds;
     summary["neighbour_rebuilds"] = sim->counters().rebuilds - before.rebuilds;
+    summary["neighbour_lists_kept"] = cover.kept - kept_before;  // past half the skin, every rank alike
     summary["rows_migrated"] = migrated;
     summary["rebalances"] = sim->counters().rebalances - before.rebalances;
     summary["rebalance_ratio"] = opt.rebalance;

@@ -21,6 +21,8 @@ Per step and per rank, with n = N/P grains on a rank (one rank per core, one thr
                48 B a row) and 3 per rebuild (springs, migration, ghost rows of 212 B), rebuild every K steps
   collectives  2 allreduce of 8 B per step (stop check, rebuild decision) + 2 per rebuild (rebalance check),
                + 1 per rebuild with neighbour-only exchanges (whether anything must go past the near boxes)
+  cover check  at each step where some grain is past half the skin (C per step, measured): 3 allreduce of
+               8 B and one exchange of the movers (a few 40 B records) with the boxes within two reaches
 Hockney model, latency alpha and bandwidth beta per link:
   allreduce (8 B)             2 log2(P) alpha
   exchange, all-to-all        MPI_Alltoall of counts + MPI_Alltoallv: 2 (P-1) alpha + V / beta (pairwise
@@ -112,8 +114,8 @@ def last_frame_pieces(out, ranks):
 def infer_boxes(points):
     """Each rank's box from its grains: for every pair of ranks the axis and plane that separate their
     grains best (the cut at their common node of the bisection tree); a box is the intersection of
-    its half-spaces. Grains drift up to half the skin past a cut between rebuilds: the planes carry
-    that error."""
+    its half-spaces. Grains drift up to a skin past a cut between rebuilds: the planes carry that
+    error."""
     p = len(points)
     lo = [[-math.inf] * 3 for _ in range(p)]
     hi = [[math.inf] * 3 for _ in range(p)]
@@ -231,11 +233,13 @@ def run_one(binary, scene, ranks, steps, work):
         raise SystemExit("failed: %s\n%s" % (" ".join(cmd), log.stderr))
     s = json.load(open(os.path.join(out, "summary.json")))
     keep = ["ranks", "grains", "grains_at_end", "steps_this_run", "neighbour_rebuilds", "settle_steps",
-            "settle_neighbour_rebuilds", "rows_migrated", "rebalances", "rebalance_ratio", "ghost_rows_at_end",
+            "settle_neighbour_rebuilds", "neighbour_lists_kept", "rows_migrated", "rebalances", "rebalance_ratio", "ghost_rows_at_end",
             "rank0_grains_at_end", "wall_seconds", "particle_steps_per_second"]
     rec = {"command": " ".join(cmd).replace(binary, "/tmp/.../grainflow_mpi").replace(out, "OUT"),
            "load_before": load, "summary": {k: s.get(k) for k in keep}}
     rec["steps_per_rebuild"] = s["steps_this_run"] / max(s["neighbour_rebuilds"], 1)
+    # every rebuild after the first list follows a cover check that failed
+    rec["cover_checks_per_step"] = (s.get("neighbour_lists_kept", 0) + s["neighbour_rebuilds"]) / s["steps_this_run"]
     geo, axial = scene_geometry(os.path.join(ROOT, scene))
     rec["scene_geometry"] = geo
     if ranks > 1:
@@ -394,6 +398,16 @@ def code_counts():
                                      "radius, mass/inv_mass/inv_inertia, type (int32), id (int64)"),
             "spring_record_bytes": 2 * 8 + 6 * 8,
         },
+        "per_cover_check": {
+            "allreduce_8_bytes": 3,
+            "allreduce_where": ["rank_list_covers: mpi.max of the largest displacement",
+                                "rank_list_covers: mpi.sum of the movers' excess over an eighth of the rows",
+                                "rank_list_covers: mpi.max of the verdict"],
+            "exchanges": 1,
+            "exchange_where": ["rank_list_covers: the movers (position, radius, id) to the boxes within two "
+                               "reaches"],
+            "mover_record_bytes": 5 * 8,
+        },
         "exchange_implementation": {
             "up_to_commit_d3c42dd": ("MpiContext::exchange: MPI_Alltoall of one int per rank (the byte counts), "
                                      "then MPI_Alltoallv: every rank takes part in every exchange, empty "
@@ -464,9 +478,12 @@ def step_cost(n, p, k, inp, variant, threads_speedup=1.0):
     migrated = inp["migrated_per_rebuild_per_surface_grain"] * ghosts
     rebuild_comm = (exchange(p, springs, variant) + exchange(p, migrated * inp["full_row_B"], variant)
                     + exchange(p, ghosts * inp["ghost_row_B"], variant))
-    ghost_comm = per_step_comm + rebuild_comm / k
+    # the cover check's exchange carries a few movers: latency only
+    cover_comm = inp["cover_checks_per_step"] * exchange(p, 0.0, variant)
+    ghost_comm = per_step_comm + rebuild_comm / k + cover_comm
     per_rebuild = inp["rebuild_allreduce"][variant]
-    collectives = 2 * allreduce(p) + per_rebuild * allreduce(p) / k
+    collectives = (2 * allreduce(p) + per_rebuild * allreduce(p) / k
+                   + inp["cover_checks_per_step"] * inp["cover_allreduce"] * allreduce(p))
     total = compute + ghost_comm + collectives
     serial = n / rate  # the same grains on one rank: no ghosts, no messages
     return {"ranks": p, "grains_per_rank": n, "boxes_per_axis": m, "box_side_m": a, "ghosts_per_rank": ghosts,
@@ -490,6 +507,7 @@ def model():
     geo = big[0]["scene_geometry"]
     density = sum(r["ghost_check"]["number_density_per_m3"] for r in big) / len(big)
     k_mpi = sum(r["summary"]["steps_this_run"] for r in big) / sum(r["summary"]["neighbour_rebuilds"] for r in big)
+    cover_checks = sum(r.get("cover_checks_per_step", 0.0) for r in big) / len(big)
     migrated = sum(r["summary"]["rows_migrated"] / max(r["summary"]["neighbour_rebuilds"], 1) /
                    r["summary"]["ghost_rows_at_end"] for r in big) / len(big)
     split = com["flowing_drum_time_split"]
@@ -508,6 +526,8 @@ def model():
         "migrated_per_rebuild_per_surface_grain": migrated,
         "mem_Bps": 1e9 * com["memory_bandwidth"]["dram_GBps_read_plus_written"],
         "rebuild_allreduce": cc["per_rebuild"]["allreduce_8_bytes"],
+        "cover_checks_per_step": cover_checks,
+        "cover_allreduce": cc.get("per_cover_check", {}).get("allreduce_8_bytes", 0),
     }
     scal = com["settled_layer_threads"]["rates"]
     thread_speedup = {g: v["2"] / v["1"] for g, v in scal.items()}
@@ -551,11 +571,14 @@ def model():
                          "the half shell a given rank may hold up to twice that)"
                          % (density, geo["shell_m"])),
             "rebuild_interval_steps": k_mpi,
-            "rebuild_interval_source": ("grainflow_mpi on 2 and 3 ranks, flowing seed-000 drum (cost_inputs.json): "
-                                        "it rebuilds whenever any grain has moved half the skin; one-rank grainflow "
-                                        "keeps lists that still cover the contacts and rebuilt %d times in %d "
-                                        "steps (docs/bench/drum_time_split_flowing.json)"
+            "rebuild_interval_source": ("grainflow_mpi on 2 and 3 ranks, flowing seed-000 drum (cost_inputs.json), "
+                                        "keeping lists past half the skin while they cover the contacts, as "
+                                        "one-rank grainflow does (%d rebuilds in %d steps, "
+                                        "docs/bench/drum_time_split_flowing.json)"
                                         % (split["neighbor_rebuilds"], split["steps"])),
+            "cover_checks_per_step": cover_checks,
+            "cover_checks_source": ("the same runs: steps where some grain was past half the skin (lists kept "
+                                    "+ rebuilds) over steps"),
             "load_balance": ("equal grains per rank; the program recuts the boxes when the fullest rank holds "
                              "more than 1.25 times the mean, so compute can be up to 25% above the model "
                              "between recuts"),

@@ -13,6 +13,7 @@
 #include "systems/contact/laws.hpp"
 #include "systems/contact/pair_contact.hpp"
 #include "systems/decomposition/mpi/migration.hpp"
+#include "systems/decomposition/mpi/rank_list_cover.hpp"
 #include "systems/decomposition/row_bytes.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/walls/mesh_wall_contact.hpp"
@@ -250,8 +251,12 @@ void RankSimulation::step_once(const StepContext& c) {
   Grains& g = sim_->grains();
   drift_->run_step(c);
   if (listed_) refresh_domain_ghosts(g, ghosts_, *mpi_);
-  const bool mine = !listed_ || needs_rebuild(g, sim_->world().resources.get<BroadphaseState>());
-  if (mpi_->max(mine ? 1.0 : 0.0) > 0.0) rebuild();
+  BroadphaseState& bs = sim_->world().resources.get<BroadphaseState>();
+  const bool mine = !listed_ || needs_rebuild(g, bs);
+  if (mpi_->max(mine ? 1.0 : 0.0) > 0.0) {
+    if (listed_ && rank_list_covers(g, bs, sim_->world().resources.get<NeighborList>(), *mpi_, near_)) ++bs.cover.kept;
+    else rebuild();
+  }
   contacts_->run_step(c);
   fold_domain_ghost_forces(g, ghosts_, *mpi_);
   kick_->run_step(c);

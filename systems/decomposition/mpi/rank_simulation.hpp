@@ -10,14 +10,15 @@
 //
 // Messages go to the neighbouring boxes only (MpiContext::exchange with peers): the ghost rows to
 // the boxes within reach, and at a rebuild the migrating rows and the springs to the boxes within
-// two reaches (a row moves less than half the skin between rebuilds, a spring's pair spans at most
-// one reach); when the boxes were cut again, or a row or spring must go farther, that rebuild's
+// two reaches (a row moves less than a skin between rebuilds, a spring's pair spans at most one
+// reach); when the boxes were cut again, or a row or spring must go farther, that rebuild's
 // rows and springs go through an exchange among all ranks, which every rank agrees on first.
 //
 // One step, on the thread that made the MpiContext (the oneTBB graphs run inside each phase):
 //   1. the opening half-kick and drift of the owned rows (IntegratePositions);
 //   2. the ghost rows refreshed from their owners (position, velocity, spin); then, when any rank
-//      sees a row past half the skin (or no list yet), every rank rebuilds: the rows whose centre
+//      sees a row past half the skin (or no list yet) and the lists do not cover every touching
+//      pair, every rank rebuilds: the rows whose centre
 //      left the rank's box migrate to their new owner (migration.hpp), the owned rows are sorted,
 //      the ghost rows are made (domain_ghosts.hpp, half shell: rows of lower ranks within the
 //      largest diameter + skin + the law's reach of the box) and appended before the neighbour
@@ -29,8 +30,9 @@
 // across rebuilds and migrations by pair key: before migrating, every spring is sent to the rank that
 // will evaluate its pair (the higher of its grains' new owners) and attached there to the new list.
 //
-// The list-cover check that may keep a list past half the skin is not made here (its answer would
-// have to agree on every rank): a rank rebuilds whenever the half-skin screen trips anywhere.
+// When the half-skin screen trips on some rank, the list-cover check made across the ranks
+// (rank_list_cover.hpp) may keep every rank's list; otherwise every rank rebuilds. A row then moves
+// less than a skin between rebuilds, still within the two reaches the exchanges assume.
 // Not supported yet (refused at construction): composite bodies, feeds and outlets (rows appear or
 // leave), periodic faces (images and domain ghosts do not share the table yet).
 #pragma once
