@@ -177,14 +177,17 @@ TEST_CASE("body scene: check and run through the command line write series, fram
   CHECK_THAT(summary, Catch::Contains("\"status\": \"completed\"") && Catch::Contains("remaining_fraction"));
 }
 
-TEST_CASE("body scene: spheres in the same scene are refused naming the fix", "[bodies][cli]") {
+TEST_CASE("body scene: spheres that cannot be bodies are refused by check and run naming the fix", "[bodies][cli]") {
   gf::test::TempDir dir("body_app_refused");
-  const auto mixed = dir.write("mixed.toml", kBin + "\n[[species]]\nname = \"glass\"\ndiameter = 0.002\ndensity = 2500\n");
-  const gf::test::Exit e = gf::test::run_cli(dir, "check " + gf::test::quote(mixed.string()));
-  INFO(e.err);
-  CHECK(e.code == 1);
-  CHECK_THAT(e.err, Catch::Contains("mixed.toml") && Catch::Contains("species") && Catch::Contains("spheres") &&
-                        Catch::Contains("Fix:"));
+  const auto mixed = dir.write("mixed.toml", kBin + "\n[[species]]\nname = \"glass\"\ndiameter = 0.002\ndensity = 2500\n"
+                                                    "rotates = false\n");
+  for (const char* command : {"check ", "run "}) {
+    const gf::test::Exit e = gf::test::run_cli(dir, command + gf::test::quote(mixed.string()));
+    INFO(command << e.err);
+    CHECK(e.code == 1);
+    CHECK_THAT(e.err, Catch::Contains("mixed.toml") && Catch::Contains("species[0].rotates") &&
+                          Catch::Contains("always rotates") && Catch::Contains("Fix:"));
+  }
 }
 
 TEST_CASE("body scene: a run resumed from its checkpoint ends bit-identical to one never stopped", "[bodies][cli]") {

@@ -202,8 +202,8 @@ TEST_CASE("bodies scene keys for fixed bodies, outputs and analysis are checked 
   CHECK_THAT(load_error(kScene + "\n[analysis]\noutlet_height = 0.01\n[sink]\nheight = 0.02\n"),
              Catch::Contains("sink.height"));
   CHECK_THAT(load_error(kScene + "\n[periodic]\nx = [-1, 1]\n"), Catch::Contains("periodic"));
-  CHECK_THAT(load_error(kScene + "\n[[species]]\nname = \"a\"\ndiameter = 0.01\ndensity = 1000\n"),
-             Catch::Contains("species") && Catch::Contains("spheres"));
+  CHECK_THAT(load_error(kScene + "\n[[species]]\nname = \"a\"\ndiameter = 0.01\ndensity = 1000\n[[outlet]]\n"),
+             Catch::Contains("outlet") && Catch::Contains("[[fill]]"));
 }
 
 TEST_CASE("a body contact overlapping past run.max_overlap stops the run naming the limit and the fix") {

@@ -126,7 +126,4 @@ TEST_CASE("sphere shapes refuse a zero radius, an empty clump and a grid, naming
              Catch::Contains("shape[0].grid"));
   CHECK_THAT(load_error(scene(base, "[[shape]]\nname = \"ball\"\nkind = \"spheres\"\nradius = 0.005\ndensity = 2500.0\n\n" + bodies)),
              Catch::Contains("shape[0].centres"));
-  // Grains of the sphere tables still do not share a scene with bodies: the message says what does.
-  CHECK_THAT(load_error(scene(base, kBall + bodies + "[[species]]\nname = \"glass\"\ndiameter = 0.002\ndensity = 2500.0\n")),
-             Catch::Contains("kind = \"sphere\""));
 }

@@ -11,6 +11,7 @@
 
 #include "engine/read_file.hpp"
 #include "systems/analysis/metrics.hpp"
+#include "systems/setup/body_sphere_fill.hpp"
 #include "systems/setup/repose_scene.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/bodies/body_integrate.hpp"
@@ -354,8 +355,8 @@ typename L::Material read_material(const std::vector<SceneNode>& shapes) {
     const typename L::Material other = L::read_material(shapes[k]);
     if constexpr (!std::is_empty_v<typename L::Material>)
       if (std::memcmp(&m, &other, sizeof m) != 0)
-        shapes[k].fail("youngs_modulus", "bodies share one material, and this shape states another",
-                       "give every [[shape]] the first shape's youngs_modulus and poisson_ratio");
+        shapes[k].fail("youngs_modulus", "bodies (and the spheres among them) share one material, and this table states another",
+                       "give every [[shape]] and [[species]] the first one's youngs_modulus and poisson_ratio");
   }
   return m;
 }
@@ -391,11 +392,10 @@ bool scene_has_bodies(const SceneNode& root) { return !root.tables("bodies").emp
 
 void require_body_scene(const SceneNode& root) {
   const std::string why = "composite grains do not share a scene with it yet";
-  for (const char* key : {"species", "fill"})
+  require_species_with_bodies(root);
+  for (const char* key : {"feed", "outlet"})
     if (!root.tables(key).empty())
-      root.fail(key, std::string("[[") + key + "]] describes grains of the sphere tables: " + why,
-                "give spheres in a scene with bodies as [[shape]] kind = \"sphere\" (with radius and density) placed "
-                "by [[bodies]], or remove the [[bodies]] tables");
+      root.fail(key, std::string("[[") + key + "]]: " + why, "place spheres with a [[fill]], or remove the [[bodies]] tables");
   for (const char* key : {"periodic"})
     if (root.has(key)) root.fail(key, std::string("[") + key + "]: " + why, "remove it, or the [[bodies]] tables");
   for (const SceneNode& w : root.tables("wall")) {
@@ -415,19 +415,23 @@ void require_body_scene(const SceneNode& root) {
 
 BodiesSpec read_bodies(const DemScene& s, const SceneNode& root) {
   BodiesSpec b;
-  const std::vector<SceneNode> shapes = root.tables("shape");
-  if (shapes.empty()) root.fail("shape", "the [[bodies]] name no shape", "add a [[shape]] table with name and kind");
+  std::vector<SceneNode> shapes = root.tables("shape");
+  if (shapes.empty() && s.species.empty())
+    root.fail("shape", "the [[bodies]] name no shape", "add a [[shape]] table with name and kind");
   for (const SceneNode& t : shapes) {
     for (const BodyShape& other : b.shapes)
       if (other.name == t.get_string("name")) t.fail("name", "shape '" + other.name + "' is defined twice", "rename one");
     b.shapes.push_back(read_shape(s, t));
   }
+  add_species_shapes(s, root, b);
   const std::vector<SceneNode> tables = root.tables("bodies");
   b.line = tables.front().line();
   for (std::size_t k = 0; k < tables.size(); ++k) read_placements(s, tables[k], k, b);
+  place_fill_spheres(s, b, static_cast<int>(tables.size()));
   bool moving = false;
   for (const BodyPlacement& p : b.placed) moving = moving || !p.fixed;
   if (!moving) tables.front().fail("fixed", "every body is fixed: nothing would move", "leave some [[bodies]] moving");
+  for (const SceneNode& sp : root.tables("species")) shapes.push_back(sp);  // their materials, as the shapes'
   with_law(s.law, [&]<class L>() { read_model<L>(root, shapes, b); });
   read_body_outputs(s, root, b);
   return b;

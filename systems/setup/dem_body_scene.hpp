@@ -43,9 +43,10 @@
 // contact, and a plane may turn about its own normal (a drum's end plate); the walls stand still
 // while the fill settles. Spheres share a scene with bodies as [[shape]] kind = "sphere": bodies of
 // one point member, which meet members as any member does (member_geometry.hpp), stepped with the
-// bodies (at a body's cost, not a grain's). Not yet in one scene with bodies: the grain tables'
-// spheres ([[species]], [[fill]]), mesh walls, planes turning about another axis (they sweep through
-// the bodies) and [periodic]; such scenes are refused.
+// bodies (at a body's cost, not a grain's); [[species]] and [[fill]] place such spheres too
+// (body_sphere_fill.hpp). Not yet in one scene with bodies: [[feed]] and [[outlet]], mesh walls,
+// planes turning about another axis (they sweep through the bodies) and [periodic]; such scenes are
+// refused.
 #pragma once
 
 #include <array>

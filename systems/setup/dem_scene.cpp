@@ -433,7 +433,11 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
   s.law = ct.get_choice("model", law_names());
   with_law(s.law, [&]<class Law>() { read_contacts<Law>(s, root, ct); });
   s.critical = s.contacts->critical_period();
+  // Bodies need the walls and fills read first: spheres of the fills join them as bodies.
   if (with_bodies) {
+    read_walls(s, root);
+    read_periodic(s, root);
+    if (!root.tables("fill").empty()) read_fills(s, root);
     s.bodies = std::make_shared<const BodiesSpec>(read_bodies(s, root));
     s.critical = s.bodies->critical;
   }
@@ -445,8 +449,10 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
                  short_number(s.critical.period) + " s (" + s.critical.term + "): the limit is " + short_number(limit) + " s",
              "set dt <= " + short_number(limit) + ", or stiffen less, or set allow_unstable_dt = true to run anyway");
 
-  read_walls(s, root);
-  read_periodic(s, root);
+  if (!with_bodies) {
+    read_walls(s, root);
+    read_periodic(s, root);
+  }
 
   if (auto settle = root.maybe_table("settle")) s.settle_time = settle->get_double("time", Range::non_negative());
   if (!with_bodies) {
@@ -494,8 +500,8 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
     if (!with_bodies) read_pictures(s, *out);  // a body scene's pictures: read_bodies
   }
 
-  // A binary mixture reports the segregation of its larger species.
-  if (s.species.size() == 2) {
+  // A binary mixture reports the segregation of its larger species (grains' tables only).
+  if (s.species.size() == 2 && !with_bodies) {
     s.segregation_type = s.species[0].diameter >= s.species[1].diameter ? 0 : 1;
     s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
     for (const Wall& w : s.walls) s.pattern = s.pattern || w.kind == Wall::Kind::CylinderInner;
