@@ -8,8 +8,10 @@
       (with their smallest and largest), the residence-time distribution of the grains that entered
       and left inside it (mean, spread, the dimensionless variance sigma^2 / t_mean^2), the hold-up
       and its solid fraction of the housing. Writes mixer.json, vc_profile.csv, rtd.csv, the charts
-      vc_profile.png, rtd.png, holdup.png, and copies each run's series, layers, residence and
-      summary files under docs/seed004/designN/.
+      vc_profile.png, rtd.png, holdup.png, and copies each run's series, layers, residence, summary
+      and final-state files under docs/seed004/designN/ (dem_fK for the sphere runs). A run whose
+      working folder is gone (a new checkout) is read from that copy; a copy made before the final
+      state was kept gives its solid fraction from the mixer.json it replaces, and its picture stays.
   mixer_report.py table docs/seed004/mixer.json
       The README's table (tools/readme/tables.py calls it).
   mixer_report.py picture final_state.csv out.png [--title T]
@@ -94,7 +96,21 @@ def rtd(residence, t0):
             (edges, hist))
 
 
-def design_result(run, design, docs, name=None):
+KEPT = ["series.csv", "layers.csv", "residence.csv", "summary.json", "final_state.csv"]
+
+
+def run_folder(runs, docs, name):
+    """The run's working folder, or its copy under docs when the working folder is gone."""
+    work = runs / name
+    return work if (work / "summary.json").exists() else docs / name
+
+
+def completed(run):
+    summary = run / "summary.json"
+    return summary.exists() and json.loads(summary.read_text()).get("status") == "completed"
+
+
+def design_result(run, design, docs, name=None, earlier=None):
     series = read_csv(run / "series.csv")
     layers = read_csv(run / "layers.csv")
     residence = read_csv(run / "residence.csv")
@@ -102,16 +118,20 @@ def design_result(run, design, docs, name=None):
     t0, level = steady_start(series)
     steady = series[series["time"] >= t0]
     housing = math.pi * geometry.RADIUS ** 2 * geometry.LENGTH
-    final = read_csv(run / "final_state.csv")
-    solid = float(np.sum(math.pi / 6.0 * final["diameter"] ** 3))
     stats, hist = rtd(residence, t0)
     keep = docs / (name or f"design{design}")
     keep.mkdir(parents=True, exist_ok=True)
-    for file in ["series.csv", "layers.csv", "residence.csv", "summary.json"]:
-        shutil.copyfile(run / file, keep / file)
-    draw(run / "final_state.csv", docs / f"{name or f'design{design}'}_state.png",
-         f"{name or f'design {design}'} at {float(series['time'][-1]):.0f} s (side view: every grain; "
-         "below: slices one carrier diameter thick)")
+    for file in KEPT:
+        if (run / file).exists() and run.resolve() != keep.resolve():
+            shutil.copyfile(run / file, keep / file)
+    if (run / "final_state.csv").exists():
+        final = read_csv(run / "final_state.csv")
+        solid = float(np.sum(math.pi / 6.0 * final["diameter"] ** 3)) / housing
+        draw(run / "final_state.csv", docs / f"{name or f'design{design}'}_state.png",
+             f"{name or f'design {design}'} at {float(series['time'][-1]):.0f} s (side view: every grain; "
+             "below: slices one carrier diameter thick)")
+    else:
+        solid = (earlier or {}).get("holdup_solid_fraction_final")
     return {
         "design": design,
         "blade_lengths_m": list(geometry.DESIGNS[design]),
@@ -122,7 +142,7 @@ def design_result(run, design, docs, name=None):
         "steady_from_s": t0,
         "holdup_mass_kg": level,
         "holdup_grains_mean": float(np.mean(steady["grains"])) if len(steady) else None,
-        "holdup_solid_fraction_final": solid / housing,
+        "holdup_solid_fraction_final": solid,
         "feed_rate_kg_s": geometry.RATE,
         # Little's law: in a steady state the mean residence time is the hold-up over the throughput.
         "mean_residence_holdup_over_rate_s": level / geometry.RATE,
@@ -200,17 +220,19 @@ def charts(results, hists, docs):
 def report(args):
     runs, docs = pathlib.Path(args.runs), pathlib.Path(args.docs)
     docs.mkdir(parents=True, exist_ok=True)
+    before = docs / "mixer.json"
+    before = json.loads(before.read_text()) if before.exists() else {"designs": [], "models": []}
     results, hists = [], []
     for design in sorted(geometry.DESIGNS):
-        run = runs / f"design{design}"
-        if not (run / "summary.json").exists() or json.loads((run / "summary.json").read_text()).get(
-                "status") != "completed":
+        run = run_folder(runs, docs, f"design{design}")
+        if not completed(run):
             print(f"design {design}: not finished, left out")
             continue
-        r, h = design_result(run, design, docs)
+        earlier = next((d for d in before["designs"] if d["design"] == design), None)
+        r, h = design_result(run, design, docs, earlier=earlier)
         results.append(r)
         hists.append(h)
-    models = model_results(runs, docs, results)
+    models = model_results(runs, docs, results, before["models"])
     (docs / "mixer.json").write_text(json.dumps({"designs": results, "models": models}, indent=1) + "\n")
     with open(docs / "vc_profile.csv", "w") as f:
         f.write("design,distance,vc_mean,vc_min,vc_max,pools\n")
@@ -230,7 +252,7 @@ def report(args):
     print(f"wrote {docs / 'mixer.json'} ({len(results)} designs)")
 
 
-def model_results(runs, docs, designs):
+def model_results(runs, docs, designs, earlier_models=()):
     """Design 1 as representative volumes and as sphere DEM at each coarse-graining factor run, with
     each model's Vc(L) difference from the finest DEM run (root mean square over the layers both
     report) and its wall time per simulated second."""
@@ -238,12 +260,14 @@ def model_results(runs, docs, designs):
     models = []
     if rv is not None:
         models.append(dict(rv, model="representative volumes", factor=None))
-    for run in sorted(runs.glob("dem_f*")):
-        summary = run / "summary.json"
-        if not summary.exists() or json.loads(summary.read_text()).get("status") != "completed":
+    names = sorted({p.name for p in list(runs.glob("dem_f*")) + list(docs.glob("dem_f*")) if p.is_dir()})
+    for name in names:
+        run = run_folder(runs, docs, name)
+        if not completed(run):
             continue
-        f = float(run.name[len("dem_f"):])
-        r, _ = design_result(run, 1, docs, name=run.name)
+        f = float(name[len("dem_f"):])
+        earlier = next((m for m in earlier_models if m.get("factor") == f), None)
+        r, _ = design_result(run, 1, docs, name=name, earlier=earlier)
         models.append(dict(r, model=f"sphere DEM, factor {f:g}", factor=f))
     dem = [m for m in models if m["factor"] is not None]
     if dem:
