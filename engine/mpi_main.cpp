@@ -49,14 +49,15 @@ struct Options {
   int threads = 0;
   std::vector<std::string> overrides;
   std::optional<std::filesystem::path> resume;
-  double rebalance = 1.25;  // the boxes are cut again past this ratio of most to mean rows; 0: never
+  double rebalance = 1.25;  // the boxes are cut again past this ratio of most to mean cost; 0: never
 };
 
 const char* kUsage =
     "usage: mpiexec -n P grainflow_mpi run SCENE --out DIR [--steps N] [--threads T] [--set key=value]...\n"
     "                                   [--resume DIR/checkpoints/checkpoint_ranks.gfc] [--rebalance RATIO]\n"
-    "  --rebalance RATIO  cut the ranks' boxes again at a neighbour rebuild where the rank holding the most\n"
-    "                     grains holds more than RATIO times the mean (default 1.25; 0: never)\n";
+    "  --rebalance RATIO  cut the ranks' boxes again at a neighbour rebuild where the costliest rank's grains\n"
+    "                     cost more than RATIO times the mean (a grain costs 1 plus 0.46 for each neighbour\n"
+    "                     pair it is in; default 1.25; 0: never)\n";
 
 bool parse(int argc, char** argv, Options& o) {
   if (argc < 3 || std::string(argv[1]) != "run") return false;

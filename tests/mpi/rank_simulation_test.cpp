@@ -13,11 +13,13 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
 
 #include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/decomposition/row_cost.hpp"
 #include "tests/mpi/mpi_test_support.hpp"
 
 namespace {
@@ -270,4 +272,76 @@ TEST_CASE("a pile that slides into one rank's box is rebalanced and still tracks
   CHECK(a.energy == b.energy);
   CHECK(a.momentum == b.momentum);
   CHECK(resumed.counters().rebalances == cut.counters().rebalances);
+}
+
+namespace {
+
+// A dense block of 9 x 9 x 9 grains of 1 mm, 1.02 mm apart (every face neighbour listed: the skin is
+// 0.15 mm), at one end of a 40 x 10 x 10 mm box, and as many grains at random in the box's other
+// half, which the test sets moving: the first boxes, cut by count, put the block on one side.
+std::string block_and_gas(const std::filesystem::path& csv) {
+  std::ofstream f(csv);
+  f << "id,type,diameter,x,y,z\n";
+  int id = 0;
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 9; ++j)
+      for (int k = 0; k < 9; ++k)
+        // x jittered by up to 5 um, so that a cut across x need not keep a whole layer together
+        f << id++ << ",1,1.0e-3," << 0.6e-3 + 1.02e-3 * i + 5e-6 * std::sin(12.9898 * id) << ","
+          << 0.6e-3 + 1.02e-3 * j << "," << 0.6e-3 + 1.02e-3 * k << "\n";
+  std::ostringstream s;
+  s << "[run]\ndt = 1.0e-5\nduration = 0.01\nskin = 1.5e-4\ngravity = [0.0, 0.0, 0.0]\n"
+    << "[[species]]\nname = \"small\"\ndiameter = 1.0e-3\ndensity = 2500.0\n"
+    << "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 0.0\nkr = 0.0\n"
+    << "en = 1.0\net = 1.0\ner = 1.0\nfriction = 0.0\nrolling_friction = 0.0\n"
+    << "[[wall]]\ntype = \"box\"\nlo = [0.0, 0.0, 0.0]\nhi = [0.06, 0.01, 0.01]\n"
+    << "[[fill]]\nkind = \"file\"\npath = \"" << csv.string() << "\"\ntypes = { 1 = \"small\" }\n"
+    << "[[fill]]\nkind = \"random\"\nseed = 4\n"
+    << "region = { shape = \"box\", lo = [0.02, 0.0, 0.0], hi = [0.06, 0.01, 0.01] }\ncount = { small = 729 }\n";
+  return s.str();
+}
+
+// The costliest rank's cost over the mean (systems/decomposition/row_cost.hpp).
+double cost_imbalance(gf::RankSimulation& s) {
+  double c = 0.0;
+  for (const double x : gf::row_costs(s.grains(), s.world().resources.get<gf::NeighborList>())) c += x;
+  return s.mpi().max(c) / (s.mpi().sum(c) / s.mpi().size());
+}
+
+}  // namespace
+
+TEST_CASE("a dense block beside a gas of as many grains is rebalanced by cost, not by count", "[mpi][rank_step]") {
+  const gf::MpiContext& mpi = gf::test::test_world();
+  REQUIRE(mpi.size() >= 2);
+  const auto csv = std::filesystem::temp_directory_path() / ("grainflow_block_rank" + std::to_string(mpi.rank()) + ".csv");
+  gf::RankSimulation s = gf::RankSimulation::from_text(block_and_gas(csv), mpi);
+  std::filesystem::remove(csv);
+  s.set_rebalance(1.25);
+  // The gas moves at up to 0.5 m/s (so lists are rebuilt); the block stands still, its springs empty.
+  gf::Grains& g = s.grains();
+  for (std::size_t r = 0; r < g.n_owned; ++r)
+    if (g.pid.id[r] >= 729) {
+      const auto id = g.pid.id[r];
+      g.vel.x[r] = 0.5 * (2.0 * static_cast<double>(gf::test::id_byte(id, 0, 0)) / 255.0 - 1.0);
+      g.vel.y[r] = 0.5 * (2.0 * static_cast<double>(gf::test::id_byte(id, 1, 0)) / 255.0 - 1.0);
+      g.vel.z[r] = 0.5 * (2.0 * static_cast<double>(gf::test::id_byte(id, 2, 0)) / 255.0 - 1.0);
+    }
+  s.prime();
+  const double first = cost_imbalance(s);
+  s.advance(100);
+  const double after = cost_imbalance(s);
+  const auto rows = static_cast<double>(s.grains().n_owned);
+  const double count_imbalance = mpi.max(rows) / (mpi.sum(rows) / mpi.size());
+  if (mpi.rank() == 0)
+    std::cout << "block and gas on " << mpi.size() << " ranks: cost over the mean " << first << " with the first boxes, "
+              << after << " after " << s.counters().rebalances << " rebalances; grains over the mean "
+              << count_imbalance << "\n";
+  REQUIRE(s.total_grains() == 1458);
+  // Cut by count, the block's side costs about 1 + 0.46 x 2.7 = 2.2 per grain against 1 for the gas:
+  // 1.38 of the mean on two ranks and on three.
+  CHECK(first > 1.3);
+  CHECK(s.counters().rebalances >= 1);
+  // Cut by cost: within a few grains' cost of the mean (gas grains drift between rebuilds).
+  CHECK(after < 1.1);
+  CHECK(count_imbalance > 1.1);  // so the grain counts are now out of balance
 }

@@ -579,8 +579,9 @@ def model():
             "cover_checks_per_step": cover_checks,
             "cover_checks_source": ("the same runs: steps where some grain was past half the skin (lists kept "
                                     "+ rebuilds) over steps"),
-            "load_balance": ("equal grains per rank; the program recuts the boxes when the fullest rank holds "
-                             "more than 1.25 times the mean, so compute can be up to 25% above the model "
+            "load_balance": ("equal cost per rank; the program recuts the boxes when the costliest rank's "
+                             "grains cost more than 1.25 times the mean (a grain: 1 plus 0.46 a neighbour pair, "
+                             "systems/decomposition/row_cost.hpp), so compute can be up to 25% above the model "
                              "between recuts"),
             "not_modelled": ["output (series rows, frames, checkpoints)", "the all-positions gather of a recut",
                              "network contention and rank placement", "threads beyond one per rank"],

@@ -15,6 +15,7 @@
 #include "systems/decomposition/mpi/migration.hpp"
 #include "systems/decomposition/mpi/rank_list_cover.hpp"
 #include "systems/decomposition/row_bytes.hpp"
+#include "systems/decomposition/row_cost.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/walls/mesh_wall_contact.hpp"
 #include "systems/walls/wall_contact.hpp"
@@ -158,27 +159,31 @@ void RankSimulation::set_rebalance(double ratio) {
 void RankSimulation::maybe_rebalance() {
   if (rebalance_ <= 0.0) return;
   const Grains& g = sim_->grains();
-  const double rows = static_cast<double>(g.n_owned);
-  const double most = mpi_->max(rows), mean = mpi_->sum(rows) / mpi_->size();
+  // Each owned row weighs its cost (row_cost.hpp), from the list about to be replaced.
+  const std::vector<double> cost = row_costs(g, sim_->world().resources.get<NeighborList>());
+  double mine = 0.0;
+  for (const double c : cost) mine += c;
+  const double most = mpi_->max(mine), mean = mpi_->sum(mine) / mpi_->size();
   if (!(most > rebalance_ * mean)) return;
-  // Every rank's owned positions to every rank, in rank order: the same points, so the same boxes.
-  std::vector<std::byte> mine;
+  // Every rank's owned positions and costs to every rank, in rank order: the same points, the same boxes.
+  std::vector<std::byte> out;
   for (std::size_t i = 0; i < g.n_owned; ++i) {
-    const std::array<double, 3> p = position(g, i);
-    put(mine, p.data(), sizeof p);
+    const std::array<double, 4> p{g.pos.x[i], g.pos.y[i], g.pos.z[i], cost[i]};
+    put(out, p.data(), sizeof p);
   }
   const std::vector<std::vector<std::byte>> all =
-      mpi_->exchange(std::vector<std::vector<std::byte>>(static_cast<std::size_t>(mpi_->size()), mine));
-  std::vector<double> x, y, z;
+      mpi_->exchange(std::vector<std::vector<std::byte>>(static_cast<std::size_t>(mpi_->size()), out));
+  std::vector<double> x, y, z, w;
   for (const auto& bytes : all)
-    for (std::size_t at = 0; at + 3 * sizeof(double) <= bytes.size(); at += 3 * sizeof(double)) {
-      double p[3];
+    for (std::size_t at = 0; at + 4 * sizeof(double) <= bytes.size(); at += 4 * sizeof(double)) {
+      double p[4];
       std::memcpy(p, bytes.data() + at, sizeof p);
       x.push_back(p[0]);
       y.push_back(p[1]);
       z.push_back(p[2]);
+      w.push_back(p[3]);
     }
-  set_boxes(std::make_unique<Rcb>(domain_, x, y, z, std::span<const double>{}, mpi_->size()));
+  set_boxes(std::make_unique<Rcb>(domain_, x, y, z, w, mpi_->size()));
   ++counters_.rebalances;
 }
 

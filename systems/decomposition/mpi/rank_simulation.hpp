@@ -74,10 +74,12 @@ class RankSimulation {
   RankSimulation(RankSimulation&&) noexcept;
   ~RankSimulation();
 
-  // Rebalancing: at a neighbour rebuild where the rank holding the most rows holds more than `ratio`
-  // times the mean, the boxes are cut again from the grains' present positions (every rank gathers
-  // them all: a few MB at a million grains; a parallel median search would replace it at thousands
-  // of ranks), and the rows and springs then move to their new owners with the rebuild's migration.
+  // Rebalancing: at a neighbour rebuild where the costliest rank's rows cost more than `ratio` times
+  // the mean (a row's cost: row_cost.hpp, 1 plus its share of the list's pairs), the boxes are cut
+  // again from the grains' present positions weighted by their costs (every rank gathers them all:
+  // a few MB at a million grains; a parallel median search would replace it at thousands of ranks),
+  // and the rows and springs then move to their new owners with the rebuild's migration. The costs
+  // are counts of the state, so a resumed run cuts where the uninterrupted one does.
   // 0 (the default) never rebalances; otherwise ratio > 1.
   void set_rebalance(double ratio);
 
@@ -141,7 +143,7 @@ class RankSimulation {
   };
   // Appends one part's rows (ghosts included, dropped later) and routes its springs. Local.
   void take_part(const CheckpointReader& in, std::int64_t step, PortableParts& parts);
-  // The boxes cut again when the rows are out of balance (set_rebalance). Collective.
+  // The boxes cut again when the rows' costs are out of balance (set_rebalance). Collective.
   void maybe_rebalance();
   // Takes the ranks' boxes, and with them the ranks near this one.
   void set_boxes(std::unique_ptr<Rcb> rcb);
