@@ -161,7 +161,7 @@ SubSchedule& schedule_coupled_step(Schedule& outer, const CoupledScene& scene) {
   auto inner = scene.coupling.fixed_grains ? fixed_grains_step() : coupled_dem_step(scene.dem);
   SubSchedule& dem = outer.emplace<SubSchedule>("dem_substeps", scene.coupling.substeps, std::move(inner));
   outer.emplace<LiquidReaction>();
-  schedule_liquid_step(outer);
+  schedule_liquid_step(outer, scene.liquid.drive.has_value());
   return dem;
 }
 

@@ -135,6 +135,9 @@ void save_liquid_state(CheckpointWriter& out, World& world, const LiquidScene& s
   out.value("liquid.neighbors.periodic.lo", nb.periodic.lo);
   out.value("liquid.neighbors.periodic.hi", nb.periodic.hi);
   diagnostic_sections(out, world.resources.get<LiquidDiagnostics>());
+  // The body force a [drive] controls changes during the run.
+  const auto& force = world.resources.get<LiquidParams>().body_force;
+  for (std::size_t c = 0; c < 3; ++c) out.value("liquid.body_force." + std::to_string(c), force[c]);
 }
 
 void restore_liquid_state(const CheckpointReader& in, World& world, const LiquidScene& scene) {
@@ -158,6 +161,10 @@ void restore_liquid_state(const CheckpointReader& in, World& world, const Liquid
   nb.periodic.hi = in.value<double>("liquid.neighbors.periodic.hi");
   require(in, nb.periodic.axis >= -1 && nb.periodic.axis <= 2, "the periodic axis");
   diagnostic_sections(in, world.resources.get<LiquidDiagnostics>());
+  auto& force = world.resources.get<LiquidParams>().body_force;
+  for (std::size_t c = 0; c < 3; ++c)
+    if (in.has("liquid.body_force." + std::to_string(c))) force[c] = in.value<double>("liquid.body_force." + std::to_string(c));
+  require(in, std::all_of(force.begin(), force.end(), [](double v) { return std::isfinite(v); }), "the body force is not finite");
   world.clock.t = in.value<double>("clock.t");
   world.clock.dt = in.value<double>("clock.dt");
   world.clock.step = in.value<std::int64_t>("clock.step");

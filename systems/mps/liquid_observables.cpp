@@ -7,7 +7,8 @@ namespace gf {
 
 std::vector<std::string> liquid_series_columns() {
   return {"time",           "kinetic_energy", "max_speed",   "cfl",         "max_density_ratio", "surface_nodes",
-          "ppe_iterations", "ppe_residual",   "surge_front", "bottom_pressure", "centre_velocity"};
+          "ppe_iterations", "ppe_residual",   "surge_front", "bottom_pressure", "centre_velocity",
+          "mean_velocity",  "body_force"};
 }
 
 double liquid_kinetic_energy(const FluidNodes& f, const LiquidParams& lp) {
@@ -51,6 +52,7 @@ std::vector<double> sample_liquid(World& w, const LiquidScene& s) {
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double vmax = std::sqrt(vmax2);
+  const int axis = std::max(lp.periodic.axis, 0);  // along the periodic axis, else x
   return {w.clock.t,
           liquid_kinetic_energy(f, lp),
           vmax,
@@ -61,7 +63,9 @@ std::vector<double> sample_liquid(World& w, const LiquidScene& s) {
           d.ppe.residual,
           front + 0.5 * l0,
           nb > 0 ? pb / nb : nan,
-          nc > 0 ? uc / nc : nan};
+          nc > 0 ? uc / nc : nan,
+          mean_fluid_velocity(f, axis),
+          lp.body_force[static_cast<std::size_t>(axis)]};
 }
 
 }  // namespace gf

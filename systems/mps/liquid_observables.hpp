@@ -11,6 +11,10 @@
 //                      exactly the fill height H below the p = 0 level: the hydrostatic reference is rho g H.
 //   centre_velocity    m/s, mean x velocity of fluid nodes within l0 of the channel's mid-plane (y centre; in
 //                      3D also z centre) or the pipe's axis: the centre-line speed of a periodic flow
+//   mean_velocity      m/s, mean velocity of the fluid nodes along the periodic axis (x when there is none):
+//                      the superficial velocity of a periodic flow, what a [drive] controls (flow_drive.hpp)
+//   body_force         m/s^2, the body force along that axis (under a [drive], the control; rho times it is
+//                      the driving pressure gradient)
 #pragma once
 
 #include <string>

@@ -173,6 +173,7 @@ LiquidScene load_liquid_scene(const SceneDoc& doc, bool check_unused_keys) {
   s.allow_unstable_dt = run.get_bool("allow_unstable_dt", false);
 
   read_geometry(s, root);
+  s.drive = read_flow_drive(root, p);  // after the geometry: its periodic axis
   read_fluid(s, root);
   s.domain_margin = run.get_double("domain_margin", 10 * l0, Range::non_negative());
 

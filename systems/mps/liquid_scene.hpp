@@ -9,6 +9,7 @@
 
 #include "engine/scene.hpp"
 #include "systems/mps/boundaries.hpp"
+#include "systems/mps/flow_drive.hpp"
 #include "systems/mps/liquid_params.hpp"
 #include "systems/mps/stability.hpp"
 
@@ -36,6 +37,7 @@ struct LiquidScene {
   double cfl_limit = 0.5, diffusion_limit = 0.2, density_limit = 1.5, domain_margin = 0;
   bool allow_unstable_dt = false;
   LiquidOutput output;
+  std::optional<FlowDrive> drive;  // [drive]: the body force along the periodic axis controlled
 
   std::int64_t steps() const;
   StabilityLimits limits() const;

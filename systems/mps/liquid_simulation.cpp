@@ -19,13 +19,14 @@ void build_liquid_world(const LiquidScene& scene, World& w) {
   w.resources.emplace<PpeWorkspace>();
   w.resources.emplace<LiquidDiagnostics>();
   w.resources.emplace<StabilityLimits>(scene.limits());
+  if (scene.drive) w.resources.emplace<FlowDrive>(*scene.drive);
 }
 
 LiquidSimulation::LiquidSimulation(LiquidScene scene)
     : scene_(std::move(scene)), world_(std::make_unique<World>()), step_(std::make_unique<Schedule>()) {
   World& w = *world_;
   build_liquid_world(scene_, w);
-  schedule_liquid_step(*step_);
+  schedule_liquid_step(*step_, scene_.drive.has_value());
   step_->build(w);
 }
 

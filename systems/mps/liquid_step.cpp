@@ -3,6 +3,7 @@
 #include "systems/mps/boundaries.hpp"
 #include "systems/mps/collision.hpp"
 #include "systems/mps/explicit_step.hpp"
+#include "systems/mps/flow_drive.hpp"
 #include "systems/mps/free_surface.hpp"
 #include "systems/mps/neighbors.hpp"
 #include "systems/mps/number_density.hpp"
@@ -117,7 +118,8 @@ struct MotionCheck : SystemBase<MotionCheck> {
 
 }  // namespace
 
-void schedule_liquid_step(Schedule& step) {
+void schedule_liquid_step(Schedule& step, bool drive) {
+  if (drive) step.emplace<DriveControl>();
   step.emplace<NeighborSearch>();
   step.emplace<NumberDensity>();
   step.emplace<ExplicitStep>();

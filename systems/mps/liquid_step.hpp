@@ -19,6 +19,7 @@
 
 namespace gf {
 
-void schedule_liquid_step(Schedule& step);
+// With `drive`, drive_control (flow_drive.hpp) comes first: the body force for this step.
+void schedule_liquid_step(Schedule& step, bool drive = false);
 
 }  // namespace gf
