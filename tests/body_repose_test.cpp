@@ -18,6 +18,7 @@
 #include "systems/analysis/body_repose.hpp"
 #include "systems/bodies/bodies.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "tests/body_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -27,11 +28,9 @@ constexpr double kEdge = 0.01;  // m, the cubes' outer edge and the lattice pitc
 const gf::V3<double> kUp{0, 1, 0};
 
 std::string scene(const std::string& positions, const std::string& analysis = "") {
-  return "[run]\ndt = 1.0e-5\nduration = 0.0\nskin = 1.0e-3\n\n"
-         "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1.0e4\nkt = 6.0e3\nkr = 0.0\n"
-         "en = 0.5\net = 0.5\ner = 0.5\nfriction = 0.5\nrolling_friction = 0.0\n\n"
-         "[[shape]]\nname = \"cube\"\nkind = \"box\"\nsize = [0.01, 0.01, 0.01]\nradius = 0.001\ndensity = 2500.0\n\n"
-         "[[bodies]]\nshape = \"cube\"\npositions = [" + positions + "]\n\n" + analysis;
+  return gf::test::body_scene("duration = 0.0\n",
+                              "[[shape]]\nname = \"cube\"\nkind = \"box\"\nsize = [0.01, 0.01, 0.01]\nradius = 0.001\n"
+                              "density = 2500.0\n\n[[bodies]]\nshape = \"cube\"\npositions = [" + positions + "]\n\n" + analysis);
 }
 
 std::string point(double x, double y, double z) {

@@ -11,17 +11,14 @@
 
 #include "systems/bodies/bodies.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "tests/body_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::string scene(const std::string& run, const std::string& rest) {
-  return "[run]\ndt = 1.0e-5\n" + run + "skin = 1.0e-3\n\n"
-         "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1.0e4\nkt = 6.0e3\nkr = 0.0\n"
-         "en = 0.5\net = 0.5\ner = 0.5\nfriction = 0.5\nrolling_friction = 0.0\n\n" + rest;
-}
+std::string scene(const std::string& run, const std::string& rest) { return gf::test::body_scene(run, rest); }
 
 // A fixed slab whose top face is at y = 0, under a box of walls.
 const std::string kSlab =

@@ -12,19 +12,15 @@
 #include "engine/scene.hpp"
 #include "systems/bodies/bodies.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "tests/body_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// The contact law of body_scene_test.cpp, no rolling spring (a point member's rolling lever is its
-// radius, which these cases do not exercise).
-std::string scene(const std::string& run, const std::string& rest) {
-  return "[run]\ndt = 1.0e-5\n" + run + "skin = 1.0e-3\n\n"
-         "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1.0e4\nkt = 6.0e3\nkr = 0.0\n"
-         "en = 0.5\net = 0.5\ner = 0.5\nfriction = 0.5\nrolling_friction = 0.0\n\n" + rest;
-}
+// No rolling spring (a point member's rolling lever is its radius, which these cases do not exercise).
+std::string scene(const std::string& run, const std::string& rest) { return gf::test::body_scene(run, rest); }
 
 const std::string kBall =
     "[[shape]]\nname = \"ball\"\nkind = \"sphere\"\nradius = 0.005\ndensity = 2500.0\n\n";
