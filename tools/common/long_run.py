@@ -47,10 +47,7 @@ def main():
     run_piece(a.out.name, a.binary, a.scene, a.out, a.overrides, a.threads, 60 * a.budget_minutes,
               lambda series: completed(a.out))
     finished = completed(a.out)
-    archive(a.out, a.archive, finished)
-    for name in a.keep:
-        if (a.out / name).is_file():
-            shutil.copy2(a.out / name, a.archive / name)
+    archive(a.out, a.archive, finished, extra=a.keep)
     print(f"{a.out.name}: {'completed' if finished else 'continues on the next call'}; archived in {a.archive}")
 
 

@@ -39,13 +39,14 @@ def pieces(folder):
 ARCHIVED = ("series.csv", "summary.json", "pieces.jsonl", "end_snapshot.json", "log.txt")
 
 
-def archive(folder, dest, finished, pictures=()):
-    """Copies the case's result files and the named pictures (file names under folder/pictures) into
-    dest; an unfinished case also keeps its checkpoint there, a finished one drops it."""
+def archive(folder, dest, finished, pictures=(), extra=()):
+    """Copies the case's result files, the `extra` files of the folder and the named pictures (file
+    names under folder/pictures) into dest; an unfinished case also keeps its checkpoint there, a
+    finished one drops it."""
     if not (folder / "series.csv").is_file():
         return
     dest.mkdir(parents=True, exist_ok=True)
-    for name in ARCHIVED:
+    for name in tuple(ARCHIVED) + tuple(extra):
         if (folder / name).is_file():
             shutil.copy2(folder / name, dest / name)
     for name in pictures:

@@ -17,6 +17,12 @@ state (scenes/drum_seed000_settled.toml) at 2, 1, 0.5 and 0.25 rad/s and the qua
 (scenes/drum_seed000_quarter.toml) at 0.5 and 0.25 rad/s, with pictures every radian and at the
 seed's angles.
 
+After each piece of a full-size case its results (series, summary, pieces, log, the pictures at
+the seed's angles, and at the end the final state) are archived under docs/seed000/study/<case>,
+with the checkpoint while the case is unfinished; a case whose working folder is missing (a new
+checkout) is restored from there first, so the study goes on in any checkout
+(tools/common/resumable.py).
+
 `report` writes <out>/table.md (seed outcome, ours at the angle reached, rotation reached, wall
 time, particle-steps/s), <out>/table.json, the figure sheet <out>/sheet.png (every case at the
 angles they reached), the formation sequence <out>/formation.png (0.5 rad/s at 2, 10, 18, 30 rad,
@@ -36,7 +42,7 @@ import numpy as np  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tools" / "common"))
-from resumable import load_series, pieces, run_piece  # noqa: E402
+from resumable import archive, load_series, pieces, restore, run_piece  # noqa: E402
 HALF = "scenes/drum_seed000_settled.toml"
 QUARTER = "scenes/drum_seed000_quarter.toml"
 # name, scene, omega (rad/s), the seed's outcome after 30 rad
@@ -70,12 +76,24 @@ def case_overrides(omega, size, scene):
     ]
 
 
+ARCHIVE = REPO / "docs" / "seed000" / "study"
+SEED_ANGLES = (2, 10, 18, 30)  # rad: the seed's Figs. 4-6
+
+
 def run_case(name, scene, omega, out, binary, threads, budget_s, size):
     path = SMALL if size == "small" else scene
+    keep = size == "full"
+    if keep:
+        restore(out / name, ARCHIVE / name)
     # Done when the series has reached the end angle (a piece run with --steps also ends
     # "completed", short of it).
-    run_piece(name, binary, REPO / path, out / name, case_overrides(omega, size, scene), threads, budget_s,
-              lambda s: float(s[-1]["angle"]) >= END_ANGLE - 1e-9)
+    done = lambda s: float(s[-1]["angle"]) >= END_ANGLE - 1e-9  # noqa: E731
+    run_piece(name, binary, REPO / path, out / name, case_overrides(omega, size, scene), threads, budget_s, done)
+    s = load_series(out / name)
+    if keep and s is not None:
+        finished = done(s)
+        archive(out / name, ARCHIVE / name, finished, [f"angle_{a:05.2f}.png" for a in SEED_ANGLES],
+                ["final_state.csv"] if finished else [])
 
 
 def report(out):
