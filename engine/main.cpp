@@ -7,6 +7,7 @@
 #include <tbb/info.h>
 
 #include "engine/cli.hpp"
+#include "engine/rank_launch.hpp"
 #include "engine/run_loop.hpp"
 
 int main(int argc, char** argv) {
@@ -24,6 +25,14 @@ int main(int argc, char** argv) {
   if (opt.command == "version") {
     std::printf("grainflow %s\n", GRAINFLOW_VERSION);
     return 0;
+  }
+  // Under an MPI launcher with several ranks, the run is grainflow_mpi's (rank_launch.hpp); `check`
+  // writes nothing and runs here.
+  if (const auto ranks = gf::launched_ranks(); ranks && *ranks > 1 && opt.command == "run") {
+    const std::string why = gf::hand_over_to_ranks(argc, argv);
+    std::fprintf(stderr, "grainflow: started on %d ranks, and the run on several ranks is grainflow_mpi's: %s\n", *ranks,
+                 why.c_str());
+    return 2;
   }
   const int threads = opt.threads > 0 ? opt.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));

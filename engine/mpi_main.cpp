@@ -1,7 +1,10 @@
 // grainflow_mpi: a DEM scene stepped on several ranks (RankSimulation), launched by mpiexec.
 //
-//   mpiexec -n P grainflow_mpi run SCENE --out DIR [--steps N] [--threads T] [--set key=value]...
+//   mpiexec -n P grainflow_mpi run SCENE [--out DIR] [--steps N] [--threads T] [--set key=value]...
 //                                  [--resume DIR/checkpoints/checkpoint_ranks.gfc] [--rebalance RATIO]
+//
+// (or mpiexec -n P grainflow run ..., which hands over to this program: engine/rank_launch.hpp; DIR
+// defaults to runs/<scene name> as there, and grainflow's --quiet is accepted.)
 //
 // Runs the scene's settling stage, then its main stage (or up to step N of it). Into DIR, as
 // `grainflow run` on one rank: series.csv (rank 0, at output.series_interval), VTK frames at
@@ -53,7 +56,7 @@ struct Options {
 };
 
 const char* kUsage =
-    "usage: mpiexec -n P grainflow_mpi run SCENE --out DIR [--steps N] [--threads T] [--set key=value]...\n"
+    "usage: mpiexec -n P grainflow_mpi run SCENE [--out DIR] [--steps N] [--threads T] [--set key=value]...\n"
     "                                   [--resume DIR/checkpoints/checkpoint_ranks.gfc] [--rebalance RATIO]\n"
     "  --rebalance RATIO  cut the ranks' boxes again at a neighbour rebuild where the costliest rank's grains\n"
     "                     cost more than RATIO times the mean (a grain costs 1 plus 0.46 for each neighbour\n"
@@ -64,6 +67,7 @@ bool parse(int argc, char** argv, Options& o) {
   o.scene = argv[2];
   for (int k = 3; k < argc; ++k) {
     const std::string a = argv[k];
+    if (a == "--quiet") continue;  // grainflow's flag: this program prints no progress lines
     if (k + 1 >= argc) return false;
     const std::string v = argv[++k];
     if (a == "--out") o.out = v;
@@ -74,7 +78,8 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--rebalance") o.rebalance = std::stod(v);
     else return false;
   }
-  return !o.out.empty();
+  if (o.out.empty()) o.out = std::filesystem::path("runs") / o.scene.stem();  // as grainflow run
+  return true;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t) {

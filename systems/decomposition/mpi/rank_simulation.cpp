@@ -102,14 +102,26 @@ RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mp
   kick_->build(w);
 }
 
+namespace {
+
+// A DEM scene, or a refusal naming what does not run on ranks yet.
+DemScene rank_scene(const SceneDoc& doc) {
+  if (doc.root().has("liquid"))
+    doc.root().fail("liquid", "a liquid scene does not run on several ranks yet",
+                    "run it with grainflow on one process (its threads share the node's cores)");
+  return load_dem_scene(doc);
+}
+
+}  // namespace
+
 RankSimulation RankSimulation::from_text(std::string_view toml, const MpiContext& mpi,
                                          const std::vector<std::string>& overrides) {
-  return RankSimulation(load_dem_scene(SceneDoc::parse(toml, "scene.toml", overrides)), mpi);
+  return RankSimulation(rank_scene(SceneDoc::parse(toml, "scene.toml", overrides)), mpi);
 }
 
 RankSimulation RankSimulation::from_file(const std::filesystem::path& file, const MpiContext& mpi,
                                          const std::vector<std::string>& overrides) {
-  return RankSimulation(load_dem_scene(SceneDoc::load(file, overrides)), mpi);
+  return RankSimulation(rank_scene(SceneDoc::load(file, overrides)), mpi);
 }
 
 RankSimulation::RankSimulation(RankSimulation&&) noexcept = default;
