@@ -285,10 +285,11 @@ std::string block_and_gas(const std::filesystem::path& csv) {
   int id = 0;
   for (int i = 0; i < 9; ++i)
     for (int j = 0; j < 9; ++j)
-      for (int k = 0; k < 9; ++k)
+      for (int k = 0; k < 9; ++k, ++id) {
         // x jittered by up to 5 um, so that a cut across x need not keep a whole layer together
-        f << id++ << ",1,1.0e-3," << 0.6e-3 + 1.02e-3 * i + 5e-6 * std::sin(12.9898 * id) << ","
-          << 0.6e-3 + 1.02e-3 * j << "," << 0.6e-3 + 1.02e-3 * k << "\n";
+        const double x = 0.6e-3 + 1.02e-3 * i + 5e-6 * std::sin(12.9898 * (id + 1));
+        f << id << ",1,1.0e-3," << x << "," << 0.6e-3 + 1.02e-3 * j << "," << 0.6e-3 + 1.02e-3 * k << "\n";
+      }
   std::ostringstream s;
   s << "[run]\ndt = 1.0e-5\nduration = 0.01\nskin = 1.5e-4\ngravity = [0.0, 0.0, 0.0]\n"
     << "[[species]]\nname = \"small\"\ndiameter = 1.0e-3\ndensity = 2500.0\n"
