@@ -96,7 +96,16 @@ def rtd(residence, t0):
             (edges, hist))
 
 
-KEPT = ["series.csv", "layers.csv", "residence.csv", "summary.json", "final_state.csv"]
+KEPT = ["series.csv", "layers.csv", "residence.csv", "summary.json", "final_state.csv", "pieces.jsonl"]
+
+
+def wall_seconds(run, summary):
+    """The run's wall time: its pieces' (tools/common/resumable.py) when it ran in several, else the summary's."""
+    pieces = run / "pieces.jsonl"
+    if pieces.exists():
+        rows = [json.loads(line) for line in pieces.read_text().splitlines() if line.strip()]
+        return sum(r.get("wall_seconds") or 0.0 for r in rows)
+    return summary.get("wall_seconds")
 
 
 def run_folder(runs, docs, name):
@@ -137,7 +146,8 @@ def design_result(run, design, docs, name=None, earlier=None):
         "blade_lengths_m": list(geometry.DESIGNS[design]),
         "scene": f"scenes/mixer_seed004_design{design}.toml",
         "simulated_s": float(series["time"][-1]),
-        "wall_seconds": summary.get("wall_seconds"),
+        "wall_seconds": wall_seconds(run, summary),
+        "pieces": sum(1 for _ in open(run / "pieces.jsonl")) if (run / "pieces.jsonl").exists() else 1,
         "particle_steps_per_second": summary.get("particle_steps_per_second"),
         "steady_from_s": t0,
         "holdup_mass_kg": level,
