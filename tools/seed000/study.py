@@ -23,7 +23,8 @@ with the checkpoint while the case is unfinished; a case whose working folder is
 checkout) is restored from there first, so the study goes on in any checkout
 (tools/common/resumable.py).
 
-`report` writes <out>/table.md (seed outcome, ours at the angle reached, rotation reached, wall
+`report` writes docs/seed000/seed_drum_table.json for the full size (the README's table: its rows
+for the cases run here, the committed rows kept for the others), <out>/table.md (seed outcome, ours at the angle reached, rotation reached, wall
 time, particle-steps/s), <out>/table.json, the figure sheet <out>/sheet.png (every case at the
 angles they reached), the formation sequence <out>/formation.png (0.5 rad/s at 2, 10, 18, 30 rad,
 or as far as it got) and the free-surface angle against rotation <out>/surface_angle.png.
@@ -96,6 +97,15 @@ def run_case(name, scene, omega, out, binary, threads, budget_s, size):
                 ["final_state.csv"] if finished else [])
 
 
+def keep_committed_rows(rows):
+    """docs/seed000/seed_drum_table.json (the README's table) with this report's rows for the cases
+    that ran here, and the committed rows kept for cases whose runs this checkout does not hold."""
+    docs = REPO / "docs" / "seed000" / "seed_drum_table.json"
+    committed = {r["case"]: r for r in json.loads(docs.read_text())} if docs.is_file() else {}
+    merged = [r if r["ran"] or r["case"] not in committed else committed[r["case"]] for r in rows]
+    docs.write_text(json.dumps(merged, indent=1))
+
+
 def report(out):
     rows = []
     for name, scene, omega, seed in CASES:
@@ -121,6 +131,8 @@ def report(out):
             "threads": sorted({p["threads"] for p in ps}),
         })
     (out / "table.json").write_text(json.dumps(rows, indent=1))
+    if out == REPO / "runs" / "seed000":
+        keep_committed_rows(rows)
     lines = ["| fill | ω (rad/s) | seed at 30 rad | ours (classifier) | rotation reached (rad) | segregation index | "
              "wall time | particle-steps/s (threads) |", "|---|---|---|---|---|---|---|---|"]
     for r in rows:

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The README's table of the seed's drum runs from a copy of `study.py report`'s table.json.
 
-    /usr/bin/python3 tools/seed000/study.py report && cp runs/seed000/table.json docs/seed000/seed_drum_table.json
+    /usr/bin/python3 tools/seed000/study.py report     # writes docs/seed000/seed_drum_table.json
     /usr/bin/python3 tools/seed000/study_table.py docs/seed000/seed_drum_table.json
 """
 import json
