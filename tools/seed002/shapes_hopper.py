@@ -89,13 +89,14 @@ def report(out, docs):
         folder = out / shape
         r.restore(folder, docs / shape)
         m = measure(folder)
+        s = r.load_series(folder)
         if m is None:
-            s = r.load_series(folder)
-            if s is not None:  # running: how far it got
+            if s is not None:  # running: how far it got, drawn dashed
                 rows[shape] = {"in_progress": float(s[-1]["time"])}
+                ax.plot(s["time"], s["remaining_fraction"], "--",
+                        label=f"{shape.replace('_', ' ')} (running, to {float(s[-1]['time']):.2f} s)")
             continue
         rows[shape] = m
-        s = r.load_series(folder)
         ax.plot(s["time"], s["remaining_fraction"], label=shape.replace("_", " "))
     docs.mkdir(parents=True, exist_ok=True)
     if rows:
@@ -105,7 +106,8 @@ def report(out, docs):
         fig.tight_layout()
         fig.savefig(docs / "remaining.png", dpi=110)
     (docs / "shapes.json").write_text(json.dumps({"shapes": rows, "of": SHAPES}, indent=1))
-    print(f"shapes hopper: {len(rows)} of {len(SHAPES)} shapes finished")
+    done = sum(1 for v in rows.values() if "in_progress" not in v)
+    print(f"shapes hopper: {done} of {len(SHAPES)} shapes finished, {len(rows) - done} running")
 
 
 def fmt(v, spec):
