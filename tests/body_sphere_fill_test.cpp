@@ -70,6 +70,27 @@ TEST_CASE("a random fill among bodies places spheres clear of the bodies, each o
   CHECK(large == 20);
 }
 
+TEST_CASE("two random fills among bodies keep clear of each other as well as of the bodies") {
+  const std::string fills =
+      "[[fill]]\nkind = \"random\"\nseed = 3\nregion = { shape = \"box\", lo = [-0.05, -0.03, -0.05], hi = [0.05, 0.1, 0.05] }\n"
+      "count = { large = 40 }\n\n"
+      "[[fill]]\nkind = \"random\"\nseed = 3\nregion = { shape = \"box\", lo = [-0.05, -0.03, -0.05], hi = [0.05, 0.1, 0.05] }\n"
+      "count = { small = 100 }\n";
+  gf::DemSimulation sim = gf::DemSimulation::from_text(scene("duration = 0.0\n", kSlab + kSpecies + fills));
+  const gf::Bodies& b = sim.world().tables.get<gf::Bodies>();
+  REQUIRE(b.n == 141);
+  const auto& placed = sim.scene().bodies->placed;
+  const auto& shapes = sim.scene().bodies->shapes;
+  CHECK(placed[1].group == 1);
+  CHECK(placed[140].group == 2);
+  std::size_t close = 0;
+  for (std::size_t i = 0; i < b.n; ++i)
+    for (std::size_t j = i + 1; j < b.n; ++j)
+      close += std::hypot(b.pos.x[i] - b.pos.x[j], b.pos.y[i] - b.pos.y[j], b.pos.z[i] - b.pos.z[j]) <
+               shapes[placed[i].shape].bound + shapes[placed[j].shape].bound;
+  CHECK(close == 0);
+}
+
 TEST_CASE("a file fill among bodies runs bit for bit as the same spheres placed by [[bodies]]") {
   gf::test::TempDir dir("body_sphere_fill");
   dir.write("state.csv",

@@ -5,9 +5,10 @@
 //
 // Each species becomes a sphere shape of its name, diameter and density; bodies share one contact
 // material, so under hertz_mindlin a species' youngs_modulus and poisson_ratio must equal the
-// shapes'. A random fill places its spheres after every [[bodies]] table, their spheres clear of
-// the bodies' bounding spheres and of the walls; a file fill takes positions, velocities and spins
-// from the state CSV. A fill's spheres form one group (pictures, frames): the number of [[bodies]]
+// shapes'. The fills are placed as the grain tables' are (place_fill in dem_scene.hpp, with its
+// checks and messages), after every [[bodies]] table: a random fill's spheres clear of the bodies'
+// bounding spheres, of earlier fills' spheres and of the walls; a file fill takes positions,
+// velocities and spins from the state CSV. A fill's spheres form one group (pictures, frames): the number of [[bodies]]
 // tables plus the fill's index. Refused with bodies: species that do not rotate (a body always
 // rotates) and [[contact.pair]] (one parameter set for all bodies).
 #pragma once

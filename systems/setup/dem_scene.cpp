@@ -640,6 +640,84 @@ void require_apart(const DemScene& s, const std::vector<PlacedGrain>& placed, co
 
 namespace {
 
+// A random fill's grains, clear of `existing` and of every wall (a region reaching through a wall is a
+// scene error).
+std::vector<PlacedGrain> random_fill_grains(const DemScene& s, const FillSpec& f, std::span<const PlacedGrain> existing) {
+  std::vector<FillSpecies> req;
+  for (auto& [sp, c] : f.counts) req.push_back({sp, 0.5 * s.species[sp].diameter, c});
+  std::vector<PlacedGrain> added;
+  try {
+    added = place_random(f.region, req, f.seed, existing);
+  } catch (const FillError& e) {
+    fill_error(s, f, e.what());
+  }
+  // Grains must start clear of every wall; a region reaching through a wall is a scene error.
+  for (const PlacedGrain& p : added) {
+    for (const Wall& w : s.walls) {
+      Vec3d n;
+      if (wall_gap(w, to_v(p.x), n) < p.radius)
+        fill_error(s, f,
+                   "the region reaches through wall '" + w.name + "' (a grain at (" + short_number(p.x[0]) + ", " +
+                       short_number(p.x[1]) + ", " + short_number(p.x[2]) + ") m overlaps it). Fix: shrink the region to lie "
+                       "inside the walls by at least the largest radius");
+    }
+    if (const MeshWall* m = overlapped_mesh_wall(s.mesh_walls, to_v(p.x), p.radius))
+      fill_error(s, f,
+                 "the region reaches through mesh wall '" + m->name + "' (a grain at (" + short_number(p.x[0]) + ", " +
+                     short_number(p.x[1]) + ", " + short_number(p.x[2]) + ") m overlaps it). Fix: shrink the region "
+                     "to clear the mesh by at least the largest radius");
+  }
+  return added;
+}
+
+// A state file's grains: types mapped to species, diameters the species', centres inside the walls.
+std::vector<PlacedGrain> file_fill_grains(const DemScene& s, const FillSpec& f) {
+  std::vector<StateRow> rows;
+  try {
+    rows = read_state_csv(f.path);
+  } catch (const StateCsvError& e) {
+    fill_error(s, f, e.what());
+  }
+  if (rows.empty())
+    fill_error(s, f, f.path.string() + ": the state file holds no grains. Fix: give a file with rows, or remove the fill");
+  std::vector<PlacedGrain> out;
+  for (const StateRow& r : rows) {
+    std::int32_t sp = -1;
+    for (auto& [t, idx] : f.type_map)
+      if (t == r.type) sp = idx;
+    if (sp < 0)
+      fill_error(s, f,
+                 f.path.string() + ":" + std::to_string(r.line) + ": type " + std::to_string(r.type) +
+                     " is not mapped to a species. Fix: add it to the fill's 'types' table");
+    const double d = s.species[sp].diameter;
+    if (std::abs(r.diameter - d) > 1e-9 * d)
+      fill_error(s, f,
+                 f.path.string() + ":" + std::to_string(r.line) + ": diameter " + short_number(r.diameter) +
+                     " m does not match species '" + s.species[sp].name + "' (" + short_number(d) +
+                     " m). Fix: map the type to a species of that diameter");
+    // A centre outside a wall is a grain outside the domain (a settled grain may touch a wall,
+    // but not sit behind it): the run would start with an overlap past any limit.
+    for (const Wall& w : s.walls) {
+      Vec3d n;
+      if (wall_gap(w, to_v(r.x), n) <= 0.0)
+        fill_error(s, f,
+                   f.path.string() + ":" + std::to_string(r.line) + ": the grain's centre (" + short_number(r.x[0]) +
+                       ", " + short_number(r.x[1]) + ", " + short_number(r.x[2]) + ") m is outside wall '" +
+                       w.name + "'. Fix: move the grain inside the walls, or correct the walls");
+    }
+    out.push_back({r.x, sp, 0.5 * r.diameter, r.v, r.w});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<PlacedGrain> place_fill(const DemScene& s, const FillSpec& f, std::span<const PlacedGrain> existing) {
+  return f.kind == FillSpec::Kind::Random ? random_fill_grains(s, f, existing) : file_fill_grains(s, f);
+}
+
+namespace {
+
 // A scene of composite grains only: no grain rows, and the resources the step and its priming read.
 void build_bodies_only(const DemScene& s, World& world) {
   world.grains.spin = false;
@@ -665,68 +743,8 @@ void build_dem_world(const DemScene& s, World& world) {
   std::vector<std::size_t> first;
   for (const FillSpec& f : s.fills) {
     first.push_back(placed.size());
-    if (f.kind == FillSpec::Kind::Random) {
-      std::vector<FillSpecies> req;
-      for (auto& [sp, c] : f.counts) req.push_back({sp, 0.5 * s.species[sp].diameter, c});
-      std::vector<PlacedGrain> added;
-      try {
-        added = place_random(f.region, req, f.seed, placed);
-      } catch (const FillError& e) {
-        fill_error(s, f, e.what());
-      }
-      // Grains must start clear of every wall; a region reaching through a wall is a scene error.
-      for (const PlacedGrain& p : added) {
-        for (const Wall& w : s.walls) {
-          Vec3d n;
-          if (wall_gap(w, to_v(p.x), n) < p.radius)
-            fill_error(s, f,
-                       "the region reaches through wall '" + w.name + "' (a grain at (" + short_number(p.x[0]) + ", " +
-                           short_number(p.x[1]) + ", " + short_number(p.x[2]) + ") m overlaps it). Fix: shrink the region to lie "
-                           "inside the walls by at least the largest radius");
-        }
-        if (const MeshWall* m = overlapped_mesh_wall(s.mesh_walls, to_v(p.x), p.radius))
-          fill_error(s, f,
-                     "the region reaches through mesh wall '" + m->name + "' (a grain at (" + short_number(p.x[0]) + ", " +
-                         short_number(p.x[1]) + ", " + short_number(p.x[2]) + ") m overlaps it). Fix: shrink the region "
-                         "to clear the mesh by at least the largest radius");
-      }
-      placed.insert(placed.end(), added.begin(), added.end());
-    } else {
-      std::vector<StateRow> rows;
-      try {
-        rows = read_state_csv(f.path);
-      } catch (const StateCsvError& e) {
-        fill_error(s, f, e.what());
-      }
-      if (rows.empty())
-        fill_error(s, f, f.path.string() + ": the state file holds no grains. Fix: give a file with rows, or remove the fill");
-      for (const StateRow& r : rows) {
-        std::int32_t sp = -1;
-        for (auto& [t, idx] : f.type_map)
-          if (t == r.type) sp = idx;
-        if (sp < 0)
-          fill_error(s, f,
-                     f.path.string() + ":" + std::to_string(r.line) + ": type " + std::to_string(r.type) +
-                         " is not mapped to a species. Fix: add it to the fill's 'types' table");
-        const double d = s.species[sp].diameter;
-        if (std::abs(r.diameter - d) > 1e-9 * d)
-          fill_error(s, f,
-                     f.path.string() + ":" + std::to_string(r.line) + ": diameter " + short_number(r.diameter) +
-                         " m does not match species '" + s.species[sp].name + "' (" + short_number(d) +
-                         " m). Fix: map the type to a species of that diameter");
-        // A centre outside a wall is a grain outside the domain (a settled grain may touch a wall,
-        // but not sit behind it): the run would start with an overlap past any limit.
-        for (const Wall& w : s.walls) {
-          Vec3d n;
-          if (wall_gap(w, to_v(r.x), n) <= 0.0)
-            fill_error(s, f,
-                       f.path.string() + ":" + std::to_string(r.line) + ": the grain's centre (" + short_number(r.x[0]) +
-                           ", " + short_number(r.x[1]) + ", " + short_number(r.x[2]) + ") m is outside wall '" +
-                           w.name + "'. Fix: move the grain inside the walls, or correct the walls");
-        }
-        placed.push_back({r.x, sp, 0.5 * r.diameter, r.v, r.w});
-      }
-    }
+    const std::vector<PlacedGrain> added = place_fill(s, f, placed);
+    placed.insert(placed.end(), added.begin(), added.end());
   }
 
   require_apart(s, placed, first);

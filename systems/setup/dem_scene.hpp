@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "engine/schedule.hpp"
 #include "engine/world.hpp"
 #include "systems/contact/contact_table.hpp"
+#include "systems/fill/random_fill.hpp"
 #include "systems/fill/region.hpp"
 #include "systems/flow/flow_systems.hpp"
 #include "systems/integrate/force_terms.hpp"
@@ -118,6 +120,10 @@ struct DemLoadOptions {
 };
 DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options);
 
+// The grains of fill f (in s.fills): a random fill's placed clear of `existing` and of the walls, a
+// state file's rows with their types mapped, diameters checked and centres inside the walls. A
+// SceneError names the fill and, for a file, its line.
+std::vector<PlacedGrain> place_fill(const DemScene& s, const FillSpec& f, std::span<const PlacedGrain> existing);
 // A [[fill]]'s region table (box or cylinder; a cylinder's max_height measured against gravity).
 Region read_fill_region(const SceneNode& node, const Gravity& g);
 // The index of the species called `name` (the value of `key` in `node`); a SceneError listing the
