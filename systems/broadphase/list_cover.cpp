@@ -121,8 +121,8 @@ bool list_covers_contacts(const Grains& g, const double* rx, const double* ry, c
   if (!(bound > 0.0)) return false;  // also NaN
   if (!collect_movers(g, rx, ry, rz, bound, n / 8, scratch)) return false;
   if (scratch.movers.size() < 2) return true;
-  std::vector<MoverPoint> points;
-  points.reserve(scratch.movers.size());
+  std::vector<MoverPoint>& points = scratch.points;
+  points.clear();
   for (const std::uint32_t i : scratch.movers)
     points.push_back({g.pos.x[i], g.pos.y[i], g.pos.z[i], g.radius.r[i], g.pid.id[i], i, 0});
   return each_touching_pair(points, law_reach, [&](const MoverPoint& a, const MoverPoint& b) {

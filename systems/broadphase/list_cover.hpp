@@ -21,9 +21,19 @@
 
 namespace gf {
 
+// A mover as the pair sweep sees it: where it is now, its radius, and what the caller needs to
+// find its pair (a row, an id, the rank that owns it).
+struct MoverPoint {
+  double x = 0, y = 0, z = 0, r = 0;
+  std::int64_t id = 0;
+  std::uint32_t row = 0;
+  int owner = 0;
+};
+
 struct ListCover {
   std::vector<std::uint32_t> movers;                // scratch, reused
   std::vector<std::vector<std::uint32_t>> blocks;   // movers per block of rows, reused
+  std::vector<MoverPoint> points;                   // the movers as the pair sweep takes them, reused
   std::int64_t kept = 0;              // checks where some row moved past skin/2 and the list was kept
 };
 
@@ -51,14 +61,6 @@ double mover_bound(double skin, double d2max);
 bool collect_movers(const Grains& g, const double* ref_x, const double* ref_y, const double* ref_z, double bound,
                     std::size_t cap, ListCover& scratch);
 
-// A mover as the pair sweep sees it: where it is now, its radius, and what the caller needs to
-// find its pair (a row, an id, the rank that owns it).
-struct MoverPoint {
-  double x = 0, y = 0, z = 0, r = 0;
-  std::int64_t id = 0;
-  std::uint32_t row = 0;
-  int owner = 0;
-};
 
 // Calls touching(a, b) for every pair of `points` closer than r_a + r_b + reach (with the relative
 // margin of 1e-9 that counts a pair at the kernel's own bound as touching), until it returns false;

@@ -58,8 +58,8 @@ bool rank_list_covers(const Grains& g, BroadphaseState& s, const NeighborList& l
   for (const int p : peers) send[static_cast<std::size_t>(p)] = packed;
   const std::vector<std::vector<std::byte>> in = mpi.exchange(send, peers);
   const int me = mpi.rank();
-  std::vector<MoverPoint> points;
-  points.reserve(mine.size());
+  std::vector<MoverPoint>& points = s.cover.points;
+  points.clear();
   for (const std::uint32_t i : mine) points.push_back({g.pos.x[i], g.pos.y[i], g.pos.z[i], g.radius.r[i], g.pid.id[i], i, me});
   for (const int p : peers) unpack_movers(in[static_cast<std::size_t>(p)], p, points);
 
