@@ -23,6 +23,8 @@
 #include <span>
 #include <vector>
 
+#include "systems/periodic/periodic_box.hpp"
+
 namespace gf {
 
 struct DomainBox {
@@ -71,7 +73,11 @@ class Rcb {
 };
 
 // The ranks other than `rank` whose boxes lie within `within` (m) of its box, ascending: the ranks
-// a rank exchanges with when nothing travels farther (a symmetric relation).
-std::vector<int> box_peers(const Rcb& rcb, int rank, double within);
+// a rank exchanges with when nothing travels farther (a symmetric relation). With a periodic box,
+// also those within `within` across its periodic faces (a box shifted by whole box lengths).
+std::vector<int> box_peers(const Rcb& rcb, int rank, double within, const PeriodicBox* periodic = nullptr);
+
+// The box shifted by s[d] box lengths of `periodic` along each axis d.
+DomainBox shifted(const DomainBox& b, const PeriodicBox& periodic, const std::array<int, 3>& s);
 
 }  // namespace gf

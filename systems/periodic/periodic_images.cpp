@@ -11,24 +11,6 @@ namespace {
 
 ColumnD* axis_column(Position& p, int d) { return d == 0 ? &p.x : (d == 1 ? &p.y : &p.z); }
 
-// The shifts an image may take, in box lengths per axis: every combination of -1, 0, +1 over the
-// periodic axes whose first nonzero component is +1 (one of each pair s, -s).
-std::vector<std::array<int, 3>> image_shifts(const PeriodicBox& box) {
-  std::vector<std::array<int, 3>> out;
-  for (int a = -1; a <= 1; ++a)
-    for (int b = -1; b <= 1; ++b)
-      for (int c = -1; c <= 1; ++c) {
-        const std::array<int, 3> s{a, b, c};
-        bool ok = true, positive = false, seen = false;
-        for (int d = 0; d < 3; ++d) {
-          if (s[d] != 0 && !box.on[d]) ok = false;
-          if (s[d] != 0 && !seen) positive = s[d] > 0, seen = true;
-        }
-        if (ok && seen && positive) out.push_back(s);
-      }
-  return out;
-}
-
 }  // namespace
 
 void wrap_positions(Grains& g, const PeriodicBox& box) {
@@ -56,7 +38,7 @@ void make_images(Grains& g, PeriodicImages& im, double reach) {
   im.sz.clear();
   const PeriodicBox& box = im.box;
   if (!box.any()) return;
-  const std::vector<std::array<int, 3>> shifts = image_shifts(box);
+  const std::vector<std::array<int, 3>> shifts = periodic_shifts(box, true);
   const double* p[3] = {g.pos.x.data(), g.pos.y.data(), g.pos.z.data()};
   // In row order, each row's shifts in a fixed order: the image rows depend on the positions alone.
   for (std::size_t i = 0; i < g.n_owned; ++i)

@@ -23,15 +23,9 @@
 
 #include "engine/grains.hpp"
 #include "engine/system.hpp"
+#include "systems/periodic/periodic_box.hpp"
 
 namespace gf {
-
-struct PeriodicBox {
-  std::array<bool, 3> on{};         // periodic along x, y, z
-  std::array<double, 3> lo{}, hi{};  // m, the box along the periodic axes
-  bool any() const { return on[0] || on[1] || on[2]; }
-  double length(int d) const { return hi[d] - lo[d]; }
-};
 
 struct PeriodicImages {
   PeriodicBox box;

@@ -1,5 +1,6 @@
 // Checkpoints of a run on several ranks (rank_checkpoints.hpp, RankSimulation::save and restore):
-// a run stopped at a checkpoint and resumed ends byte for byte as the run that was not stopped;
+// a run stopped at a checkpoint and resumed ends byte for byte as the run that was not stopped (in a
+// box, and in a channel with periodic faces);
 // a missing or corrupt part, an index of another rank count and a file that is no index stop every
 // rank with the file named.
 #include <catch2/catch.hpp>
@@ -34,6 +35,21 @@ std::string dropped_grains() {
          "[output]\nseries_interval = 0.0001\nframe_interval = 0.0005\ncheckpoint_interval = 0.0005\n";
 }
 
+// The same grains in a channel periodic along x (a floor, a lid and side planes, gravity tilted along
+// x): ghost rows across the faces, each with its shift, are part of every rank's state.
+std::string periodic_grains() {
+  std::string s = dropped_grains();
+  const std::string box = "[[wall]]\ntype = \"box\"\nlo = [0.0, 0.0, 0.0]\nhi = [0.04, 0.02, 0.02]\n";
+  std::string planes;
+  for (const char* w : {"[0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]", "[0.0, 0.02, 0.0]\nnormal = [0.0, -1.0, 0.0]",
+                        "[0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]", "[0.0, 0.0, 0.02]\nnormal = [0.0, 0.0, -1.0]"})
+    planes += std::string("[[wall]]\ntype = \"plane\"\npoint = ") + w + "\n";
+  s.replace(s.find(box), box.size(), planes + "[periodic]\nx = [0.0, 0.04]\n");
+  const std::string from = "gravity = [0.0, -400", to = "gravity = [200.0, -400";
+  s.replace(s.find(from), from.size(), to);
+  return s;
+}
+
 fs::path fresh_folder(const gf::MpiContext& mpi, const std::string& name) {
   const fs::path dir = fs::current_path() / "rank_checkpoint_test_out" / (std::to_string(mpi.size()) + "_ranks") / name;
   if (mpi.rank() == 0) fs::remove_all(dir);
@@ -46,8 +62,9 @@ struct Run {
   gf::RankSimulation sim;
   gf::RankOutputs out;
   gf::RankCheckpoints checkpoints;
-  Run(const fs::path& dir, const gf::MpiContext& mpi, std::optional<std::size_t> rows = std::nullopt)
-      : sim(gf::RankSimulation::from_text(dropped_grains(), mpi)),
+  Run(const fs::path& dir, const gf::MpiContext& mpi, const std::string& scene,
+      std::optional<std::size_t> rows = std::nullopt)
+      : sim(gf::RankSimulation::from_text(scene, mpi)),
         out(sim.scene(), dir, mpi, rows),
         checkpoints({dir, sim.scene().output.checkpoint_interval, false}, mpi) {}
 
@@ -67,9 +84,10 @@ struct Run {
 };
 
 // Resumes the run whose index is `index` into `dir`, as grainflow_mpi --resume does.
-std::unique_ptr<Run> resumed(const fs::path& dir, const fs::path& index, const gf::MpiContext& mpi) {
+std::unique_ptr<Run> resumed(const fs::path& dir, const fs::path& index, const gf::MpiContext& mpi,
+                             const std::string& scene = dropped_grains()) {
   const std::unique_ptr<gf::CheckpointReader> part = gf::open_rank_part(index, mpi);
-  auto run = std::make_unique<Run>(dir, mpi, gf::RankOutputs::series_rows(*part));
+  auto run = std::make_unique<Run>(dir, mpi, scene, gf::RankOutputs::series_rows(*part));
   run->sim.restore(*part);
   run->out.restore(*part);
   run->checkpoints.restore(*part, index);
@@ -90,36 +108,52 @@ bool has(const std::string& text, const std::string& part) { return text.find(pa
 
 }  // namespace
 
-TEST_CASE("a run stopped at a checkpoint and resumed ends byte for byte as the run that was not",
-          "[mpi][rank_checkpoint]") {
+namespace {
+
+// Runs `scene` to step `end` whole, and stopped at step `stop` (7 steps past a series row, 37 past a
+// checkpoint) then resumed to `end`: the same files.
+void check_resume(const std::string& scene, const std::string& name, std::int64_t stop, std::int64_t end) {
   const gf::MpiContext& mpi = gf::test::test_world();
-  const fs::path whole = fresh_folder(mpi, "whole"), split = fresh_folder(mpi, "split");
-  Run(whole, mpi).run_to(200);
-  // Stopped at step 137, between two series rows, two frames and two checkpoints.
-  Run(split, mpi).run_to(137);
+  const fs::path whole = fresh_folder(mpi, name + "_whole"), split = fresh_folder(mpi, name + "_split");
+  Run(whole, mpi, scene).run_to(end);
+  Run(split, mpi, scene).run_to(stop);
   const fs::path index = split / "checkpoints" / gf::kRankIndexName;
-  std::unique_ptr<Run> rest = resumed(split, index, mpi);
-  CHECK(rest->sim.world().clock.step == 137);
+  std::unique_ptr<Run> rest = resumed(split, index, mpi, scene);
+  CHECK(rest->sim.world().clock.step == stop);
   CHECK(rest->sim.total_grains() == 306);
-  rest->run_to(200);
+  rest->run_to(end);
   if (mpi.rank() == 0) {
     for (const char* file : {"final_state.csv", "series.csv", "frames.pvd"}) {
       INFO(file);
       CHECK(gf::test::slurp(whole / file) == gf::test::slurp(split / file));
     }
-    CHECK(gf::test::read_csv(split / "series.csv").rows.size() == 21);
-    // Only the latest set is kept: the parts of step 137 went when the index of step 150 replaced them.
+    CHECK(gf::test::read_csv(split / "series.csv").rows.size() == static_cast<std::size_t>(end / 10 + 1));
+    // Only the latest set is kept: the parts of the stop went when the next index replaced them.
     std::size_t files = 0;
     for (const auto& e : fs::directory_iterator(split / "checkpoints")) files += e.is_regular_file() ? 1 : 0;
     CHECK(files == static_cast<std::size_t>(mpi.size()) + 1);
-    CHECK(fs::exists(split / "checkpoints" / gf::rank_part_name(200, mpi.size() - 1)));
+    CHECK(fs::exists(split / "checkpoints" / gf::rank_part_name(end, mpi.size() - 1)));
   }
+}
+
+}  // namespace
+
+TEST_CASE("a run stopped at a checkpoint and resumed ends byte for byte as the run that was not",
+          "[mpi][rank_checkpoint]") {
+  // Stopped at step 137, between two series rows, two frames and two checkpoints.
+  check_resume(dropped_grains(), "box", 137, 200);
+}
+
+TEST_CASE("a periodic run stopped at a checkpoint and resumed ends byte for byte as the run that was not",
+          "[mpi][rank_checkpoint][periodic]") {
+  // Stopped when the grains have landed and slide along x, touching across the faces.
+  check_resume(periodic_grains(), "periodic", 1137, 1200);
 }
 
 TEST_CASE("a missing or corrupt part stops every rank, naming the file", "[mpi][rank_checkpoint]") {
   const gf::MpiContext& mpi = gf::test::test_world();
   const fs::path dir = fresh_folder(mpi, "damaged");
-  Run(dir, mpi).run_to(20);
+  Run(dir, mpi, dropped_grains()).run_to(20);
   const fs::path index = dir / "checkpoints" / gf::kRankIndexName;
   const fs::path part = dir / "checkpoints" / gf::rank_part_name(20, mpi.size() - 1);
   REQUIRE(refusal(index, mpi).empty());
@@ -151,7 +185,7 @@ TEST_CASE("an index of another rank count, or a file that is no index, is refuse
           "[mpi][rank_checkpoint]") {
   const gf::MpiContext& mpi = gf::test::test_world();
   const fs::path dir = fresh_folder(mpi, "other_ranks");
-  Run(dir, mpi).run_to(10);
+  Run(dir, mpi, dropped_grains()).run_to(10);
   const fs::path other = dir / "checkpoints" / "more_ranks.gfc";
   const int more = mpi.size() + 1;
   if (mpi.rank() == 0) {

@@ -16,9 +16,18 @@
 //
 // The messages go to the neighbouring boxes only: the ranks whose boxes lie within `reach` of this
 // rank's box (box_peers), point to point, so a rank's exchange costs what its neighbours hold, not
-// what the rank count is. Periodic images and domain ghosts do not share a table yet.
+// what the rank count is.
+//
+// Periodic faces (make_domain_ghosts with a PeriodicBox): a row is also sent, shifted by whole box
+// lengths, to the ranks whose boxes lie within reach of it across the faces, and its ghost there
+// stands at its position plus that shift (refresh adds it each step). A rank holds its own rows'
+// copies across the faces too, for the shifts whose first nonzero component is positive only, as
+// periodic images are made (periodic_images.hpp): a pair across a face between two rows of one rank
+// is then listed once, and one between two ranks on the higher, as any pair across a cut. Each
+// length of the box exceeds twice the reach (the scene loader's rule), so a pair has one shift.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -32,15 +41,17 @@ namespace gf {
 enum class GhostShell { full, half };
 
 struct DomainGhosts {
-  std::vector<std::vector<std::uint32_t>> send;  // per rank: the owned rows it holds copies of
+  std::vector<std::vector<std::uint32_t>> send;  // per rank (this one's own images included): the owned rows it holds copies of
+  std::vector<std::vector<std::array<double, 3>>> shift;  // per rank, beside send: each copy's shift (m); empty without faces
   std::vector<std::size_t> first, count;         // per rank: its ghost rows here (from n_owned)
   std::vector<int> peers;                        // the ranks whose boxes lie within reach of this one
   std::size_t size() const;
 };
 
-// Replaces the table's ghost rows by the rows of other ranks within `reach` (m) of this rank's box.
+// Replaces the table's ghost rows by the rows of other ranks within `reach` (m) of this rank's box
+// (with `periodic`, also across its faces, and this rank's own images; half shell only). Collective.
 void make_domain_ghosts(Grains& g, const Rcb& rcb, double reach, const MpiContext& mpi, DomainGhosts& gh,
-                        GhostShell shell = GhostShell::full);
+                        GhostShell shell = GhostShell::full, const PeriodicBox* periodic = nullptr);
 
 // Position, velocity and spin of every ghost row from its owner.
 void refresh_domain_ghosts(Grains& g, const DomainGhosts& gh, const MpiContext& mpi);

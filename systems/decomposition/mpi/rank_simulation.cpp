@@ -17,6 +17,7 @@
 #include "systems/decomposition/row_bytes.hpp"
 #include "systems/decomposition/row_cost.hpp"
 #include "systems/integrate/integrate.hpp"
+#include "systems/periodic/periodic_images.hpp"
 #include "systems/walls/mesh_wall_contact.hpp"
 #include "systems/walls/wall_contact.hpp"
 #include "systems/walls/walls.hpp"
@@ -64,14 +65,18 @@ RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mp
   if (scene.bodies) throw std::invalid_argument("a scene of composite bodies does not run on several ranks yet");
   if (!scene.flow.feeds.empty() || !scene.flow.outlets.empty())
     throw std::invalid_argument("a scene with feeds or outlets does not run on several ranks yet");
-  if (scene.periodic.any()) throw std::invalid_argument("a scene with periodic faces does not run on several ranks yet");
+  periodic_ = scene.periodic;
   sim_ = std::make_unique<DemSimulation>(std::move(scene));
   World& w = sim_->world();
   Grains& g = w.grains;
   const DemScene& s = sim_->scene();
 
-  // Every rank placed the same grains: the same boxes everywhere, then this rank's rows kept.
+  // Every rank placed the same grains: the same boxes everywhere, then this rank's rows kept. Along
+  // a periodic axis the boxes tile the periodic box, the grains wrapped into it.
+  wrap_positions(g, periodic_);
   domain_ = padded_bounds(g);
+  for (std::size_t d = 0; d < 3; ++d)
+    if (periodic_.on[d]) domain_.lo[d] = periodic_.lo[d], domain_.hi[d] = periodic_.hi[d];
   std::unique_ptr<Rcb> rcb = std::make_unique<Rcb>(domain_, g.pos.x.span().first(g.n_owned), g.pos.y.span().first(g.n_owned),
                                                    g.pos.z.span().first(g.n_owned), std::span<const double>{}, mpi.size());
   rcb_ = std::move(rcb);
@@ -139,6 +144,7 @@ void RankSimulation::rebuild() {
   Grains& g = w.grains;
   const NeighborList& list = w.resources.get<NeighborList>();
   const PairHistory& history = w.resources.get<PairHistory>();
+  wrap_positions(g, periodic_);
   for (std::size_t i = 0; i < g.n_owned; ++i)
     if (!rcb_->box(rcb_->owner_of(position(g, i))).contains(position(g, i)))
       throw StabilityError("grain " + std::to_string(g.pid.id[i]) +
@@ -159,7 +165,7 @@ void RankSimulation::rebuild() {
 
 void RankSimulation::set_boxes(std::unique_ptr<Rcb> rcb) {
   rcb_ = std::move(rcb);
-  near_ = box_peers(*rcb_, mpi_->rank(), 2.0 * reach_);
+  near_ = box_peers(*rcb_, mpi_->rank(), 2.0 * reach_, &periodic_);
 }
 
 void RankSimulation::set_rebalance(double ratio) {
@@ -237,7 +243,7 @@ void RankSimulation::relist(const std::vector<std::vector<std::byte>>& out) {
   history.clear();
   PeriodicImages none;
   rebuild_neighbors(g, w.resources.get<BroadphaseState>(), list, history, none, [&](Grains& rows) {
-    make_domain_ghosts(rows, *rcb_, reach_, mpi, ghosts_, GhostShell::half);
+    make_domain_ghosts(rows, *rcb_, reach_, mpi, ghosts_, GhostShell::half, &periodic_);
   });
   counters_.ghosts = static_cast<std::int64_t>(ghosts_.size());
   ++counters_.rebuilds;
@@ -271,7 +277,11 @@ void RankSimulation::step_once(const StepContext& c) {
   BroadphaseState& bs = sim_->world().resources.get<BroadphaseState>();
   const bool mine = !listed_ || needs_rebuild(g, bs);
   if (mpi_->max(mine ? 1.0 : 0.0) > 0.0) {
-    if (listed_ && rank_list_covers(g, bs, sim_->world().resources.get<NeighborList>(), *mpi_, near_)) ++bs.cover.kept;
+    // With periodic faces the list is rebuilt at skin/2, as on one rank (the check's movers are not
+    // carried across the faces).
+    if (listed_ && !periodic_.any() &&
+        rank_list_covers(g, bs, sim_->world().resources.get<NeighborList>(), *mpi_, near_))
+      ++bs.cover.kept;
     else rebuild();
   }
   contacts_->run_step(c);

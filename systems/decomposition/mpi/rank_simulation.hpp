@@ -33,8 +33,11 @@
 // When the half-skin screen trips on some rank, the list-cover check made across the ranks
 // (rank_list_cover.hpp) may keep every rank's list; otherwise every rank rebuilds. A row then moves
 // less than a skin between rebuilds, still within the two reaches the exchanges assume.
+// Periodic faces: the boxes tile the periodic box along its periodic axes, the owned rows are wrapped
+// into it at each rebuild (before they migrate), and the ghost rows include copies across the faces
+// (domain_ghosts.hpp); the list is then rebuilt at skin/2 (no list-cover check), as on one rank.
 // Not supported yet (refused at construction): composite bodies, feeds and outlets (rows appear or
-// leave), periodic faces (images and domain ghosts do not share the table yet).
+// leave).
 #pragma once
 
 #include <cstdint>
@@ -157,7 +160,8 @@ class RankSimulation {
   std::unique_ptr<Rcb> rcb_;
   std::unique_ptr<Schedule> drift_, contacts_, kick_;
   DomainGhosts ghosts_;
-  DomainBox domain_;    // the box the ranks' boxes tile: the starting grains' bounds widened
+  DomainBox domain_;    // the box the ranks' boxes tile: the starting grains' bounds widened (the periodic box along its axes)
+  PeriodicBox periodic_;  // the scene's [periodic] faces
   std::vector<int> near_;  // the ranks whose boxes lie within two reaches of this one (set_boxes)
   double rebalance_ = 0.0;
   double reach_ = 0.0;  // m, how far from a box a ghost row may lie

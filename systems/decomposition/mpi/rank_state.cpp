@@ -56,6 +56,11 @@ void save_ghosts(CheckpointWriter& out, const DomainGhosts& gh) {
   out.vector("rank.ghosts.send_rows", std::move(rows));
   out.vector("rank.ghosts.first", gh.first);
   out.vector("rank.ghosts.count", gh.count);
+  // Across periodic faces: each copy's shift, per rank beside its rows (none without faces).
+  std::vector<double> shifts;
+  for (const auto& sh : gh.shift)
+    for (const auto& v : sh) shifts.insert(shifts.end(), v.begin(), v.end());
+  if (!shifts.empty()) out.vector("rank.ghosts.send_shifts", std::move(shifts));
 }
 
 // Fails with the file named when a value read back cannot be this run's.
@@ -85,6 +90,14 @@ void restore_ghosts(const CheckpointReader& in, DomainGhosts& gh, const Grains& 
     at += sizes[r];
     require(in, gh.first[r] >= g.n_owned && gh.first[r] <= g.n && gh.count[r] <= g.n - gh.first[r], "ghost rows");
   }
+  gh.shift.assign(ranks, {});
+  if (!in.has("rank.ghosts.send_shifts")) return;
+  std::vector<double> shifts;
+  in.vector("rank.ghosts.send_shifts", shifts);
+  require(in, shifts.size() == 3 * rows.size(), "ghost shifts");
+  at = 0;
+  for (std::size_t r = 0; r < ranks; ++r)
+    for (std::size_t k = 0; k < sizes[r]; ++k, at += 3) gh.shift[r].push_back({shifts[at], shifts[at + 1], shifts[at + 2]});
 }
 
 void check_list(const CheckpointReader& in, const NeighborList& l, const PairHistory& h, const BroadphaseState& bp,
@@ -236,7 +249,7 @@ void RankSimulation::restore(const CheckpointReader& in) {
   check_list(in, list, history, bp, g);
   restore_ghosts(in, ghosts_, g, static_cast<std::size_t>(mpi_->size()));
   set_boxes(std::move(rcb));
-  ghosts_.peers = box_peers(*rcb_, mpi_->rank(), reach_);  // as make_domain_ghosts found them
+  ghosts_.peers = box_peers(*rcb_, mpi_->rank(), reach_, &periodic_);  // as make_domain_ghosts found them
   listed_ = in.value<bool>("rank.listed");
   primed_ = in.value<bool>("rank.primed");
   counters_ = in.value<RankCounters>("rank.counters");
