@@ -147,21 +147,6 @@ int refuse_resume(const gf::RankFailure& e, const gf::MpiContext& mpi) {
   return 2;
 }
 
-nlohmann::json final_row(const gf::SeriesRow& row) {
-  const auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  nlohmann::json j = {{"time", row.time},
-                      {"angle", row.angle},
-                      {"ke_translational", row.ke_translational},
-                      {"ke_rotational", row.ke_rotational},
-                      {"contacts", row.pair_contacts},
-                      {"wall_contacts", row.wall_contacts},
-                      {"max_overlap_ratio", row.max_overlap_ratio},
-                      {"segregation_index", row.segregation_index}};
-  if (row.has_mixing) j["lacey_index"] = number(row.lacey_index);
-  if (row.has_pattern) j["surface_angle"] = number(row.surface_angle);
-  return j;
-}
-
 // A file that could not be written: what rank 0 says and records, with the fix.
 // With a checkpoint on disk (this run's, or the one it resumed), the run can go on from it.
 std::string write_failure(const gf::RankFailure& e, const Options& o, int ranks, const std::filesystem::path& checkpoint) {
@@ -328,7 +313,7 @@ int main(int argc, char** argv) {
     summary["pictures"] = outputs->pictures();
     if (!outputs->last_picture().empty()) summary["last_picture"] = outputs->last_picture().string();
     summary["checkpoints_written"] = checkpoints->written();
-    summary["final"] = final_row(last);
+    summary["final"] = gf::final_row_json(last);
   } catch (const gf::RankFailure& e) {
     const bool written = checkpoints->written() > 0;
     return fail_write(e, opt, mpi, summary,

@@ -54,9 +54,6 @@ void write_final_state(const std::filesystem::path& file, const Grains& g, const
   write_state_csv(file, rows);
 }
 
-// JSON has no NaN: a measure that is not defined for the state (nan in series.csv) is null.
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 nlohmann::json flow_json(const FlowState& f, const Grains& g, const ResidenceOutput* residence) {
   double kg = 0.0;
   for (std::size_t i = 0; i < g.n_owned; ++i) kg += g.mass.m[i];
@@ -321,28 +318,7 @@ int run_dem_command(const CliOptions& opt) {
   summary["neighbor_list_kept"] = world.resources.get<BroadphaseState>().cover.kept;
   summary["frames"] = frames ? frames->frames() : 0;
   summary["pictures"] = pictures ? pictures->pictures() : 0;
-  summary["final"] = {{"time", row.time},
-                      {"angle", row.angle},
-                      {"ke_translational", row.ke_translational},
-                      {"ke_rotational", row.ke_rotational},
-                      {"contacts", row.pair_contacts},
-                      {"wall_contacts", row.wall_contacts},
-                      {"max_overlap_ratio", row.max_overlap_ratio},
-                      {"segregation_index", row.segregation_index}};
-  if (row.has_mixing) {
-    summary["final"]["lacey_index"] = number_or_null(row.lacey_index);
-    summary["final"]["lacey_cell"] = row.lacey_cell;
-    summary["final"]["lacey_cell_grains"] = row.lacey_cell_grains;
-  }
-  if (row.has_pattern) {
-    static const char* kinds[] = {"undecided", "moon", "petals"};
-    summary["final"]["pattern"] = kinds[row.pattern + 1];
-    summary["final"]["petals"] = row.petals;
-    summary["final"]["pattern_contrast"] = row.pattern_contrast;
-    summary["final"]["surface_angle"] = number_or_null(row.surface_angle);  // no surface to fit: null
-    summary["final"]["radial_segregation"] = number_or_null(row.radial_segregation);
-    summary["final"]["depth_segregation"] = number_or_null(row.depth_segregation);
-  }
+  summary["final"] = final_row_json(row);
   if (const FlowState* f = world.resources.find<FlowState>()) summary["flow"] = flow_json(*f, world.grains, residence);
   double step_total = 0;
   for (auto& t : step.timings()) step_total += t.seconds;

@@ -55,8 +55,6 @@ nlohmann::json timings_json(const Schedule& sched, double total) {
   return out;
 }
 
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 // The pictures' colours per body row and the legend for the PNG's Comment entry.
 std::vector<Rgb> picture_colours(const DemScene& s, const std::vector<int>& layers, std::string& legend) {
   const BodiesSpec& b = *s.bodies;

@@ -2,7 +2,8 @@
 # program's: the same files at the same angles, and byte-identical while the two runs' states still
 # agree to the pixel. Without settling the runs start from the same fill; their states drift apart
 # in the last bits (the force sums' order differs) and reach pixel scale near 0.08 rad, so the
-# pictures up to 0.03 rad (700 steps) must be identical.
+# pictures up to 0.03 rad (700 steps) must be identical. The summary's final measures (the drum's
+# pattern, segregation and mixing indices) are the same set on both.
 #   -D MPIEXEC=... -D NP_FLAG=... -D PROGRAM=grainflow_mpi -D ONE=grainflow -D SCENE=drum_quick.toml -D WORK=folder
 file(REMOVE_RECURSE ${WORK})
 set(common --steps 700 --threads 1 --set settle.time=0 --set output.picture_interval=0.01)
@@ -30,3 +31,15 @@ foreach(png ${one})
   endif()
 endforeach()
 message(STATUS "pictures identical: ${one}")
+file(READ ${WORK}/one/summary.json one_summary)
+file(READ ${WORK}/two/summary.json two_summary)
+string(JSON n LENGTH "${one_summary}" final)
+math(EXPR last "${n} - 1")
+foreach(k RANGE ${last})
+  string(JSON key MEMBER "${one_summary}" final ${k})
+  string(JSON value ERROR_VARIABLE missing GET "${two_summary}" final ${key})
+  if(missing)
+    message(FATAL_ERROR "summary.json of two ranks has no final.${key}, which the one-rank summary has")
+  endif()
+endforeach()
+message(STATUS "summary final measures on both: ${n}")
