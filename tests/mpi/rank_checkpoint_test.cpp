@@ -128,7 +128,8 @@ void check_resume(const std::string& scene, const std::string& name, std::int64_
       CHECK(gf::test::slurp(whole / file) == gf::test::slurp(split / file));
     }
     CHECK(gf::test::read_csv(split / "series.csv").rows.size() == static_cast<std::size_t>(end / 10 + 1));
-    // Only the latest set is kept: the parts of the stop went when the next index replaced them.
+    // Only the latest set is kept: the parts written where the run was halted went when the next index
+    // replaced them.
     std::size_t files = 0;
     for (const auto& e : fs::directory_iterator(split / "checkpoints")) files += e.is_regular_file() ? 1 : 0;
     CHECK(files == static_cast<std::size_t>(mpi.size()) + 1);
