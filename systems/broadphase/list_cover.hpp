@@ -61,7 +61,6 @@ double mover_bound(double skin, double d2max);
 bool collect_movers(const Grains& g, const double* ref_x, const double* ref_y, const double* ref_z, double bound,
                     std::size_t cap, ListCover& scratch);
 
-
 // Calls touching(a, b) for every pair of `points` closer than r_a + r_b + reach (with the relative
 // margin of 1e-9 that counts a pair at the kernel's own bound as touching), until it returns false;
 // returns false then, true when every call returned true. Sorts `points` along their widest axis,

@@ -119,24 +119,23 @@ double DomainBox::gap(const DomainBox& other) const {
 }
 
 DomainBox shifted(const DomainBox& b, const PeriodicBox& periodic, const std::array<int, 3>& s) {
+  const std::array<double, 3> by = shift_metres(periodic, s);
   DomainBox out = b;
   for (std::size_t d = 0; d < 3; ++d) {
-    const double by = s[d] * periodic.length(static_cast<int>(d));
-    out.lo[d] += by;
-    out.hi[d] += by;
+    out.lo[d] += by[d];
+    out.hi[d] += by[d];
   }
   return out;
 }
 
 std::vector<int> box_peers(const Rcb& rcb, int rank, double within, const PeriodicBox* periodic) {
-  const std::vector<std::array<int, 3>> shifts =
-      periodic ? periodic_shifts(*periodic, false) : std::vector<std::array<int, 3>>{{0, 0, 0}};
+  const PeriodicBox box = periodic ? *periodic : PeriodicBox{};
+  const std::vector<std::array<int, 3>> shifts = periodic_shifts(box, false);  // {0, 0, 0} without faces
   std::vector<int> out;
   for (int r = 0; r < rcb.ranks(); ++r) {
     if (r == rank) continue;
     bool near = false;
-    for (const auto& s : shifts)
-      near = near || rcb.box(rank).gap(periodic ? shifted(rcb.box(r), *periodic, s) : rcb.box(r)) <= within;
+    for (const auto& s : shifts) near = near || rcb.box(rank).gap(shifted(rcb.box(r), box, s)) <= within;
     if (near) out.push_back(r);
   }
   return out;

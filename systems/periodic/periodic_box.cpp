@@ -18,4 +18,11 @@ std::vector<std::array<int, 3>> periodic_shifts(const PeriodicBox& box, bool pos
   return out;
 }
 
+std::array<double, 3> shift_metres(const PeriodicBox& box, const std::array<int, 3>& s) {
+  std::array<double, 3> out{};
+  for (std::size_t d = 0; d < 3; ++d)
+    if (box.on[d]) out[d] = s[d] * box.length(static_cast<int>(d));
+  return out;
+}
+
 }  // namespace gf

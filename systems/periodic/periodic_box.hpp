@@ -19,4 +19,7 @@ struct PeriodicBox {
 // nonzero component is +1 (one of each pair s, -s, and not the zero shift), as images take them.
 std::vector<std::array<int, 3>> periodic_shifts(const PeriodicBox& box, bool positive);
 
+// A shift in metres: s[d] box lengths along each axis d (0 along an axis that is not periodic).
+std::array<double, 3> shift_metres(const PeriodicBox& box, const std::array<int, 3>& s);
+
 }  // namespace gf

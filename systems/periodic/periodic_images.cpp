@@ -50,10 +50,11 @@ void make_images(Grains& g, PeriodicImages& im, double reach) {
         near = x < box.hi[d] + reach && x >= box.lo[d] - reach;
       }
       if (!near) continue;
+      const std::array<double, 3> by = shift_metres(box, s);
       im.owner.push_back(static_cast<std::uint32_t>(i));
-      im.sx.push_back(s[0] * box.length(0));
-      im.sy.push_back(s[1] * box.length(1));
-      im.sz.push_back(s[2] * box.length(2));
+      im.sx.push_back(by[0]);
+      im.sy.push_back(by[1]);
+      im.sz.push_back(by[2]);
     }
   const std::size_t n0 = g.n_owned;
   g.set_ghosts(im.size());

@@ -94,9 +94,9 @@ void make_domain_ghosts(Grains& g, const Rcb& rcb, double reach, const MpiContex
   gh.peers = box_peers(rcb, me, reach, periodic);
   std::vector<int> targets = gh.peers;
   if (periodic) targets.insert(std::lower_bound(targets.begin(), targets.end(), me), me);
-  const std::vector<std::array<int, 3>> zero{{0, 0, 0}};
-  const std::vector<std::array<int, 3>> all = periodic ? periodic_shifts(*periodic, false) : zero;
-  const std::vector<std::array<int, 3>> own = periodic ? periodic_shifts(*periodic, true) : zero;
+  // Without faces the only shift is zero, and a rank holds no copies of its own rows.
+  const PeriodicBox box = periodic ? *periodic : PeriodicBox{};
+  const std::vector<std::array<int, 3>> all = periodic_shifts(box, false), own = periodic_shifts(box, true);
   std::vector<std::vector<std::byte>> out(ranks);
   for (const int r : targets) {
     if (shell == GhostShell::half && r < me) continue;
@@ -104,8 +104,7 @@ void make_domain_ghosts(Grains& g, const Rcb& rcb, double reach, const MpiContex
     auto& rows = gh.send[ru];
     for (std::size_t i = 0; i < g.n_owned; ++i)
       for (const auto& s : r == me ? own : all) {
-        std::array<double, 3> by{};
-        for (std::size_t d = 0; d < 3; ++d) by[d] = periodic ? s[d] * periodic->length(static_cast<int>(d)) : 0.0;
+        const std::array<double, 3> by = shift_metres(box, s);
         if (rcb.box(r).distance({g.pos.x[i] + by[0], g.pos.y[i] + by[1], g.pos.z[i] + by[2]}) > reach) continue;
         rows.push_back(static_cast<std::uint32_t>(i));
         if (periodic) gh.shift[ru].push_back(by);
