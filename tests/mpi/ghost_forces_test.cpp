@@ -138,7 +138,10 @@ TEST_CASE("forces across periodic faces split across ranks equal the one-rank fo
   box.on = {true, true, false};
   box.lo = {0.5 * a, 0.5 * a, 0.0};
   box.hi = {12.5 * a, 6.5 * a, 0.0};
-  for (int d = 0; d < 2; ++d) l.box.lo[static_cast<std::size_t>(d)] = box.lo[static_cast<std::size_t>(d)], l.box.hi[static_cast<std::size_t>(d)] = box.hi[static_cast<std::size_t>(d)];
+  for (std::size_t d = 0; d < 2; ++d) {  // the ranks' boxes tile the periodic box along x and y
+    l.box.lo[d] = box.lo[d];
+    l.box.hi[d] = box.hi[d];
+  }
   const gf::Rcb rcb = gf::test::lattice_split(l, mpi.size());
   const gf::ContactTable table = seed000_table(l);
   const double reach = 2.0 * l.radius + kSkin;
