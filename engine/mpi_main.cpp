@@ -38,6 +38,7 @@
 #include "engine/mpi/mpi_context.hpp"
 #include "engine/mpi/rank_failure.hpp"
 #include "engine/run_loop.hpp"
+#include "systems/flow/flow_systems.hpp"
 #include "systems/decomposition/mpi/rank_simulation.hpp"
 #include "systems/output/mpi/rank_checkpoint_index.hpp"
 #include "systems/output/mpi/rank_checkpoints.hpp"
@@ -108,7 +109,7 @@ bool run_main_stage(gf::RankSimulation& sim, gf::RankOutputs& outputs, gf::RankC
 // RankFailure on every rank when any part cannot be (rank 0's message names the files).
 struct Resumed {
   std::unique_ptr<gf::CheckpointReader> part;  // this rank's, or part 0 when the rank count differs
-  std::size_t series_rows = 0;
+  gf::RankOutputRows rows;
   int other_ranks = 0;  // the rank count that wrote the checkpoint, when it differs from this run's
 };
 
@@ -129,7 +130,7 @@ Resumed resume(const std::filesystem::path& index, gf::RankSimulation& sim, cons
     sim.restore_portable(*r.part, mine);
     r.other_ranks = idx.ranks;
   }
-  gf::on_every_rank(mpi, [&] { r.series_rows = gf::RankOutputs::series_rows(*r.part); });
+  gf::on_every_rank(mpi, [&] { r.rows = gf::RankOutputs::written_rows(*r.part); });
   return r;
 }
 
@@ -246,8 +247,8 @@ int main(int argc, char** argv) {
   std::unique_ptr<gf::RankOutputs> outputs;
   std::unique_ptr<gf::RankCheckpoints> checkpoints;
   try {
-    std::optional<std::size_t> rows;
-    if (opt.resume) rows = resumed.series_rows;
+    std::optional<gf::RankOutputRows> rows;
+    if (opt.resume) rows = resumed.rows;
     outputs = std::make_unique<gf::RankOutputs>(scene, opt.out, mpi, rows);
     checkpoints = std::make_unique<gf::RankCheckpoints>(
         gf::RankCheckpointSettings{opt.out, scene.output.checkpoint_interval, scene.output.checkpoint_keep_all}, mpi);
@@ -314,6 +315,14 @@ int main(int argc, char** argv) {
     if (!outputs->last_picture().empty()) summary["last_picture"] = outputs->last_picture().string();
     summary["checkpoints_written"] = checkpoints->written();
     summary["final"] = gf::final_row_json(last);
+    if (const gf::FlowState* f = sim->world().resources.find<gf::FlowState>())
+      summary["flow"] = {{"grains", still},
+                         {"holdup_mass", last.holdup_mass},
+                         {"fed_grains", f->fed_grains()},
+                         {"fed_mass", f->fed_mass()},
+                         {"discharged", f->discharged()},
+                         {"discharged_mass", f->discharged_mass()},
+                         {"feed_backlog", f->backlog()}};
   } catch (const gf::RankFailure& e) {
     const bool written = checkpoints->written() > 0;
     return fail_write(e, opt, mpi, summary,

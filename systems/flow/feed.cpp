@@ -22,7 +22,8 @@ std::uint64_t mix(std::uint64_t x) {
 
 // The owned grains whose spheres reach into the region's bounding box grown by `margin`: the only
 // ones a new grain there could overlap.
-std::vector<PlacedGrain> grains_near(const Grains& g, const Region& region, double margin) {
+std::vector<PlacedGrain> grains_near(const Grains& g, const Region& region, double margin,
+                                     std::span<const PlacedGrain> elsewhere) {
   const auto lo = region.bbox_lo(), hi = region.bbox_hi();
   std::vector<PlacedGrain> near;
   for (std::size_t i = 0; i < g.n_owned; ++i) {
@@ -34,6 +35,7 @@ std::vector<PlacedGrain> grains_near(const Grains& g, const Region& region, doub
   }
   // Grains queued in earlier events but not yet in the table occupy their spots too.
   for (const GrainRow& r : g.pending.insert) near.push_back({{r.x[0], r.x[1], r.x[2]}, r.type, r.radius});
+  near.insert(near.end(), elsewhere.begin(), elsewhere.end());
   return near;
 }
 
@@ -76,13 +78,14 @@ FeedState start_feed(const FeedSpec& spec) {
   return s;
 }
 
-std::int64_t feed_events(Grains& g, const FeedSpec& spec, FeedState& state, ResidenceLog& log, double t) {
+std::int64_t feed_events(Grains& g, const FeedSpec& spec, FeedState& state, ResidenceLog& log, double t,
+                         std::span<const PlacedGrain> elsewhere) {
   std::int64_t queued = 0;
   double largest = 0.0;
   for (const FeedSpecies& s : spec.species) largest = std::max(largest, s.radius);
   while (state.next <= t && state.next < spec.stop) {
     const double time = state.next;
-    std::vector<PlacedGrain> taken = grains_near(g, spec.region, largest);
+    std::vector<PlacedGrain> taken = grains_near(g, spec.region, largest, elsewhere);
     FeedBatch batch{g.next_id, 0, 0, time};
     // Largest grains first (small ones fit between them), then by the order given.
     std::vector<std::size_t> order(spec.species.size());

@@ -23,9 +23,11 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "engine/grains.hpp"
+#include "systems/fill/random_fill.hpp"
 #include "systems/fill/region.hpp"
 
 namespace gf {
@@ -79,6 +81,9 @@ FeedState start_feed(const FeedSpec& spec);
 
 // Holds every event due at time t (there may be several when the interval is shorter than a step):
 // places and queues the grains the debt pays for, and logs their batches. Returns the grains queued.
-std::int64_t feed_events(Grains& g, const FeedSpec& spec, FeedState& state, ResidenceLog& log, double t);
+// `elsewhere`: grains near the region that are not g's owned rows (another rank's), which the new
+// grains must not overlap either; the placement depends on the set of grains, not their order.
+std::int64_t feed_events(Grains& g, const FeedSpec& spec, FeedState& state, ResidenceLog& log, double t,
+                         std::span<const PlacedGrain> elsewhere = {});
 
 }  // namespace gf

@@ -5,9 +5,7 @@
 
 namespace gf {
 
-namespace {
-bool moving(const StepContext& now) { return !now.prime && now.stage != "settle"; }
-}  // namespace
+bool flow_moving(const StepContext& now) { return !now.prime && now.stage != "settle"; }
 
 double FlowState::fed_mass() const {
   double kg = 0.0;
@@ -43,20 +41,24 @@ FlowState start_flow(const FlowSpec& spec) {
 }
 
 void FeedSystem::run(World& world, const StepContext& now) {
-  if (!moving(now)) return;
+  if (!flow_moving(now)) return;
   FlowState& s = world.resources.get<FlowState>();
   Grains& g = world.grains;
   for (std::size_t k = 0; k < feeds_.size(); ++k) feed_events(g, feeds_[k], s.feeds[k], s.residence, now.t);
-  if (g.n_owned + g.pending.insert.size() > max_)
+  check_feed_room(g, max_);
+}
+
+void check_feed_room(const Grains& g, std::size_t max_grains) {
+  if (g.n_owned + g.pending.insert.size() > max_grains)
     throw std::runtime_error("the feeds have brought the grains to " +
                              std::to_string(g.n_owned + g.pending.insert.size()) + ", more than the " +
-                             std::to_string(max_) +
+                             std::to_string(max_grains) +
                              " this machine's memory holds: the outlets take less than the feeds bring. Fix: an "
                              "[[outlet]] where the grains collect, a lower mass_rate, or a stop time for the feed");
 }
 
 void OutletSystem::run(World& world, const StepContext& now) {
-  if (!moving(now)) return;
+  if (!flow_moving(now)) return;
   FlowState& s = world.resources.get<FlowState>();
   for (std::size_t k = 0; k < outlets_.size(); ++k) {
     std::vector<ExitRecord> out = outlet_pass(world.grains, outlets_[k], s.outlets[k], s.residence, now.t + now.dt);

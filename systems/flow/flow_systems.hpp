@@ -36,6 +36,13 @@ struct FlowState {
 // Starts every feed and outlet (std::invalid_argument from start_feed for a bad spec).
 FlowState start_flow(const FlowSpec& spec);
 
+// Whether feeds and outlets act in this step: not while settling or priming.
+bool flow_moving(const StepContext& now);
+
+// Stops the run (std::runtime_error naming the fix) when the owned rows and the queued grains pass
+// max_grains, what the machine's memory holds.
+void check_feed_room(const Grains& g, std::size_t max_grains);
+
 // Holds the feed events due by the start of the step. Nothing is fed while settling or priming.
 // A table that would grow past `max_grains` (what the machine's memory holds) stops the run with a
 // std::runtime_error: the outlets take less than the feeds bring.

@@ -18,16 +18,21 @@ LayerOutput::LayerOutput(std::filesystem::path file, LayerSettings s, std::optio
       rows_(resume_rows.value_or(0)) {}
 
 void LayerOutput::run(World& world, const StepContext& now) {
-  const double tol = 1e-6 * now.dt;  // samples on the grid k * interval, up to the clock's round-off
-  if (now.t < next_ - tol) return;
-  while (now.t >= next_ - tol) next_ += s_.interval;
+  if (due(now.t, now.dt)) sample(world.grains, now.t, now.dt);
+}
+
+// Samples on the grid k * interval, up to the clock's round-off.
+bool LayerOutput::due(double t, double dt) const { return t >= next_ - 1e-6 * dt; }
+
+void LayerOutput::sample(const Grains& g, double t, double dt) {
+  while (due(t, dt)) next_ += s_.interval;
   pooled_.resize(s_.distances.size());
   for (std::size_t k = 0; k < s_.distances.size(); ++k)
-    pooled_[k].add(layer_cells(world.grains, s_.type_a, s_.inlet, s_.axis, s_.distances[k], s_.thickness, s_.cell));
+    pooled_[k].add(layer_cells(g, s_.type_a, s_.inlet, s_.axis, s_.distances[k], s_.thickness, s_.cell));
   if (++samples_ < s_.pool) return;
   for (std::size_t k = 0; k < s_.distances.size(); ++k) {
     const LayerMixing m = layer_quality(pooled_[k], s_.min_grains);
-    const std::array<double, 7> v{now.t,        s_.distances[k], m.vc, m.lacey, m.fraction_a,
+    const std::array<double, 7> v{t,            s_.distances[k], m.vc, m.lacey, m.fraction_a,
                                   static_cast<double>(m.cells), static_cast<double>(m.grains)};
     csv_->append(v);
     ++rows_;

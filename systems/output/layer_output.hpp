@@ -41,6 +41,10 @@ class LayerOutput : public SystemBase<LayerOutput>, public Checkpointable {
   LayerOutput(std::filesystem::path file, LayerSettings s, std::optional<std::size_t> resume_rows);
   std::string_view name() const override { return "layer_output"; }
   void run(World& world, const StepContext& now) override;
+  // Whether a sample is due at time t (the step dt sets the tolerance), and taking it from the grains
+  // g (a run on ranks gives the grains gathered on one rank).
+  bool due(double t, double dt) const;
+  void sample(const Grains& g, double t, double dt);
   void save(CheckpointWriter& out) const override;
   void restore(const CheckpointReader& in) override;
 

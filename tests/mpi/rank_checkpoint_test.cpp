@@ -63,7 +63,7 @@ struct Run {
   gf::RankOutputs out;
   gf::RankCheckpoints checkpoints;
   Run(const fs::path& dir, const gf::MpiContext& mpi, const std::string& scene,
-      std::optional<std::size_t> rows = std::nullopt)
+      std::optional<gf::RankOutputRows> rows = std::nullopt)
       : sim(gf::RankSimulation::from_text(scene, mpi)),
         out(sim.scene(), dir, mpi, rows),
         checkpoints({dir, sim.scene().output.checkpoint_interval, false}, mpi) {}
@@ -87,7 +87,7 @@ struct Run {
 std::unique_ptr<Run> resumed(const fs::path& dir, const fs::path& index, const gf::MpiContext& mpi,
                              const std::string& scene = dropped_grains()) {
   const std::unique_ptr<gf::CheckpointReader> part = gf::open_rank_part(index, mpi);
-  auto run = std::make_unique<Run>(dir, mpi, scene, gf::RankOutputs::series_rows(*part));
+  auto run = std::make_unique<Run>(dir, mpi, scene, gf::RankOutputs::written_rows(*part));
   run->sim.restore(*part);
   run->out.restore(*part);
   run->checkpoints.restore(*part, index);

@@ -13,6 +13,7 @@
 #include "systems/contact/laws.hpp"
 #include "systems/contact/pair_contact.hpp"
 #include "systems/decomposition/mpi/migration.hpp"
+#include "systems/decomposition/mpi/rank_flow.hpp"
 #include "systems/decomposition/mpi/rank_list_cover.hpp"
 #include "systems/decomposition/row_bytes.hpp"
 #include "systems/decomposition/row_cost.hpp"
@@ -63,9 +64,8 @@ void put(std::vector<std::byte>& out, const void* p, std::size_t n) {
 
 RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mpi) {
   if (scene.bodies) throw std::invalid_argument("a scene of composite bodies does not run on several ranks yet");
-  if (!scene.flow.feeds.empty() || !scene.flow.outlets.empty())
-    throw std::invalid_argument("a scene with feeds or outlets does not run on several ranks yet");
   periodic_ = scene.periodic;
+  max_grains_ = memory_grain_limit(scene);
   sim_ = std::make_unique<DemSimulation>(std::move(scene));
   World& w = sim_->world();
   Grains& g = w.grains;
@@ -214,6 +214,12 @@ void RankSimulation::relist(const std::vector<std::vector<std::byte>>& out) {
   const std::size_t width = history.width;
   // The rows' new owners; whether any row or spring must go past the near boxes (then, on every
   // rank alike, this rebuild exchanges among all ranks).
+  // Grains fed or counted out since the last rebuild join or leave first (their springs, sent by
+  // pair key, find no pair and are dropped), then every row goes to its owner.
+  if (!g.pending.empty()) {
+    g.set_ghosts(0);
+    g.apply_pending();
+  }
   const std::vector<int> owners = row_owners(g, *rcb_);
   std::vector<char> near(static_cast<std::size_t>(mpi.size()), 0);
   near[static_cast<std::size_t>(mpi.rank())] = 1;
@@ -272,21 +278,27 @@ void RankSimulation::relist(const std::vector<std::vector<std::byte>>& out) {
 
 void RankSimulation::step_once(const StepContext& c) {
   Grains& g = sim_->grains();
+  World& w = sim_->world();
+  const DemScene& s = sim_->scene();
+  FlowState* flow = w.resources.find<FlowState>();
+  if (flow && flow_moving(c)) rank_feed_events(g, s.flow, *flow, *rcb_, *mpi_, c.t, max_grains_);
   drift_->run_step(c);
   if (listed_) refresh_domain_ghosts(g, ghosts_, *mpi_);
-  BroadphaseState& bs = sim_->world().resources.get<BroadphaseState>();
-  const bool mine = !listed_ || needs_rebuild(g, bs);
-  if (mpi_->max(mine ? 1.0 : 0.0) > 0.0) {
+  BroadphaseState& bs = w.resources.get<BroadphaseState>();
+  // 2: rows join or leave here, 1: a row passed half the skin (or no list yet).
+  const double mine = !g.pending.empty() ? 2.0 : !listed_ || needs_rebuild(g, bs) ? 1.0 : 0.0;
+  const double most = mpi_->max(mine);
+  if (most > 0.0) {
     // With periodic faces the list is rebuilt at skin/2, as on one rank (the check's movers are not
     // carried across the faces).
-    if (listed_ && !periodic_.any() &&
-        rank_list_covers(g, bs, sim_->world().resources.get<NeighborList>(), *mpi_, near_))
+    if (most < 2.0 && listed_ && !periodic_.any() && rank_list_covers(g, bs, w.resources.get<NeighborList>(), *mpi_, near_))
       ++bs.cover.kept;
     else rebuild();
   }
   contacts_->run_step(c);
   fold_domain_ghost_forces(g, ghosts_, *mpi_);
   kick_->run_step(c);
+  if (flow && flow_moving(c)) rank_outlet_pass(g, s.flow, *flow, *mpi_, c.t + c.dt);
 }
 
 void RankSimulation::prime() {
@@ -307,7 +319,9 @@ void RankSimulation::advance(std::int64_t n) {
   Clock& clock = sim_->world().clock;
   if (clock.step == 0) clock.t0 = clock.t;
   for (std::int64_t k = 0; k < n; ++k) {
-    step_once(next_step(clock));
+    StepContext c = next_step(clock);
+    c.stage = stage_;
+    step_once(c);
     counters_.particle_steps += static_cast<double>(sim_->grains().n_owned);
     ++clock.step;
     clock.t = clock.t0 + static_cast<double>(clock.step) * clock.dt;
@@ -321,7 +335,9 @@ std::int64_t RankSimulation::settle() {
   World& w = sim_->world();
   Walls& walls = w.resources.get<Walls>();
   walls.rotation_enabled = false;
+  stage_ = "settle";
   advance(n);
+  stage_ = "run";
   walls.rotation_enabled = true;
   w.clock.t = 0.0;
   w.clock.step = 0;

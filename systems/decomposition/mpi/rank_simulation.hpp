@@ -36,14 +36,17 @@
 // Periodic faces: the boxes tile the periodic box along its periodic axes, the owned rows are wrapped
 // into it at each rebuild (before they migrate), and the ghost rows include copies across the faces
 // (domain_ghosts.hpp); the list is then rebuilt at skin/2 (no list-cover check), as on one rank.
-// Not supported yet (refused at construction): composite bodies, feeds and outlets (rows appear or
-// leave).
+// Feeds and outlets (rank_flow.hpp): the grains fed and counted out are queued as on one rank, and
+// a rebuild applies the queue before the rows migrate; a queue on any rank makes every rank rebuild
+// (the list-cover check cannot keep a list that rows join or leave).
+// Not supported yet (refused at construction): composite bodies.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "engine/checkpoint_file.hpp"
@@ -143,7 +146,13 @@ class RankSimulation {
     PairHistory history;
     BroadphaseState broadphase;
     RankCounters counters;
+    std::vector<std::int64_t> remove;  // grains the parts' outlets counted out, not yet removed
   };
+  // The ids handed out, the queued row changes and the feeds' and outlets' state, in a part and back
+  // (rank_state.cpp). `own_part`: the part is this rank's own (same rank count), whose queue is this
+  // rank's; otherwise the queue comes with the parts' rows (take_part).
+  void save_flow(CheckpointWriter& out);
+  void restore_flow(const CheckpointReader& in, bool own_part);
   // Appends one part's rows (ghosts included, dropped later) and routes its springs. Local.
   void take_part(const CheckpointReader& in, std::int64_t step, PortableParts& parts);
   // The boxes cut again when the rows' costs are out of balance (set_rebalance). Collective.
@@ -163,6 +172,8 @@ class RankSimulation {
   DomainBox domain_;    // the box the ranks' boxes tile: the starting grains' bounds widened (the periodic box along its axes)
   PeriodicBox periodic_;  // the scene's [periodic] faces
   std::vector<int> near_;  // the ranks whose boxes lie within two reaches of this one (set_boxes)
+  std::size_t max_grains_ = 0;  // rows a rank's memory holds, for the feeds' check
+  std::string_view stage_ = "run";  // "settle" while settling: no feeding nor counting out
   double rebalance_ = 0.0;
   double reach_ = 0.0;  // m, how far from a box a ghost row may lie
   bool listed_ = false;

@@ -14,6 +14,7 @@
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/decomposition/mpi/rank_simulation.hpp"
 #include "systems/decomposition/row_bytes.hpp"
+#include "systems/flow/flow_systems.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -220,6 +221,7 @@ void RankSimulation::save(CheckpointWriter& out) {
   out.value("rank.listed", listed_);
   out.value("rank.primed", primed_);
   out.value("rank.counters", counters_);
+  save_flow(out);
 }
 
 void RankSimulation::restore(const CheckpointReader& in) {
@@ -253,6 +255,32 @@ void RankSimulation::restore(const CheckpointReader& in) {
   listed_ = in.value<bool>("rank.listed");
   primed_ = in.value<bool>("rank.primed");
   counters_ = in.value<RankCounters>("rank.counters");
+  restore_flow(in, true);
+}
+
+void RankSimulation::save_flow(CheckpointWriter& out) {
+  World& w = sim_->world();
+  const Grains& g = w.grains;
+  out.value("rank.grains.next_id", g.next_id);
+  out.vector("rank.grains.pending.insert", g.pending.insert);
+  out.vector("rank.grains.pending.remove", g.pending.remove);
+  if (const FlowState* f = w.resources.find<FlowState>()) save_flow_state(out, *f);
+}
+
+void RankSimulation::restore_flow(const CheckpointReader& in, bool own_part) {
+  World& w = sim_->world();
+  Grains& g = w.grains;
+  const DemScene& s = sim_->scene();
+  // Parts written before grains could be fed on ranks keep the ids the scene's fill gave.
+  if (in.has("rank.grains.next_id")) g.next_id = in.value<std::int64_t>("rank.grains.next_id");
+  g.pending = {};
+  if (own_part && in.has("rank.grains.pending.insert")) {
+    in.vector("rank.grains.pending.insert", g.pending.insert);
+    in.vector("rank.grains.pending.remove", g.pending.remove);
+  }
+  if (s.flow.any()) restore_flow_state(in, w.resources.get<FlowState>(), s.flow);
+  else if (in.has("flow.feeds"))
+    in.fail("it was written by a run with [[feed]] or [[outlet]] tables, the scene now has none", kSameRun);
 }
 
 void RankSimulation::take_part(const CheckpointReader& in, std::int64_t step, PortableParts& parts) {
@@ -282,6 +310,11 @@ void RankSimulation::take_part(const CheckpointReader& in, std::int64_t step, Po
     pack_spring(parts.springs[static_cast<std::size_t>(to)], g.pid.id[i], g.pid.id[j], parts.history, e);
   }
   for (std::size_t i = 0; i < n_owned; ++i) parts.keep.push_back(static_cast<std::uint32_t>(base + i));
+  if (in.has("rank.grains.pending.remove")) {  // grains counted out by an outlet, leaving at the next rebuild
+    std::vector<std::int64_t> gone;
+    in.vector("rank.grains.pending.remove", gone);
+    parts.remove.insert(parts.remove.end(), gone.begin(), gone.end());
+  }
   const auto c = in.value<RankCounters>("rank.counters");
   parts.counters.migrated += c.migrated;
   parts.counters.particle_steps += c.particle_steps;
@@ -295,7 +328,7 @@ void RankSimulation::restore_portable(const CheckpointReader& first, std::span<c
   on_every_rank(*mpi_, [&] { check_domain(first, domain_); });
   const auto step = first.value<std::int64_t>("rank.clock.step");
   PortableParts parts{std::vector<std::vector<std::byte>>(static_cast<std::size_t>(mpi_->size())), {}, {},
-                      w.resources.get<PairHistory>(), bp, {}};
+                      w.resources.get<PairHistory>(), bp, {}, {}};
   g.resize(0);
   // Local reading first, its failure shared (no rank may be left waiting in the collectives after).
   on_every_rank(*mpi_, [&] {
@@ -303,8 +336,9 @@ void RankSimulation::restore_portable(const CheckpointReader& first, std::span<c
   });
   keep_and_append(g, parts.keep, {});  // the parts' ghost rows dropped
   const std::int64_t held = mpi_->sum(static_cast<std::int64_t>(g.n_owned));
+  // With feeds and outlets the count is the run's, not the scene's.
   on_every_rank(*mpi_, [&] {
-    if (held != grains)
+    if (held != grains && !sim_->scene().flow.any())
       first.fail("its parts hold " + std::to_string(held) + " grains, this scene places " + std::to_string(grains),
                  kSameRun);
   });
@@ -314,6 +348,12 @@ void RankSimulation::restore_portable(const CheckpointReader& first, std::span<c
   bp.cover.kept = first.value<std::int64_t>("rank.broadphase.kept");
   counters_ = parts.counters;
   counters_.rebuilds = first.value<RankCounters>("rank.counters").rebuilds;
+  // The flow's state is the same in every part (its exits are part 0's, written by rank 0).
+  on_every_rank(*mpi_, [&] { restore_flow(first, false); });
+  g.pending.remove = std::move(parts.remove);
+  if (mpi_->rank() != 0) {
+    if (FlowState* f = w.resources.find<FlowState>()) f->exits.clear();
+  }
   relist(parts.springs);  // rows to their owners, ghosts, the list, the springs attached
   primed_ = true;
 }

@@ -25,20 +25,36 @@ SeriesSettings series_settings(const DemScene& s, const std::filesystem::path& o
 }  // namespace
 
 RankOutputs::RankOutputs(const DemScene& s, std::filesystem::path out, const MpiContext& mpi,
-                         std::optional<std::size_t> series_rows)
-    : scene_(&s), out_(made_folder(out, mpi)), mpi_(&mpi), series_(series_settings(s, out_, series_rows), mpi) {
+                         std::optional<RankOutputRows> rows)
+    : scene_(&s),
+      out_(made_folder(out, mpi)),
+      mpi_(&mpi),
+      series_(series_settings(s, out_, rows ? std::optional<std::size_t>(rows->series) : std::nullopt), mpi) {
   if (s.output.frame_interval > 0) frames_.emplace(out_, s.output.frame_interval, s.output.fields, mpi);
   if (scene_draws_pictures(s)) pictures_.emplace(scene_picture_settings(s, out_));
+  on_every_rank(mpi, [&] {
+    if (mpi.rank() != 0) return;
+    if (!s.flow.outlets.empty())
+      residence_.emplace(out_ / "residence.csv", rows ? std::optional<std::size_t>(rows->residence) : std::nullopt);
+    if (s.layers)
+      layers_.emplace(out_ / "layers.csv", *s.layers, rows ? std::optional<std::size_t>(rows->layers) : std::nullopt);
+  });
 }
 
-std::size_t RankOutputs::series_rows(const CheckpointReader& part) {
-  return part.value<std::uint64_t>("rank_series.rows");
+RankOutputRows RankOutputs::written_rows(const CheckpointReader& part) {
+  RankOutputRows r;
+  r.series = part.value<std::uint64_t>("rank_series.rows");
+  if (part.has("residence_output.rows")) r.residence = part.value<std::uint64_t>("residence_output.rows");
+  if (part.has("layer_output.rows")) r.layers = part.value<std::uint64_t>("layer_output.rows");
+  return r;
 }
 
 void RankOutputs::save(CheckpointWriter& out) const {
   series_.save(out);
   if (frames_) frames_->save(out);
   if (pictures_) pictures_->save(out);
+  if (residence_) residence_->save(out);
+  if (layers_) layers_->save(out);
 }
 
 void RankOutputs::restore(const CheckpointReader& part) {
@@ -56,15 +72,33 @@ void RankOutputs::restore(const CheckpointReader& part) {
                 "resume without output.picture_angles and output.picture_interval, as that run had");
     pictures_->restore(part);
   });
+  on_every_rank(*mpi_, [&] {
+    if (residence_) residence_->restore(part);
+    if (!layers_) return;
+    if (!part.has("layer_output.next"))
+      part.fail("the run that wrote it had no [analysis.layers]", "resume with the scene of the run that wrote it");
+    layers_->restore(part);
+  });
   if (frames_) frames_->rewrite_index();
 }
 
 void RankOutputs::observe(World& w) {
   series_.observe(w);
   if (frames_) frames_->observe(w.grains, w.clock.t, w.clock.dt);
+  const StepContext now = next_step(w.clock);
+  if (!scene_->flow.outlets.empty())  // rank 0 holds every rank's records
+    on_every_rank(*mpi_, [&] {
+      if (residence_) residence_->run(w, now);
+    });
+  // Rank 0 says when a layer sample is due; every rank's grains then go there.
+  if (scene_->layers && mpi_->max(layers_ && layers_->due(w.clock.t, w.clock.dt) ? 1.0 : 0.0) > 0.0) {
+    const Grains all = gather_shapes(w.grains, *mpi_);
+    on_every_rank(*mpi_, [&] {
+      if (layers_) layers_->sample(all, w.clock.t, w.clock.dt);
+    });
+  }
   if (!pictures_) return;
   const Walls& walls = w.resources.get<Walls>();
-  const StepContext now = next_step(w.clock);
   const auto angle = pictures_->due(walls, now);
   if (!angle) return;
   const Grains all = gather_shapes(w.grains, *mpi_);

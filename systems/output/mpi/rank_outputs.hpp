@@ -1,8 +1,11 @@
 // What a run on several ranks writes into its folder besides summary.json, as `grainflow run` does
 // on one: series.csv (rank_series.hpp), the VTK frames in pieces with their .pvtp and frames.pvd
 // (rank_frames.hpp), the drum pictures (PictureOutput, drawn by rank 0 from the gathered grains at
-// the angles every rank finds due alike) and final_state.csv (rank_final_state.hpp). Every call is collective; a file
-// that cannot be written stops every rank with a RankFailure (rank_failure.hpp) naming it.
+// the angles every rank finds due alike), residence.csv (ResidenceOutput on rank 0, which receives
+// every rank's records: rank_flow.hpp), layers.csv (LayerOutput on rank 0, sampling the grains
+// gathered there when it finds a sample due) and final_state.csv (rank_final_state.hpp). Every call
+// is collective; a file that cannot be written stops every rank with a RankFailure (rank_failure.hpp)
+// naming it.
 #pragma once
 
 #include <filesystem>
@@ -11,20 +14,27 @@
 #include "engine/mpi/mpi_context.hpp"
 #include "engine/world.hpp"
 #include "systems/output/dem_observers.hpp"
+#include "systems/output/layer_output.hpp"
+#include "systems/output/residence_csv.hpp"
 #include "systems/output/mpi/rank_frames.hpp"
 #include "systems/output/mpi/rank_series.hpp"
 #include "systems/setup/dem_scene.hpp"
 
 namespace gf {
 
+// The rows of each csv a resumed run keeps.
+struct RankOutputRows {
+  std::size_t series = 0, residence = 0, layers = 0;
+};
+
 class RankOutputs {
  public:
   // Creates `out` and, for the scene's intervals, series.csv and the frames folder. A resumed run
   // gives the rows its checkpoint's series.csv had (series_rows(part)): later ones are dropped.
   RankOutputs(const DemScene& s, std::filesystem::path out, const MpiContext& mpi,
-              std::optional<std::size_t> series_rows = std::nullopt);
-  // The series rows written up to the checkpoint this part belongs to.
-  static std::size_t series_rows(const CheckpointReader& part);
+              std::optional<RankOutputRows> rows = std::nullopt);
+  // The rows written up to the checkpoint this part belongs to (residence and layers: part 0's).
+  static RankOutputRows written_rows(const CheckpointReader& part);
   // At the start of the main stage and after each of its steps: the rows and frames that are due.
   void observe(World& w);
   // The last state as a row and a frame (unless the latest shows it) and final_state.csv; returns
@@ -49,6 +59,8 @@ class RankOutputs {
   RankSeries series_;
   std::optional<RankFrames> frames_;
   std::optional<PictureOutput> pictures_;
+  std::optional<ResidenceOutput> residence_;  // rank 0
+  std::optional<LayerOutput> layers_;         // rank 0
 };
 
 }  // namespace gf

@@ -7,6 +7,7 @@
 #include "systems/output/sample_grid.hpp"
 #include "engine/mpi/rank_failure.hpp"
 #include "systems/analysis/drum_section.hpp"
+#include "systems/flow/flow_systems.hpp"
 #include "systems/output/mpi/gathered_grains.hpp"
 
 namespace gf {
@@ -26,13 +27,15 @@ std::vector<double> series_values(const SeriesRow& row, const SeriesSettings& s)
   if (s.pattern)
     v.insert(v.end(), {static_cast<double>(row.pattern), static_cast<double>(row.petals), row.pattern_contrast,
                        row.surface_angle, row.radial_segregation, row.depth_segregation});
+  if (s.flow)
+    v.insert(v.end(), {static_cast<double>(row.grains), row.holdup_mass, row.fed_mass, row.discharged_mass,
+                       row.feed_backlog});
   return v;
 }
 
 }  // namespace
 
 RankSeries::RankSeries(SeriesSettings s, const MpiContext& mpi) : s_(std::move(s)), mpi_(&mpi) {
-  if (s_.flow) throw std::invalid_argument("the hold-up columns of feeds and outlets are not written across ranks");
   if (s_.mixing_cell > 0 && s_.segregation_type < 0)
     throw std::logic_error("series: Lacey's index requested without a species to measure (segregation_type)");
   columns_ = series_columns(s_);
@@ -88,6 +91,17 @@ void RankSeries::sample(World& w, double t) {
   row.pair_contacts = mpi.sum(cs.pair_contacts);
   row.wall_contacts = mpi.sum(cs.wall_contacts);
   row.max_overlap_ratio = mpi.max(cs.max_overlap_ratio);
+  if (s_.flow) {  // the feeds' and outlets' state is the same on every rank; the rows are summed
+    const FlowState& f = w.resources.get<FlowState>();
+    double kg = 0.0;
+    for (std::size_t i = 0; i < g.n_owned; ++i) kg += g.mass.m[i];
+    row.has_flow = true;
+    row.grains = mpi.sum(static_cast<std::int64_t>(g.n_owned));
+    row.holdup_mass = mpi.sum(kg);
+    row.fed_mass = f.fed_mass();
+    row.discharged_mass = f.discharged_mass();
+    row.feed_backlog = f.backlog();
+  }
   row.has_mixing = s_.mixing_cell > 0;
   row.has_pattern = s_.pattern;
   row.valid = true;

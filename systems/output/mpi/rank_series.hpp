@@ -6,7 +6,9 @@
 // counts once), the largest overlap ratio is the largest of the ranks'. The measures that need every
 // grain at once (segregation and Lacey's indices, the drum's pattern, surface angle and radial and
 // depth segregation) are computed on rank 0 from the grains gathered there, in id order, and only
-// for the rows written; only position, radius, species and id travel. The sums are taken in
+// for the rows written; only position, radius, species and id travel. With feeds and outlets the
+// grains and hold-up mass are sums over the ranks, the fed, discharged and owed masses the flow's
+// state, which every rank holds alike (rank_flow.hpp). The sums are taken in
 // another order than on one rank, so the values agree to round-off, not bit for bit.
 #pragma once
 
