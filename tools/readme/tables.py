@@ -147,6 +147,7 @@ TABLES = {
     "mixer_compartments": lambda: script("tools/seed004/compartments.py", "table", "docs/seed004/compartments.json"),
     "seed002_cost": seed002_cost,
     "mpi_cost_model": lambda: script("tools/mpi/cost_model.py", "table"),
+    "mpi_mixer_ranks": lambda: script("tools/mpi/mixer_ranks.py", "table"),
     "seed002_shapes": lambda: script("tools/seed002/shapes_hopper.py", "table", "docs/seed002/shapes/shapes.json"),
     "mesh_drum": lambda: script("tools/walls/mesh_drum_compare.py", "table", "docs/walls/mesh_drum_compare.json"),
     "kiln_map": lambda: script("tools/seed001/map_table.py", "docs/seed001/map.json"),
