@@ -73,4 +73,13 @@ run_ranks(2 --out ${WORK}/split --steps 3000 ${every} --resume ${WORK}/split/che
 same_files(${WORK}/two ${WORK}/split final_state.csv series.csv residence.csv layers.csv)
 run_ranks(1 --out ${WORK}/on1 --steps 3000 ${every} --resume ${WORK}/on1/checkpoints/checkpoint_ranks.gfc)
 python_check(conserved ${WORK}/on1 ${fill})
+
+# A feed far from every starting grain (one grain on the floor, the feed 2.9 m above it): the domain
+# the ranks' boxes tile is cut around the feed's region too, so its grains do not stop the run as
+# grains that left the domain (the domain is widened a thousandfold around the starting grains alone
+# otherwise, here 1 m).
+run_ranks(2 --out ${WORK}/far --set "fill.0.region.hi=[0.001,0.001,0.001]" --set fill.0.count.small=1
+          --set "wall.0.hi=[0.06,3.0,0.01]" --set "feed.0.region.lo=[0.002,2.9,0.0]"
+          --set "feed.0.region.hi=[0.058,2.906,0.01]" --set run.duration=0.005)
+python_check(conserved ${WORK}/far 1)
 message(STATUS "feeds and outlets: one rank as grainflow, two ranks accounted for, resumed byte for byte")

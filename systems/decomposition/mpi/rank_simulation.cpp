@@ -29,17 +29,23 @@ namespace {
 
 std::array<double, 3> position(const Grains& g, std::size_t row) { return {g.pos.x[row], g.pos.y[row], g.pos.z[row]}; }
 
-// The grains' bounding box widened by a thousand times its largest side on every side.
-DomainBox padded_bounds(const Grains& g) {
+// The bounding box of the grains and of the feeds' regions (where grains will appear), widened by a
+// thousand times its largest side on every side.
+DomainBox padded_bounds(const Grains& g, const FlowSpec& flow) {
+  std::vector<std::array<double, 3>> points;
+  for (std::size_t i = 0; i < g.n_owned; ++i) points.push_back(position(g, i));
+  for (const FeedSpec& f : flow.feeds) {
+    points.push_back(f.region.bbox_lo());
+    points.push_back(f.region.bbox_hi());
+  }
   DomainBox b;
   b.lo = {0.0, 0.0, 0.0};
   b.hi = {1.0, 1.0, 1.0};
-  if (g.n_owned > 0) b.lo = b.hi = position(g, 0);
-  for (std::size_t i = 0; i < g.n_owned; ++i)
-    for (int d = 0; d < 3; ++d) {
-      const double x = position(g, i)[static_cast<std::size_t>(d)];
-      b.lo[static_cast<std::size_t>(d)] = std::min(b.lo[static_cast<std::size_t>(d)], x);
-      b.hi[static_cast<std::size_t>(d)] = std::max(b.hi[static_cast<std::size_t>(d)], x);
+  if (!points.empty()) b.lo = b.hi = points[0];
+  for (const auto& p : points)
+    for (std::size_t d = 0; d < 3; ++d) {
+      b.lo[d] = std::min(b.lo[d], p[d]);
+      b.hi[d] = std::max(b.hi[d], p[d]);
     }
   double side = 0.0;
   for (std::size_t d = 0; d < 3; ++d) side = std::max(side, b.hi[d] - b.lo[d]);
@@ -66,6 +72,7 @@ RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mp
   if (scene.bodies) throw std::invalid_argument("a scene of composite bodies does not run on several ranks yet");
   periodic_ = scene.periodic;
   max_grains_ = memory_grain_limit(scene);
+  const FlowSpec scene_flow = scene.flow;
   sim_ = std::make_unique<DemSimulation>(std::move(scene));
   World& w = sim_->world();
   Grains& g = w.grains;
@@ -74,7 +81,7 @@ RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mp
   // Every rank placed the same grains: the same boxes everywhere, then this rank's rows kept. Along
   // a periodic axis the boxes tile the periodic box, the grains wrapped into it.
   wrap_positions(g, periodic_);
-  domain_ = padded_bounds(g);
+  domain_ = padded_bounds(g, scene_flow);
   for (std::size_t d = 0; d < 3; ++d)
     if (periodic_.on[d]) domain_.lo[d] = periodic_.lo[d], domain_.hi[d] = periodic_.hi[d];
   std::unique_ptr<Rcb> rcb = std::make_unique<Rcb>(domain_, g.pos.x.span().first(g.n_owned), g.pos.y.span().first(g.n_owned),

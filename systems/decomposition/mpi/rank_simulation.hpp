@@ -3,9 +3,9 @@
 //
 // Every rank loads the scene and places the same grains; the boxes are cut from those starting
 // positions (rcb.hpp, every grain weighing 1), and each rank keeps the
-// grains in its box. The domain the boxes tile is the grains' bounding box widened by a thousand
-// times its largest side on every side (the same margin on every axis keeps the cuts' order); a
-// grain that leaves it stops the run. The boxes are cut again when the load drifts out of balance
+// grains in its box. The domain the boxes tile is the bounding box of the grains and the feeds'
+// regions widened by a thousand times its largest side on every side (the same margin on every axis
+// keeps the cuts' order); a grain that leaves it stops the run. The boxes are cut again when the load drifts out of balance
 // (set_rebalance).
 //
 // Messages go to the neighbouring boxes only (MpiContext::exchange with peers): the ghost rows to
