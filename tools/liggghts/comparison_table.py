@@ -11,7 +11,7 @@ import re
 import statistics
 import sys
 
-ROW = re.compile(r"^(liggghts|grainflow)\s+(\d+)\s+(\d+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+|nan)\s+([0-9.]+)(?:\s+(-?\d+))?$")
+ROW = re.compile(r"^(liggghts|grainflow_mpi|grainflow)\s+(\d+)\s+(\d+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+|nan)\s+([0-9.]+)(?:\s+(-?\d+))?$")
 
 
 SKIN = re.compile(r"^# state .*, skin ([0-9.eE+-]+) m,")
@@ -41,6 +41,14 @@ def main(path):
           f"{med['grainflow', 1]:.3g} | {med['grainflow', 2]:.3g} | ×{med['grainflow', 2] / med['grainflow', 1]:.2f} |")
     cells = [f"**×{statistics.median(ratio[n]):.2f}** (×{min(ratio[n]):.2f}–{max(ratio[n]):.2f})" for n in (1, 2)]
     print(f"| ratio grainflow / LIGGGHTS per round: median (range) | {cells[0]} | {cells[1]} | |")
+    mpi = [runs["grainflow_mpi", 2, r] for r in rounds if ("grainflow_mpi", 2, r) in runs]
+    if mpi:  # logs of MPI=1 runs: grainflow_mpi on 2 ranks of one thread
+        per = [runs["grainflow_mpi", 2, r] / runs["liggghts", 2, r] for r in rounds
+               if ("grainflow_mpi", 2, r) in runs and ("liggghts", 2, r) in runs]
+        print(f"| grainflow_mpi (the same, domain decomposition; 2 MPI ranks of one thread), median of {len(mpi)} | "
+              f"| {statistics.median(mpi):.3g} | ×{statistics.median(mpi) / med['grainflow', 1]:.2f} against 1 thread |")
+        print(f"| ratio grainflow_mpi / LIGGGHTS per round, 2 ranks each: median (range) | | "
+              f"**×{statistics.median(per):.2f}** (×{min(per):.2f}–{max(per):.2f}) | |")
     if builds:  # neighbour-list rebuilds per run (logs from before the column have none)
         text = "; ".join(f"{'LIGGGHTS' if c == 'liggghts' else c} {'/'.join(map(str, sorted(v)))}"
                          for c, v in sorted(builds.items(), reverse=True))

@@ -20,7 +20,9 @@
 #   grainflow: wall = summary.json wall_seconds (the main stage only), particle_steps_per_second
 # Environment: STATE (settled), STEPS (2000), REPEATS (2), WORK (work folder; default a new /tmp/liggghts_cmp.*),
 #              ROLLING (LIGGGHTS rolling model for make_inputs.py, default epsd),
-#              SKIN (Verlet skin in m given to both codes; default the scene's, 1.5e-4).
+#              SKIN (Verlet skin in m given to both codes; default the scene's, 1.5e-4),
+#              MPI=1 adds to each round, last, grainflow_mpi on 2 ranks of 1 thread each (BUILD_DIR's
+#              grainflow_mpi): the two codes' domain decompositions side by side.
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -105,12 +107,23 @@ run_grainflow() {  # threads round
   echo "grainflow $n $r $out $t0 $EPOCHREALTIME $c0 $(ticks) $(stat -c %Y "$BUILD/grainflow")" >> "$WORK/runs.txt"
 }
 
+run_grainflow_mpi() {  # ranks round (one thread each)
+  local n="$1" r="$2" out="$WORK/grainflow_mpi_np$1_run$2"
+  local t0=$EPOCHREALTIME c0
+  c0=$(ticks)
+  (cd "$REPO" && "${MPIRUN[@]}" -np "$n" "$BUILD/grainflow_mpi" run "$SCENE" --steps "$STEPS" --threads 1 --out "$out" \
+      --set "run.skin=$SKIN" > "$out.log" 2>&1) || {
+    echo "run_comparison: grainflow_mpi ($n ranks) failed, see $out.log" >&2; tail -20 "$out.log" >&2; return 1; }
+  echo "grainflow_mpi $n $r $out $t0 $EPOCHREALTIME $c0 $(ticks) $(stat -c %Y "$BUILD/grainflow_mpi")" >> "$WORK/runs.txt"
+}
+
 : > "$WORK/runs.txt"
 for r in $(seq 1 "$REPEATS"); do
   echo "# round $r: LIGGGHTS 1 rank ..." >&2;    run_liggghts 1 "$r"
   echo "# round $r: grainflow 1 thread ..." >&2; run_grainflow 1 "$r"
   echo "# round $r: LIGGGHTS 2 ranks ..." >&2;   run_liggghts 2 "$r"
   echo "# round $r: grainflow 2 threads ..." >&2; run_grainflow 2 "$r"
+  if [ "${MPI:-0}" = 1 ]; then echo "# round $r: grainflow_mpi 2 ranks ..." >&2; run_grainflow_mpi 2 "$r"; fi
 done
 echo "# done, load: $(cut -d' ' -f1-3 /proc/loadavg)"
 
@@ -149,9 +162,9 @@ for rec in runs:
         if s.get("status") != "completed":
             print(f"WARNING: {path}: status {s.get('status')}")
         wall, steps, psps = s["wall_seconds"], s["steps_this_run"], s["particle_steps_per_second"]
-        builds = s.get("neighbor_rebuilds", -1)
+        builds = s.get("neighbor_rebuilds", s.get("neighbour_rebuilds", -1))
         ke = s["final"]["ke_translational"]
-        mtimes.add(rec[10])
+        mtimes.add((code, rec[10]))
     rows.append((code, int(n), int(rnd), wall, psps, proc_s, ke, others, builds))
 
 print("\nruns (in the order run)")
@@ -164,13 +177,13 @@ if max(r[7] for r in rows) > 0.2:
     print("WARNING: other processes used the cores during some runs (other load > 0.2): timings are disturbed")
 
 med = {}
-for code in ("liggghts", "grainflow"):
+for code in ("liggghts", "grainflow", "grainflow_mpi"):
     for n in (1, 2):
         sel = [r for r in rows if r[0] == code and r[1] == n]
         if sel:
             med[code, n] = (statistics.median(r[3] for r in sel), statistics.median(r[4] for r in sel), len(sel))
 
-print("\nmedians (N = MPI ranks for LIGGGHTS, TBB threads for grainflow)")
+print("\nmedians (N = MPI ranks for LIGGGHTS and grainflow_mpi, TBB threads for grainflow)")
 print(f"{'code':<10}{'N':>3}{'runs':>6}{'wall s':>10}{'particle-steps/s':>18}")
 for (code, n), (w, p, k) in sorted(med.items()):
     print(f"{code:<10}{n:>3}{k:>6}{w:>10.2f}{p:>18.4g}")
@@ -178,6 +191,8 @@ print()
 for n in (1, 2):
     if ("liggghts", n) in med and ("grainflow", n) in med:
         print(f"grainflow / LIGGGHTS at {n}: {med['grainflow', n][1] / med['liggghts', n][1]:.2f}x particle-steps/s")
+if ("grainflow_mpi", 2) in med and ("liggghts", 2) in med:
+    print(f"grainflow_mpi / LIGGGHTS at 2 ranks: {med['grainflow_mpi', 2][1] / med['liggghts', 2][1]:.2f}x particle-steps/s")
 for code in ("liggghts", "grainflow"):
     if (code, 1) in med and (code, 2) in med:
         print(f"{code} speed-up 1 -> 2: {med[code, 2][1] / med[code, 1][1]:.2f}x")
@@ -188,6 +203,6 @@ keys = ["Pair", "Neigh", "Comm", "Outpt", "Other"]
 print(f"{'round':<7}" + "".join(f"{k:>8}" for k in keys))
 for rnd, parts in breakdown:
     print(f"{rnd:<7}" + "".join(f"{float(parts.get(k, 'nan')):>8.1f}" for k in keys))
-if len(mtimes) > 1:
+if len({c for c, _ in mtimes}) < len(mtimes):
     print("\nWARNING: the grainflow binary changed between runs (rebuilt meanwhile); compare with care")
 EOF

@@ -140,6 +140,8 @@ TABLES = {
     "liggghts_flowing": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison_flowing.log"),
     "liggghts_flowing_skin": lambda: script("tools/liggghts/comparison_table.py",
                                             "docs/liggghts/comparison_flowing_skin0.3mm.log"),
+    "liggghts_flowing_mpi": lambda: script("tools/liggghts/comparison_table.py",
+                                           "docs/liggghts/comparison_flowing_mpi.log"),
     "liggghts_flowing_grainflow": lambda: script("tools/liggghts/comparison_table.py",
                                                  "docs/liggghts/comparison_flowing_grainflow.log"),
     "pulsation": pulsation_table,
