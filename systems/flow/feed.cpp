@@ -20,10 +20,20 @@ std::uint64_t mix(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-// The owned grains whose spheres reach into the region's bounding box grown by `margin`: the only
-// ones a new grain there could overlap.
+// Every grain a new one could overlap: the owned grains near the region, the grains queued in
+// earlier events, and those near it elsewhere (another rank's).
 std::vector<PlacedGrain> grains_near(const Grains& g, const Region& region, double margin,
                                      std::span<const PlacedGrain> elsewhere) {
+  std::vector<PlacedGrain> near = owned_grains_near(g, region, margin);
+  // Grains queued in earlier events but not yet in the table occupy their spots too.
+  for (const GrainRow& r : g.pending.insert) near.push_back({{r.x[0], r.x[1], r.x[2]}, r.type, r.radius});
+  near.insert(near.end(), elsewhere.begin(), elsewhere.end());
+  return near;
+}
+
+}  // namespace
+
+std::vector<PlacedGrain> owned_grains_near(const Grains& g, const Region& region, double margin) {
   const auto lo = region.bbox_lo(), hi = region.bbox_hi();
   std::vector<PlacedGrain> near;
   for (std::size_t i = 0; i < g.n_owned; ++i) {
@@ -33,13 +43,8 @@ std::vector<PlacedGrain> grains_near(const Grains& g, const Region& region, doub
     for (int d = 0; d < 3 && in; ++d) in = p[d] > lo[d] - reach && p[d] < hi[d] + reach;
     if (in) near.push_back({p, g.species.type[i], g.radius.r[i]});
   }
-  // Grains queued in earlier events but not yet in the table occupy their spots too.
-  for (const GrainRow& r : g.pending.insert) near.push_back({{r.x[0], r.x[1], r.x[2]}, r.type, r.radius});
-  near.insert(near.end(), elsewhere.begin(), elsewhere.end());
   return near;
 }
-
-}  // namespace
 
 std::optional<double> ResidenceLog::entry(std::int64_t id, bool leaving) {
   auto it = std::upper_bound(batches.begin(), batches.end(), id,

@@ -79,6 +79,10 @@ struct FeedState {
 // a spec (no species, fractions not summing to 1, non-positive rate, interval, radius or mass).
 FeedState start_feed(const FeedSpec& spec);
 
+// The owned grains whose spheres reach into the region's bounding box grown by `margin`: the only
+// ones of the table a grain placed in the region could overlap.
+std::vector<PlacedGrain> owned_grains_near(const Grains& g, const Region& region, double margin);
+
 // Holds every event due at time t (there may be several when the interval is shorter than a step):
 // places and queues the grains the debt pays for, and logs their batches. Returns the grains queued.
 // `elsewhere`: grains near the region that are not g's owned rows (another rank's), which the new

@@ -38,28 +38,6 @@ std::vector<std::vector<T>> share(const std::vector<T>& mine, const MpiContext& 
   return in;
 }
 
-// A grain near a feed region as it travels: centre, radius, species.
-struct NearRecord {
-  double x[3];
-  double radius;
-  std::int32_t type;
-};
-
-// The owned grains whose spheres reach within `margin` of the region's bounding box (the test
-// feed_events makes of the owned rows).
-std::vector<NearRecord> owned_near(const Grains& g, const Region& region, double margin) {
-  const auto lo = region.bbox_lo(), hi = region.bbox_hi();
-  std::vector<NearRecord> near;
-  for (std::size_t i = 0; i < g.n_owned; ++i) {
-    const std::array<double, 3> p{g.pos.x[i], g.pos.y[i], g.pos.z[i]};
-    const double reach = g.radius.r[i] + margin;
-    bool in = true;
-    for (std::size_t d = 0; d < 3 && in; ++d) in = p[d] > lo[d] - reach && p[d] < hi[d] + reach;
-    if (in) near.push_back({{p[0], p[1], p[2]}, g.radius.r[i], g.species.type[i]});
-  }
-  return near;
-}
-
 bool feed_due(const FeedSpec& spec, const FeedState& s, double t) { return s.next <= t && s.next < spec.stop; }
 
 }  // namespace
@@ -72,12 +50,11 @@ void rank_feed_events(Grains& g, const FlowSpec& spec, FlowState& s, const Rcb& 
     if (!feed_due(f, s.feeds[k], t)) continue;  // alike on every rank
     double largest = 0.0;
     for (const FeedSpecies& sp : f.species) largest = std::max(largest, sp.radius);
-    const std::vector<std::vector<NearRecord>> all = share(owned_near(g, f.region, largest), mpi);
+    const std::vector<std::vector<PlacedGrain>> all = share(owned_grains_near(g, f.region, largest), mpi);
     std::vector<PlacedGrain> elsewhere;
-    for (std::size_t r = 0; r < all.size(); ++r) {
-      if (static_cast<int>(r) == mpi.rank()) continue;  // feed_events takes this rank's own rows
-      for (const NearRecord& n : all[r]) elsewhere.push_back({{n.x[0], n.x[1], n.x[2]}, n.type, n.radius});
-    }
+    for (std::size_t r = 0; r < all.size(); ++r)
+      if (static_cast<int>(r) != mpi.rank())  // feed_events takes this rank's own rows
+        elsewhere.insert(elsewhere.end(), all[r].begin(), all[r].end());
     feed_events(g, f, s.feeds[k], s.residence, t, elsewhere);
   }
   // Every rank queued the same grains: each keeps those in its box.
