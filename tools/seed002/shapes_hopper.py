@@ -73,6 +73,7 @@ def measure(folder):
             "left_at_end": f[-1], "repose": summary.get("repose", {}),
             "repose_mean_deg": sum(angles) / len(angles) if angles else None,
             "repose_range_deg": [min(angles), max(angles)] if angles else None,
+            "repose_flanks": len(angles),  # of 4: a flank without a slope to fit (a flat bed) has none
             "wall_seconds": sum((p["wall_seconds"] or 0) + p.get("settle_wall_seconds", 0.0) for p in r.pieces(folder))}
 
 
@@ -117,7 +118,8 @@ def fmt(v, spec):
 def table(path):
     doc = json.loads(Path(path).read_text())
     lines = ["| shape | grains | t(0.9) (s) | t(0.5) (s) | rate 0.9→0.5 (grains/s) | rate (t/s) | left at 12 s | "
-             "angle of repose (°, mean of 4 flanks) | range (°) | wall time (h, one thread) |",
+             "angle of repose (°, mean of the flanks with a slope) | range (°; flanks with a slope, of 4) | "
+             "wall time (h, one thread) |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for shape in doc["of"]:
         r = doc["shapes"].get(shape)
@@ -130,7 +132,8 @@ def table(path):
                      f"{fmt(r['rate_grains_per_s'], '.0f')} | "
                      f"{fmt(None if r['rate_kg_per_s'] is None else r['rate_kg_per_s'] / 1000, '.0f')} | "
                      f"{r['left_at_end']:.3f} | {fmt(r['repose_mean_deg'], '.1f')} | "
-                     f"{'—' if rng is None else f'{rng[0]:.1f}–{rng[1]:.1f}'} | {r['wall_seconds'] / 3600:.2f} |")
+                     f"{'—' if rng is None else f'{rng[0]:.1f}–{rng[1]:.1f}'} ({r.get('repose_flanks', '?')} of 4) | "
+                     f"{r['wall_seconds'] / 3600:.2f} |")
     print("\n".join(lines))
 
 
