@@ -5,8 +5,8 @@
 // positions (rcb.hpp, every grain weighing 1), and each rank keeps the
 // grains in its box. The domain the boxes tile is the bounding box of the grains and the feeds'
 // regions widened by a thousand times its largest side on every side (the same margin on every axis
-// keeps the cuts' order); a grain that leaves it stops the run. The boxes are cut again when the load drifts out of balance
-// (set_rebalance).
+// keeps the cuts' order); a grain that leaves it stops the run. The boxes are cut again when the
+// load drifts out of balance (set_rebalance).
 //
 // Messages go to the neighbouring boxes only (MpiContext::exchange with peers): the ghost rows to
 // the boxes within reach, and at a rebuild the migrating rows and the springs to the boxes within
@@ -169,7 +169,7 @@ class RankSimulation {
   std::unique_ptr<Rcb> rcb_;
   std::unique_ptr<Schedule> drift_, contacts_, kick_;
   DomainGhosts ghosts_;
-  DomainBox domain_;    // the box the ranks' boxes tile: the starting grains' bounds widened (the periodic box along its axes)
+  DomainBox domain_;    // the box the ranks' boxes tile: the starting grains' and feeds' bounds widened (the periodic box along its axes)
   PeriodicBox periodic_;  // the scene's [periodic] faces
   std::vector<int> near_;  // the ranks whose boxes lie within two reaches of this one (set_boxes)
   std::size_t max_grains_ = 0;  // rows a rank's memory holds, for the feeds' check
