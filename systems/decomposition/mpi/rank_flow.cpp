@@ -80,7 +80,7 @@ void rank_outlet_pass(Grains& g, const FlowSpec& spec, FlowState& s, const MpiCo
         o.discharged_mass += e.mass;
         ++o.discharged;
         if (static_cast<int>(r) != mpi.rank()) s.residence.entry(e.id, true);
-        if (mpi.rank() == 0) s.exits.push_back(e);
+        s.exits.push_back(e);
       }
   }
 }

@@ -11,8 +11,9 @@
 // They join the table at the rebuild the queue forces in the same step, every rank rebuilding.
 //
 // Outlet: each rank counts out its own grains in the region (outlet_pass), every rank receives every
-// rank's records in rank order, and each applies them to its residence log and outlet state alike.
-// Rank 0 keeps the records for residence.csv.
+// rank's records in rank order, and each applies them to its residence log and outlet state alike,
+// and keeps them in FlowState::exits (so every rank knows when there are records to write; rank 0
+// writes residence.csv, the others drop them).
 #pragma once
 
 #include <cstddef>
@@ -31,7 +32,7 @@ void rank_feed_events(Grains& g, const FlowSpec& spec, FlowState& s, const Rcb& 
                       double t, std::size_t max_grains);
 
 // The outlet checks due at time t (collective when one is due): grains in an outlet queued for
-// removal on their rank, the records shared. Rank 0 appends them to s.exits, the others drop them.
+// removal on their rank, the records shared and appended to s.exits on every rank alike.
 void rank_outlet_pass(Grains& g, const FlowSpec& spec, FlowState& s, const MpiContext& mpi, double t);
 
 }  // namespace gf

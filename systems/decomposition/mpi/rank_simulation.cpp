@@ -219,14 +219,14 @@ void RankSimulation::relist(const std::vector<std::vector<std::byte>>& out) {
   PairHistory& history = w.resources.get<PairHistory>();
   const MpiContext& mpi = *mpi_;
   const std::size_t width = history.width;
-  // The rows' new owners; whether any row or spring must go past the near boxes (then, on every
-  // rank alike, this rebuild exchanges among all ranks).
   // Grains fed or counted out since the last rebuild join or leave first (their springs, sent by
   // pair key, find no pair and are dropped), then every row goes to its owner.
   if (!g.pending.empty()) {
     g.set_ghosts(0);
     g.apply_pending();
   }
+  // The rows' new owners; whether any row or spring must go past the near boxes (then, on every
+  // rank alike, this rebuild exchanges among all ranks).
   const std::vector<int> owners = row_owners(g, *rcb_);
   std::vector<char> near(static_cast<std::size_t>(mpi.size()), 0);
   near[static_cast<std::size_t>(mpi.rank())] = 1;

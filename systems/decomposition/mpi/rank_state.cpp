@@ -348,12 +348,9 @@ void RankSimulation::restore_portable(const CheckpointReader& first, std::span<c
   bp.cover.kept = first.value<std::int64_t>("rank.broadphase.kept");
   counters_ = parts.counters;
   counters_.rebuilds = first.value<RankCounters>("rank.counters").rebuilds;
-  // The flow's state is the same in every part (its exits are part 0's, written by rank 0).
+  // The flow's state is the same in every part.
   on_every_rank(*mpi_, [&] { restore_flow(first, false); });
   g.pending.remove = std::move(parts.remove);
-  if (mpi_->rank() != 0) {
-    if (FlowState* f = w.resources.find<FlowState>()) f->exits.clear();
-  }
   relist(parts.springs);  // rows to their owners, ghosts, the list, the springs attached
   primed_ = true;
 }

@@ -86,9 +86,12 @@ void RankOutputs::observe(World& w) {
   series_.observe(w);
   if (frames_) frames_->observe(w.grains, w.clock.t, w.clock.dt);
   const StepContext now = next_step(w.clock);
-  if (!scene_->flow.outlets.empty())  // rank 0 holds every rank's records
+  // Every rank holds every rank's records (rank_flow.hpp): rank 0 writes them, the others drop them.
+  FlowState* flow = w.resources.find<FlowState>();
+  if (flow && !flow->exits.empty())
     on_every_rank(*mpi_, [&] {
       if (residence_) residence_->run(w, now);
+      else flow->exits.clear();
     });
   // Rank 0 says when a layer sample is due; every rank's grains then go there.
   if (scene_->layers && mpi_->max(layers_ && layers_->due(w.clock.t, w.clock.dt) ? 1.0 : 0.0) > 0.0) {
