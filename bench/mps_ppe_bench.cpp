@@ -1,8 +1,9 @@
 // Pressure Poisson equation of the MPS liquid (systems/mps/ppe.hpp): assembly and solve, separately, for the two
 // solvers, on running 2D and 3D tanks (bench/mps_tank.hpp) of about 1e4 and 1e5 fluid nodes.
-//   BM_Prepare          source, active set and diagonal: all the matrix-free solver needs ("its assembly")
+//   BM_Prepare          source, active set and diagonal
 //   BM_AssembleEigen    prepare + Eigen sparse matrix (row-major, compressed)
-//   BM_SolveMatrixFree  Jacobi CG applying A from the neighbour list (TBB, deterministic reductions)
+//   BM_CompactParallel  prepare + the compact copy of the couplings the parallel CG solves on
+//   BM_SolveParallel    Jacobi CG over the compact couplings (TBB, deterministic reductions)
 //   BM_SolveEigen       Eigen ConjugateGradient, Jacobi (pc = 0) or incomplete-Cholesky (pc = 1) preconditioner
 // Every solve starts from p = 0 to tolerance 1e-8; counters: unknowns, iterations.
 //
@@ -62,15 +63,28 @@ void BM_AssembleEigen(benchmark::State& state) {
   state.counters["nonzeros"] = static_cast<double>(c.ws.eigen.A.nonZeros());
 }
 
-void BM_SolveMatrixFree(benchmark::State& state) {
+void BM_CompactParallel(benchmark::State& state) {
   Case c;
   prepare_case(c, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   const auto& nb = c.sim->world().resources.get<gf::NeighborPairs>();
+  for (auto _ : state) {
+    gf::ppe_prepare(c.sim->nodes(), nb, c.sim->params(), c.sim->scene().dt, c.ws.problem);
+    gf::ppe_compact(nb, c.ws.problem, c.ws.compact);
+  }
+  label(state, c);
+  state.counters["nonzeros"] = static_cast<double>(c.ws.compact.col.size() + c.ws.compact.node_of.size());
+}
+
+void BM_SolveParallel(benchmark::State& state) {
+  Case c;
+  prepare_case(c, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const auto& nb = c.sim->world().resources.get<gf::NeighborPairs>();
+  gf::ppe_compact(nb, c.ws.problem, c.ws.compact);
   gf::ColumnD p(c.sim->nodes().size());
   gf::PpeResult r;
   for (auto _ : state) {
     for (std::size_t i = 0; i < p.size(); ++i) p[i] = 0;
-    r = gf::ppe_solve_matrix_free(nb, c.ws.problem, c.sim->params().solver, p);
+    r = gf::ppe_solve_parallel(c.ws.compact, c.ws.problem, c.sim->params().solver, p);
   }
   if (!r.converged) state.SkipWithError("did not converge");
   label(state, c);
@@ -110,7 +124,8 @@ void sizes_pc(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_Prepare)->Apply(sizes);
 BENCHMARK(BM_AssembleEigen)->Apply(sizes);
-BENCHMARK(BM_SolveMatrixFree)->Apply(sizes);
+BENCHMARK(BM_CompactParallel)->Apply(sizes);
+BENCHMARK(BM_SolveParallel)->Apply(sizes);
 BENCHMARK(BM_SolveEigen)->Apply(sizes_pc);
 
 }  // namespace

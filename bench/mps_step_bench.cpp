@@ -1,6 +1,8 @@
 // End-to-end MPS step throughput on still tanks (bench/mps_tank.hpp): steps/s and fluid particle-steps/s
-// (items_per_second) for 2D and 3D tanks of ~1e4 and ~1e5 fluid nodes, with each PPE solver.
-//   args: dim, side (nodes per edge), solver (0 matrix-free, 1 Eigen CG Jacobi)
+// (items_per_second) for 2D and 3D tanks of ~1e4 and ~1e5 fluid nodes, with each PPE solver; beside them the
+// pressure solve's share of the step (ppe_share: the pressure_solve system's time, divergence, source,
+// assembly and solve, over all systems' time) and the CG iterations per step (ppe_iterations).
+//   args: dim, side (nodes per edge), solver (0 parallel CG, 1 Eigen CG Jacobi)
 //
 // Run:  ./build/bench/mps_step_bench --benchmark_min_time=2
 #include <benchmark/benchmark.h>
@@ -11,13 +13,23 @@ namespace {
 
 void BM_MpsStep(benchmark::State& state) {
   const int dim = static_cast<int>(state.range(0)), side = static_cast<int>(state.range(1));
-  auto sim = gf::bench::liquid_tank(dim, side, state.range(2) ? "eigen_cg" : "matrix_free", 2);
+  auto sim = gf::bench::liquid_tank(dim, side, state.range(2) ? "eigen_cg" : "parallel_cg", 2);
+  sim->step().reset_timings();
+  const double iterations_before = sim->diagnostics().ppe_iterations_total;
   for (auto _ : state) sim->step_once();
   const auto fluid = static_cast<std::int64_t>(sim->nodes().count(gf::kFluid));
+  double all = 0, ppe = 0;
+  for (const gf::SystemTiming& t : sim->step().timings()) {
+    all += t.seconds;
+    if (t.name == "pressure_solve") ppe += t.seconds;
+  }
+  const auto steps = static_cast<double>(state.iterations());
   state.SetItemsProcessed(state.iterations() * fluid);
   state.counters["fluid"] = static_cast<double>(fluid);
   state.counters["nodes"] = static_cast<double>(sim->nodes().size());
-  state.counters["steps_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["steps_per_s"] = benchmark::Counter(steps, benchmark::Counter::kIsRate);
+  state.counters["ppe_share"] = all > 0 ? ppe / all : 0.0;
+  state.counters["ppe_iterations"] = (sim->diagnostics().ppe_iterations_total - iterations_before) / steps;
   state.SetLabel("items=fluid particle-steps");
 }
 

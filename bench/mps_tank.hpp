@@ -11,7 +11,7 @@
 
 namespace gf::bench {
 
-inline std::unique_ptr<LiquidSimulation> liquid_tank(int dim, int side, const std::string& solver = "matrix_free",
+inline std::unique_ptr<LiquidSimulation> liquid_tank(int dim, int side, const std::string& solver = "parallel_cg",
                                                      int warm_steps = 5) {
   const double l0 = 0.005, L = side * l0;
   char text[1600];

@@ -1,5 +1,5 @@
 // Repeatability of the liquid step (DESIGN: the same run gives the same bits): every system writes only its own
-// rows, and the matrix-free CG reduces over fixed blocks in a fixed order, so 200 dam-break steps agree bit for
+// rows, and the parallel CG reduces over fixed blocks in a fixed order, so 200 dam-break steps agree bit for
 // bit between runs and between 1 and 2 threads, with either PPE solver.
 #include <catch2/catch.hpp>
 
@@ -26,7 +26,7 @@ bool same_bits(const ColumnD& a, const ColumnD& b) {
 }  // namespace
 
 TEST_CASE("200 dam-break steps are bit-for-bit repeatable, across runs and thread counts, with both solvers") {
-  for (const std::string solver : {"eigen_cg", "matrix_free"}) {
+  for (const std::string solver : {"eigen_cg", "parallel_cg"}) {
     CAPTURE(solver);
     const FluidNodes a = run(2, solver), b = run(2, solver), c = run(1, solver);
     CHECK(same_bits(a.x, b.x));

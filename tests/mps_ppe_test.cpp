@@ -127,7 +127,7 @@ TEST_CASE("a compressed region gets positive pressure (number-density and diverg
   }
 }
 
-TEST_CASE("Eigen CG (Jacobi and incomplete Cholesky) and the matrix-free CG solve the same system") {
+TEST_CASE("Eigen CG (Jacobi and incomplete Cholesky) and the parallel CG solve the same system") {
   auto sim = LiquidSimulation::from_text(tank("[0.0, -9.81, 0.0]"));
   FluidNodes& f = sim.nodes();
   std::mt19937_64 rng(3);
@@ -145,7 +145,7 @@ TEST_CASE("Eigen CG (Jacobi and incomplete Cholesky) and the matrix-free CG solv
   PpeWorkspace ws;
   ColumnD ref;
   for (int variant = 0; variant < 3; ++variant) {
-    lp.solver.kind = variant == 0 ? PpeSolverKind::MatrixFree : PpeSolverKind::EigenCg;
+    lp.solver.kind = variant == 0 ? PpeSolverKind::ParallelCg : PpeSolverKind::EigenCg;
     lp.solver.preconditioner = variant == 2 ? Preconditioner::IncompleteCholesky : Preconditioner::Jacobi;
     for (std::size_t i = 0; i < f.size(); ++i) f.p[i] = 0;
     const PpeResult r = solve_pressure(f, nb, lp, sim.scene().dt, ws);
@@ -169,7 +169,7 @@ TEST_CASE("Eigen CG (Jacobi and incomplete Cholesky) and the matrix-free CG solv
 TEST_CASE("a closed domain without free surface is solvable: zero-mean source and pressure, or compressibility") {
   for (const std::string& extra : {std::string("clip_negative = false\n"),
                                   std::string("clip_negative = false\ncompressibility = 1.0e-8\n")}) {
-    for (const char* solver : {"matrix_free", "eigen_cg"}) {
+    for (const char* solver : {"parallel_cg", "eigen_cg"}) {
       CAPTURE(extra, solver);
       auto sim = LiquidSimulation::from_text(full_channel(extra), {std::string("liquid.solver={kind = \"") + solver + "\"}"});
       FluidNodes& f = sim.nodes();

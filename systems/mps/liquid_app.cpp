@@ -190,7 +190,7 @@ int check_liquid_command(const CliOptions& opt) {
               p.k.lambda / (p.k.l0 * p.k.l0));
   std::printf("systems per step (with the systems each waits for):\n%s", sim.step().describe().c_str());
   std::printf("PPE solver: %s, tolerance %g, max %d iterations\n",
-              p.solver.kind == PpeSolverKind::MatrixFree ? "matrix-free Jacobi CG (TBB)" : "Eigen ConjugateGradient",
+              p.solver.kind == PpeSolverKind::ParallelCg ? "Jacobi CG over the compacted couplings (TBB)" : "Eigen ConjugateGradient",
               p.solver.tolerance, p.solver.max_iterations);
   std::printf("dt = %g s: CFL %.3g (velocity scale %.3g m/s, limit %g), diffusion number %.3g (limit %g)%s\n", s.dt,
               s.cfl, s.velocity_scale, s.cfl_limit, s.diffusion, s.diffusion_limit,

@@ -144,13 +144,13 @@ LiquidScene load_liquid_scene(const SceneDoc& doc, bool check_unused_keys) {
   p.collision.restitution = liq.get_double("collision_restitution", 0.2, Range::closed(0.0, 1.0));
   p.skin = liq.get_double("skin", 0.5, Range::closed(0.0, 2.0)) * l0;
   if (auto sv = liq.maybe_table("solver")) {
-    p.solver.kind = sv->get_choice("kind", {"matrix_free", "eigen_cg"}, "eigen_cg") == "eigen_cg"
+    p.solver.kind = sv->get_choice("kind", {"parallel_cg", "eigen_cg"}, "parallel_cg") == "eigen_cg"
                         ? PpeSolverKind::EigenCg
-                        : PpeSolverKind::MatrixFree;
+                        : PpeSolverKind::ParallelCg;
     const std::string pc = sv->get_choice("preconditioner", {"jacobi", "incomplete_cholesky"}, "jacobi");
     p.solver.preconditioner = pc == "jacobi" ? Preconditioner::Jacobi : Preconditioner::IncompleteCholesky;
-    if (p.solver.kind == PpeSolverKind::MatrixFree && pc != "jacobi")
-      sv->fail("preconditioner", "the matrix-free solver is Jacobi-preconditioned only",
+    if (p.solver.kind == PpeSolverKind::ParallelCg && pc != "jacobi")
+      sv->fail("preconditioner", "the parallel CG is Jacobi-preconditioned only",
                "use kind = \"eigen_cg\" for incomplete Cholesky, or remove the key");
     p.solver.tolerance = sv->get_double("tolerance", 1e-8, Range::open_closed(0, 0.1));
     p.solver.max_iterations = static_cast<int>(sv->get_int("max_iterations", 2000, 1, 1000000));

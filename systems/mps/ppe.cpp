@@ -81,28 +81,6 @@ namespace {
 
 constexpr std::size_t kBlock = 1024;
 
-// Deterministic parallel sum of f(i) over [0, n): fixed blocks, partial sums added in block order.
-template <class F>
-double det_sum(std::size_t n, F&& f) {
-  const std::size_t nb = (n + kBlock - 1) / kBlock;
-  // Scratch per calling thread, bound to a reference: a thread_local named inside the lambda would be the
-  // worker thread's own (empty) instance.
-  static thread_local std::vector<double> scratch;
-  std::vector<double>& part = scratch;
-  part.assign(nb, 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t b = r.begin(); b < r.end(); ++b) {
-      double s = 0;
-      const std::size_t e = std::min(n, (b + 1) * kBlock);
-      for (std::size_t i = b * kBlock; i < e; ++i) s += f(i);
-      part[b] = s;
-    }
-  });
-  double s = 0;
-  for (double v : part) s += v;
-  return s;
-}
-
 template <class F>
 void par_rows(std::size_t n, F&& f) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kBlock), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -131,107 +109,6 @@ void ppe_apply(const NeighborPairs& nb, const PpeProblem& pb, const std::vector<
     for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q) s += nb.w[q] * x[nb.j[q]];
     y[i] = pb.diag[i] * x[i] - pb.c * s;
   });
-}
-
-PpeResult ppe_solve_matrix_free(const NeighborPairs& nb, const PpeProblem& pb, const PpeSettings& s, ColumnD& p) {
-  const std::size_t n = pb.active.size();
-  PpeResult res;
-  res.unknowns = pb.unknowns;
-  res.closed = pb.closed;
-  static thread_local std::vector<double> sx, sr, sd, sq, sinv, sp1, sp2;
-  std::vector<double>&x = sx, &r = sr, &d = sd, &q = sq, &inv = sinv;  // see det_sum: the workers must see these
-  x.assign(n, 0.0);
-  r.assign(n, 0.0);
-  d.assign(n, 0.0);
-  q.assign(n, 0.0);
-  inv.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i)
-    if (pb.active[i]) {
-      x[i] = p[i];
-      inv[i] = 1.0 / pb.diag[i];
-    }
-  const double bnorm = std::sqrt(det_sum(n, [&](std::size_t i) { return pb.b[i] * pb.b[i]; }));
-  if (pb.unknowns == 0 || bnorm == 0) {
-    for (std::size_t i = 0; i < n; ++i) p[i] = 0;
-    return res;
-  }
-  // Three fused passes per iteration, each with its reductions done per fixed block (deterministic):
-  //   q = A d and d.q;  x += a d, r -= a q, then r.z and r.r (z = r / diag);  d = z + beta d.
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<double>&part1 = sp1, &part2 = sp2;
-  part1.assign(blocks, 0.0);
-  part2.assign(blocks, 0.0);
-  auto blockwise = [&](auto&& body) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& br) {
-      for (std::size_t b = br.begin(); b < br.end(); ++b) body(b, b * kBlock, std::min(n, (b + 1) * kBlock));
-    });
-  };
-  auto total = [&](const std::vector<double>& part) {
-    double t = 0;
-    for (double v : part) t += v;
-    return t;
-  };
-  auto apply_row = [&](std::size_t i, const std::vector<double>& v) {
-    double acc = 0;
-    for (std::uint32_t k = nb.start[i]; k < nb.start[i + 1]; ++k) acc += nb.w[k] * v[nb.j[k]];
-    return pb.diag[i] * v[i] - pb.c * acc;
-  };
-  // r = b - A x, d = z = r / diag.
-  blockwise([&](std::size_t b, std::size_t i0, std::size_t i1) {
-    double rz = 0, rr = 0;
-    for (std::size_t i = i0; i < i1; ++i) {
-      if (!pb.active[i]) continue;
-      r[i] = pb.b[i] - apply_row(i, x);
-      d[i] = r[i] * inv[i];
-      rz += r[i] * d[i];
-      rr += r[i] * r[i];
-    }
-    part1[b] = rz;
-    part2[b] = rr;
-  });
-  double rz = total(part1);
-  double rnorm = std::sqrt(total(part2));
-  int it = 0;
-  while (rnorm > s.tolerance * bnorm && it < s.max_iterations) {
-    blockwise([&](std::size_t b, std::size_t i0, std::size_t i1) {
-      double dq = 0;
-      for (std::size_t i = i0; i < i1; ++i) {
-        if (!pb.active[i]) continue;
-        q[i] = apply_row(i, d);
-        dq += d[i] * q[i];
-      }
-      part1[b] = dq;
-    });
-    const double dq = total(part1);
-    if (!(dq > 0)) break;  // loss of positive definiteness: reported as non-convergence below
-    const double alpha = rz / dq;
-    blockwise([&](std::size_t b, std::size_t i0, std::size_t i1) {
-      double rz_b = 0, rr_b = 0;
-      for (std::size_t i = i0; i < i1; ++i) {
-        if (!pb.active[i]) continue;
-        x[i] += alpha * d[i];
-        r[i] -= alpha * q[i];
-        rz_b += r[i] * r[i] * inv[i];
-        rr_b += r[i] * r[i];
-      }
-      part1[b] = rz_b;
-      part2[b] = rr_b;
-    });
-    const double rz_new = total(part1);
-    rnorm = std::sqrt(total(part2));
-    const double beta = rz_new / rz;
-    rz = rz_new;
-    par_rows(n, [&](std::size_t i) {
-      if (pb.active[i]) d[i] = r[i] * inv[i] + beta * d[i];
-    });
-    ++it;
-  }
-  res.iterations = it;
-  res.residual = rnorm / bnorm;
-  res.converged = std::isfinite(rnorm) && rnorm <= s.tolerance * bnorm;
-  for (std::size_t i = 0; i < n; ++i) p[i] = x[i];
-  if (pb.closed) remove_mean(pb, p);
-  return res;
 }
 
 void ppe_assemble_eigen(const NeighborPairs& nb, const PpeProblem& pb, EigenPpe& sys) {
@@ -314,7 +191,9 @@ PpeResult solve_pressure(FluidNodes& f, const NeighborPairs& nb, const LiquidPar
     ppe_assemble_eigen(nb, ws.problem, ws.eigen);
     res = ppe_solve_eigen(ws.eigen, ws.problem, lp.solver, f.p);
   } else {
-    res = ppe_solve_matrix_free(nb, ws.problem, lp.solver, f.p);
+    ppe_compact(nb, ws.problem, ws.compact);
+    res = ppe_solve_parallel(ws.compact, ws.problem, lp.solver, f.p);
+    if (ws.problem.closed) remove_mean(ws.problem, f.p);
   }
   for (std::size_t i = 0; i < f.size(); ++i) {
     if (f.kind[i] == kDummy) continue;

@@ -12,8 +12,9 @@
 // p is removed after the solve: the pressure is defined up to that constant, and only its gradient moves fluid.
 //
 // Two solvers: Eigen's ConjugateGradient on an assembled sparse matrix (Jacobi or incomplete-Cholesky
-// preconditioner), and a matrix-free Jacobi-preconditioned CG that applies A from the neighbour list, in parallel
-// with TBB and with deterministic reductions (fixed blocks, fixed order). Both start from the previous pressure.
+// preconditioner, one thread), and a Jacobi-preconditioned CG of our own over a compact copy of the couplings,
+// in parallel with TBB and with deterministic reductions (ppe_parallel_cg.hpp). Both start from the previous
+// pressure.
 #pragma once
 
 #include <cstddef>
@@ -29,6 +30,7 @@
 #include "systems/mps/fluid_nodes.hpp"
 #include "systems/mps/liquid_params.hpp"
 #include "systems/mps/neighbors.hpp"
+#include "systems/mps/ppe_parallel_cg.hpp"
 
 namespace gf {
 
@@ -51,7 +53,7 @@ struct PpeResult {
 // Divergence of the predicted velocity into f.div (wall and dummy velocities are zero).
 void compute_divergence(FluidNodes& f, const NeighborPairs& nb, const MpsConstants& k);
 
-// Builds the source, the active set and the diagonal (all a matrix-free solve needs).
+// Builds the source, the active set and the diagonal.
 void ppe_prepare(const FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeProblem& pb);
 
 struct EigenPpe {
@@ -62,9 +64,7 @@ struct EigenPpe {
 void ppe_assemble_eigen(const NeighborPairs& nb, const PpeProblem& pb, EigenPpe& sys);
 PpeResult ppe_solve_eigen(const EigenPpe& sys, const PpeProblem& pb, const PpeSettings& s, ColumnD& p);
 
-PpeResult ppe_solve_matrix_free(const NeighborPairs& nb, const PpeProblem& pb, const PpeSettings& s, ColumnD& p);
-
-// y = A x over node-indexed vectors (x zero on inactive nodes); the matrix-free operator, exposed for tests.
+// y = A x over node-indexed vectors (x zero on inactive nodes), applied from the neighbour list; exposed for tests.
 void ppe_apply(const NeighborPairs& nb, const PpeProblem& pb, const std::vector<double>& x, std::vector<double>& y);
 
 // Source, solve (the scene's solver), clipping: p on fluid and wall nodes. Dummy pressures are left to
@@ -72,6 +72,7 @@ void ppe_apply(const NeighborPairs& nb, const PpeProblem& pb, const std::vector<
 struct PpeWorkspace {
   PpeProblem problem;
   EigenPpe eigen;
+  CompactPpe compact;
 };
 PpeResult solve_pressure(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeWorkspace& ws);
 

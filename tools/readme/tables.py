@@ -167,7 +167,9 @@ TABLES = {
     "liquid_sweep_3d": lambda: script("tools/liquid/sweep_table.py", "docs/liquid/sweep_3d.csv"),
     "liquid_options": lambda: script("tools/liquid/options_table.py", "docs/liquid/options.csv"),
     "liquid_bench_ppe": lambda: script("tools/liquid/bench_table.py", "--ppe", "docs/liquid/bench_ppe.json"),
-    "liquid_bench_step": lambda: script("tools/liquid/bench_table.py", "--step", "docs/liquid/bench_step.json"),
+    "liquid_bench_step": lambda: script("tools/liquid/bench_table.py", "--step", "docs/liquid/bench_step.json",
+                                        "--before", "docs/liquid/bench_step_before.json"),
+    "liquid_step_rounds": lambda: script("tools/liquid/step_rounds.py", "table", "docs/liquid/step_rounds.csv"),
     "packing": packing_table,
 }
 

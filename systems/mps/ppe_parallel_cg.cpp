@@ -1,0 +1,160 @@
+#include "systems/mps/ppe_parallel_cg.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "systems/mps/ppe.hpp"
+
+namespace gf {
+
+namespace {
+
+constexpr std::size_t kBlock = 1024;
+
+// body(block, first row, end row) for every fixed block of rows, in parallel.
+template <class F>
+void blockwise(std::size_t n, F&& body) {
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& br) {
+    for (std::size_t b = br.begin(); b < br.end(); ++b) body(b, b * kBlock, std::min(n, (b + 1) * kBlock));
+  });
+}
+
+double in_order(const std::vector<double>& part) {
+  double t = 0;
+  for (double v : part) t += v;
+  return t;
+}
+
+}  // namespace
+
+void ppe_compact(const NeighborPairs& nb, const PpeProblem& pb, CompactPpe& sys) {
+  const std::size_t n = pb.active.size();
+  sys.row_of.assign(n, -1);
+  sys.node_of.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (pb.active[i]) {
+      sys.row_of[i] = static_cast<std::int32_t>(sys.node_of.size());
+      sys.node_of.push_back(static_cast<std::uint32_t>(i));
+    }
+  const std::size_t m = sys.node_of.size();
+  sys.start.assign(m + 1, 0);
+  auto coupled = [&](std::uint32_t q) { return nb.w[q] != 0 && sys.row_of[nb.j[q]] >= 0; };
+  blockwise(m, [&](std::size_t, std::size_t r0, std::size_t r1) {
+    for (std::size_t r = r0; r < r1; ++r) {
+      const std::uint32_t i = sys.node_of[r];
+      std::uint32_t c = 0;
+      for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q) c += coupled(q);
+      sys.start[r + 1] = c;
+    }
+  });
+  for (std::size_t r = 0; r < m; ++r) sys.start[r + 1] += sys.start[r];
+  sys.col.resize(sys.start[m]);
+  sys.w.resize(sys.start[m]);
+  blockwise(m, [&](std::size_t, std::size_t r0, std::size_t r1) {
+    for (std::size_t r = r0; r < r1; ++r) {
+      const std::uint32_t i = sys.node_of[r];
+      std::uint32_t k = sys.start[r];
+      for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q)
+        if (coupled(q)) {
+          sys.col[k] = static_cast<std::uint32_t>(sys.row_of[nb.j[q]]);
+          sys.w[k++] = nb.w[q];
+        }
+    }
+  });
+}
+
+PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSettings& s, ColumnD& p) {
+  const std::size_t m = sys.node_of.size();
+  PpeResult res;
+  res.unknowns = pb.unknowns;
+  res.closed = pb.closed;
+  for (auto* v : {&sys.diag, &sys.inv, &sys.b, &sys.x, &sys.r, &sys.d, &sys.q}) v->resize(m);
+  const std::size_t blocks = (m + kBlock - 1) / kBlock;
+  sys.part1.assign(blocks, 0.0);
+  sys.part2.assign(blocks, 0.0);
+  double *diag = sys.diag.data(), *inv = sys.inv.data(), *b = sys.b.data(), *x = sys.x.data();
+  double *r = sys.r.data(), *d = sys.d.data(), *q = sys.q.data(), *part1 = sys.part1.data(), *part2 = sys.part2.data();
+  const std::uint32_t* start = sys.start.data();
+  const std::uint32_t* col = sys.col.data();
+  const double* w = sys.w.data();
+  const double c = pb.c;
+  auto apply_row = [&](std::size_t i, const double* v) {
+    double acc = 0;
+    for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) acc += w[k] * v[col[k]];
+    return diag[i] * v[i] - c * acc;
+  };
+  blockwise(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
+    double bb = 0;
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::uint32_t node = sys.node_of[i];
+      diag[i] = pb.diag[node];
+      inv[i] = 1.0 / diag[i];
+      b[i] = pb.b[node];
+      x[i] = p[node];
+      bb += b[i] * b[i];
+    }
+    part1[blk] = bb;
+  });
+  const double bnorm = std::sqrt(in_order(sys.part1));
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = 0;
+  if (m == 0 || bnorm == 0) return res;
+  // r = b - A x, d = z = r / diag.
+  blockwise(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
+    double rz = 0, rr = 0;
+    for (std::size_t i = i0; i < i1; ++i) {
+      r[i] = b[i] - apply_row(i, x);
+      d[i] = r[i] * inv[i];
+      rz += r[i] * d[i];
+      rr += r[i] * r[i];
+    }
+    part1[blk] = rz;
+    part2[blk] = rr;
+  });
+  double rz = in_order(sys.part1);
+  double rnorm = std::sqrt(in_order(sys.part2));
+  int it = 0;
+  // Three passes an iteration: q = A d with d.q; x, r updated with r.z and r.r; d = z + beta d.
+  while (rnorm > s.tolerance * bnorm && it < s.max_iterations) {
+    blockwise(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
+      double dq = 0;
+      for (std::size_t i = i0; i < i1; ++i) {
+        q[i] = apply_row(i, d);
+        dq += d[i] * q[i];
+      }
+      part1[blk] = dq;
+    });
+    const double dq = in_order(sys.part1);
+    if (!(dq > 0)) break;  // loss of positive definiteness: reported as non-convergence below
+    const double alpha = rz / dq;
+    blockwise(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
+      double rz_b = 0, rr_b = 0;
+      for (std::size_t i = i0; i < i1; ++i) {
+        x[i] += alpha * d[i];
+        r[i] -= alpha * q[i];
+        rz_b += r[i] * r[i] * inv[i];
+        rr_b += r[i] * r[i];
+      }
+      part1[blk] = rz_b;
+      part2[blk] = rr_b;
+    });
+    const double rz_new = in_order(sys.part1);
+    rnorm = std::sqrt(in_order(sys.part2));
+    const double beta = rz_new / rz;
+    rz = rz_new;
+    blockwise(m, [&](std::size_t, std::size_t i0, std::size_t i1) {
+      for (std::size_t i = i0; i < i1; ++i) d[i] = r[i] * inv[i] + beta * d[i];
+    });
+    ++it;
+  }
+  res.iterations = it;
+  res.residual = rnorm / bnorm;
+  res.converged = std::isfinite(rnorm) && rnorm <= s.tolerance * bnorm;
+  for (std::size_t i = 0; i < m; ++i) p[sys.node_of[i]] = x[i];
+  return res;
+}
+
+}  // namespace gf
