@@ -111,15 +111,19 @@ void ppe_apply(const NeighborPairs& nb, const PpeProblem& pb, const std::vector<
   });
 }
 
-void ppe_assemble_eigen(const NeighborPairs& nb, const PpeProblem& pb, EigenPpe& sys) {
+void number_rows(const PpeProblem& pb, std::vector<std::int32_t>& row_of, std::vector<std::uint32_t>& node_of) {
   const std::size_t n = pb.active.size();
-  sys.row_of.assign(n, -1);
-  sys.node_of.clear();
+  row_of.assign(n, -1);
+  node_of.clear();
   for (std::size_t i = 0; i < n; ++i)
     if (pb.active[i]) {
-      sys.row_of[i] = static_cast<std::int32_t>(sys.node_of.size());
-      sys.node_of.push_back(static_cast<std::uint32_t>(i));
+      row_of[i] = static_cast<std::int32_t>(node_of.size());
+      node_of.push_back(static_cast<std::uint32_t>(i));
     }
+}
+
+void ppe_assemble_eigen(const NeighborPairs& nb, const PpeProblem& pb, EigenPpe& sys) {
+  number_rows(pb, sys.row_of, sys.node_of);
   const auto m = static_cast<Eigen::Index>(sys.node_of.size());
   // Rows are filled in order straight into compressed storage: no triplet sort.
   Eigen::SparseMatrix<double, Eigen::RowMajor>& A = sys.A;

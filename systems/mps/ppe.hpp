@@ -56,6 +56,9 @@ void compute_divergence(FluidNodes& f, const NeighborPairs& nb, const MpsConstan
 // Builds the source, the active set and the diagonal.
 void ppe_prepare(const FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeProblem& pb);
 
+// The system's rows: node -> row (-1 where inactive) and row -> node, rows in node order.
+void number_rows(const PpeProblem& pb, std::vector<std::int32_t>& row_of, std::vector<std::uint32_t>& node_of);
+
 struct EigenPpe {
   Eigen::SparseMatrix<double, Eigen::RowMajor> A;
   std::vector<std::int32_t> row_of;   // node -> row, -1 if inactive

@@ -32,14 +32,7 @@ double in_order(const std::vector<double>& part) {
 }  // namespace
 
 void ppe_compact(const NeighborPairs& nb, const PpeProblem& pb, CompactPpe& sys) {
-  const std::size_t n = pb.active.size();
-  sys.row_of.assign(n, -1);
-  sys.node_of.clear();
-  for (std::size_t i = 0; i < n; ++i)
-    if (pb.active[i]) {
-      sys.row_of[i] = static_cast<std::int32_t>(sys.node_of.size());
-      sys.node_of.push_back(static_cast<std::uint32_t>(i));
-    }
+  number_rows(pb, sys.row_of, sys.node_of);
   const std::size_t m = sys.node_of.size();
   sys.start.assign(m + 1, 0);
   auto coupled = [&](std::uint32_t q) { return nb.w[q] != 0 && sys.row_of[nb.j[q]] >= 0; };
