@@ -85,6 +85,39 @@ TEST_CASE("coupled step: grain impulse and liquid reaction cancel to rounding, s
   }
 }
 
+TEST_CASE("coupled step: share_with = fluid_nodes keeps a grain beside a wall off the wall's nodes", "[coupled]") {
+  // Three grains against the floor (centres below 3 mm, within h = 7.5 mm of the floor's wall nodes).
+  const std::string low = "[[fill]]\nkind = \"random\"\n"
+                          "region = { shape = \"box\", lo = [0.01, 0.0, 0.01], hi = [0.02, 0.004, 0.02] }\n";
+  auto against_floor = [&](const std::string& share) {
+    std::string text = scene("substeps = 16\nsmoothing_radius = 0.0075\n" + share);
+    text.replace(text.find("[[fill]]"), text.find("count =") - text.find("[[fill]]"), low);
+    return gf::CoupledSimulation::from_text(text);
+  };
+  for (const bool fluid_only : {false, true}) {
+    CAPTURE(fluid_only);
+    gf::CoupledSimulation sim = against_floor(fluid_only ? "share_with = \"fluid_nodes\"\n" : "");
+    gf::World& w = sim.world();
+    sim.prime();
+    sim.step_once();
+    const auto& c = w.resources.get<gf::CouplingState>();
+    const auto& f = w.tables.get<gf::FluidNodes>();
+    double on_walls = 0;
+    for (std::size_t k = 0; k < c.shares.node.size(); ++k)
+      if (f.kind[c.shares.node[k]] != gf::kFluid) on_walls += c.shares.share[k];
+    // Momentum is conserved either way; with the wall rule it all stays in the liquid.
+    CHECK(norm(c.grain_impulse + c.reaction_impulse) <= 1e-13 * norm(c.grain_impulse));
+    if (fluid_only) {
+      CHECK(on_walls == 0.0);
+      CHECK(norm(c.fluid_reaction - c.reaction_impulse) <= 1e-13 * norm(c.grain_impulse));
+    } else {
+      // Without it a part of each grain's share (and of its reaction) goes to the floor's nodes.
+      CHECK(on_walls > 0.1);
+      CHECK(norm(c.fluid_reaction - c.reaction_impulse) > 0.05 * norm(c.grain_impulse));
+    }
+  }
+}
+
 TEST_CASE("coupled step: one graph, the DEM sub-steps inside the liquid's step", "[coupled]") {
   gf::CoupledSimulation sim = gf::CoupledSimulation::from_text(scene());
   const std::vector<std::string> outer = sim.step().names();

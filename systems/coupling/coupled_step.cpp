@@ -88,6 +88,28 @@ struct LiquidReaction : SystemBase<LiquidReaction> {
   }
 };
 
+// The grains' shares over every node, or over the fluid nodes only (renumbered back to node rows).
+GrainShares node_shares(const PointSet& grains, const FluidNodes& f, const CouplingState& c) {
+  const Periodicity& per = c.periodic;
+  auto shares = [&](const PointSet& nodes) {
+    return per.axis >= 0 ? compute_shares_periodic(grains, nodes, c.h, per.axis, per.lo, per.hi)
+                         : compute_shares(grains, nodes, c.h);
+  };
+  if (!c.fluid_nodes_only) return shares({owned(f.x, f.size()), owned(f.y, f.size()), owned(f.z, f.size())});
+  std::vector<std::uint32_t> row;
+  std::vector<double> x, y, z;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f.kind[i] == kFluid) {
+      row.push_back(static_cast<std::uint32_t>(i));
+      x.push_back(f.x[i]);
+      y.push_back(f.y[i]);
+      z.push_back(f.z[i]);
+    }
+  GrainShares s = shares({x, y, z});
+  for (std::uint32_t& n : s.node) n = row[n];
+  return s;
+}
+
 }  // namespace
 
 void prepare_coupling(World& w) {
@@ -96,10 +118,7 @@ void prepare_coupling(World& w) {
   const FluidNodes& f = w.tables.get<FluidNodes>();
   const std::size_t n = g.n_owned;
   const PointSet grains{owned(g.pos.x, n), owned(g.pos.y, n), owned(g.pos.z, n)};
-  const PointSet nodes{owned(f.x, f.size()), owned(f.y, f.size()), owned(f.z, f.size())};
-  const Periodicity& per = c.periodic;
-  c.shares = per.axis >= 0 ? compute_shares_periodic(grains, nodes, c.h, per.axis, per.lo, per.hi)
-                           : compute_shares(grains, nodes, c.h);
+  c.shares = node_shares(grains, f, c);
   std::vector<double> volume(n);
   for (std::size_t i = 0; i < n; ++i) volume[i] = 4.0 / 3.0 * std::numbers::pi * std::pow(g.radius.r[i], 3);
   c.node_eps = liquid_fraction(solid_volume(c.shares, volume, f.size()), c.node_volume, c.eps_min);
@@ -130,6 +149,7 @@ void attach_coupling(const CoupledScene& s, World& w) {
   c.eps_min = s.coupling.min_liquid_fraction;
   c.node_volume = std::pow(s.liquid.params.k.l0, 3);
   c.periodic = s.liquid.params.periodic;
+  c.fluid_nodes_only = s.coupling.fluid_nodes_only;
   c.liquid = {s.liquid.params.rho, s.liquid.params.rho * s.liquid.params.nu};
 }
 

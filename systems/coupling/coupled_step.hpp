@@ -54,6 +54,7 @@ struct CouplingState {
   double eps_min = 0.2;
   double node_volume = 0;  // m^3, l0^3
   Periodicity periodic;    // the liquid's periodic axis: shares reach across it
+  bool fluid_nodes_only = false;  // shares over fluid nodes only (coupling.share_with = "fluid_nodes")
   LiquidProps liquid;
   GrainShares shares;
   std::vector<double> node_eps;  // liquid fraction per node

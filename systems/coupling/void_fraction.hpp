@@ -3,8 +3,9 @@
 // liquid's fields are read at the grain with the same shares.
 //
 // Shares. For grain p and node i at distance r < h, w_ip = W(r / h) / sum_j W(r_jp / h), the sum
-// over every node j within h of the grain (fluid, wall and dummy nodes alike: a grain beside a wall
-// shares its volume with the wall's nodes too, as the seed's kernel sum runs over all particles), with
+// over every node j within h of the grain in the set given (the coupling passes every node, fluid, wall
+// and dummy alike, as the seed's kernel sum runs over all particles, or with coupling.share_with =
+// "fluid_nodes" the fluid nodes only, so a grain beside a wall shares with the liquid alone), with
 // W the Wendland C2 shape (1 - q)^4 (1 + 4 q), smooth and positive for q < 1. The shares of one
 // grain sum to 1, so
 //   solid volume at node i      S_i = sum_p w_ip V_p           (sum_i S_i = sum_p V_p exactly)

@@ -22,6 +22,7 @@
 #include "systems/output/summary_json.hpp"
 #include "systems/setup/app.hpp"
 #include "systems/setup/coupled_simulation.hpp"
+#include "systems/setup/final_state.hpp"
 
 namespace gf {
 
@@ -55,6 +56,8 @@ void print_coupling(const CoupledScene& s) {
               "buoyancy -V_p rho_l g (Archimedes); min liquid fraction %g\n",
               c.substeps, c.substeps_computed ? "computed: the fewest within the DEM step limit" : "coupling.substeps",
               c.smoothing_radius, c.smoothing_radius / s.liquid.params.k.l0, drag_model_name(c.drag), c.min_liquid_fraction);
+  std::printf("shares: %s\n", c.fluid_nodes_only ? "over the fluid nodes within h only (share_with = \"fluid_nodes\")"
+                                                 : "over every node within h, wall and dummy nodes included");
   if (c.fixed_grains)
     std::printf("grains: held fixed (coupling.fixed_grains): the liquid's force and its reaction only, no contacts\n");
   if (c.modified_pressure)
@@ -81,6 +84,7 @@ nlohmann::json start_summary(const CliOptions& opt, const CoupledScene& s, Coupl
   j["buoyancy"] = "archimedes";
   j["modified_pressure"] = s.coupling.modified_pressure;
   j["fixed_grains"] = s.coupling.fixed_grains;
+  j["share_with"] = s.coupling.fluid_nodes_only ? "fluid_nodes" : "all_nodes";
   j["status"] = "running";
   return j;
 }
@@ -150,7 +154,7 @@ int check_coupled_command(const CliOptions& opt) {
               static_cast<long long>(s.steps()), s.liquid.dt, s.liquid.duration,
               static_cast<long long>(s.steps()) * s.coupling.substeps);
   const double every = s.liquid.output.series_interval;
-  std::printf("outputs: series.csv %s; summary.json; no VTK frames and no checkpoints for coupled scenes yet\n",
+  std::printf("outputs: series.csv %s; summary.json; final_state.csv (the grains); no VTK frames and no checkpoints for coupled scenes yet\n",
               every > 0 ? ("every " + short_number(every) + " s").c_str() : "none");
   return 0;
 }
@@ -195,6 +199,7 @@ int run_coupled_command(const CliOptions& opt) {
   summary["final"] = fin;
   summary["time_per_system"] = timings(sim.step());
   summary["time_per_dem_system"] = timings(sim.dem_substeps().inner());
+  write_final_state(out / "final_state.csv", sim.world().grains, s.dem);
   write_summary_json(out / "summary.json", summary);
   std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall\n", r.status.c_str(),
                static_cast<long long>(r.steps), sim.world().clock.t, r.wall);

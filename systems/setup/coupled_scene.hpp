@@ -6,6 +6,10 @@
 //   smoothing_radius  m, the radius h over which a grain's volume and force are shared with the nodes
 //   drag              "ergun_wen_yu" (the seed's switch at eps = 0.8) or "blend" (Huilin-Gidaspow)
 //   min_liquid_fraction  floor of the nodes' liquid fraction (default 0.2)
+//   share_with        "all_nodes" (default, the seed's kernel sum over every particle: a grain beside a wall
+//                     shares its volume with the wall's nodes and reads their zero velocity) or
+//                     "fluid_nodes" (the wall rule: shares renormalised over the fluid nodes within h, so a
+//                     grain beside a wall reads and moves only liquid)
 //   fixed_grains      true: the grains are held where the fills put them (a fixed bed): they feel the
 //                      liquid's force and give the liquid its reaction but never move, and no contact or
 //                      integration runs; substeps then defaults to 1 and the contact law sets no limit
@@ -37,6 +41,7 @@ struct CouplingSpec {
   double min_liquid_fraction = 0.2;
   bool modified_pressure = false;
   bool fixed_grains = false;
+  bool fluid_nodes_only = false;  // share_with = "fluid_nodes"
 };
 
 struct CoupledScene {

@@ -13,7 +13,6 @@
 #include "engine/run_loop.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/contact/laws.hpp"
-#include "systems/fill/state_csv.hpp"
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
 #include "systems/output/layer_output.hpp"
@@ -23,6 +22,7 @@
 #include "systems/setup/dem_body_app.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "systems/setup/final_state.hpp"
 #include "systems/setup/flow_scene.hpp"
 
 namespace gf {
@@ -41,17 +41,6 @@ nlohmann::json timings_json(const Schedule& sched, double total) {
                    {"calls", t.calls},
                    {"fraction", total > 0 ? t.seconds / total : 0.0}});
   return out;
-}
-
-void write_final_state(const std::filesystem::path& file, const Grains& g, const DemScene& s) {
-  std::vector<StateRow> rows(g.n_owned);
-  for (std::size_t i = 0; i < g.n_owned; ++i)
-    rows[i] = {g.pid.id[i], g.species.type[i] + 1, s.species[g.species.type[i]].diameter,
-               {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, 0,
-               {g.vel.x[i], g.vel.y[i], g.vel.z[i]},
-               g.spin ? std::array<double, 3>{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : std::array<double, 3>{}};
-  std::sort(rows.begin(), rows.end(), [](const StateRow& a, const StateRow& b) { return a.id < b.id; });
-  write_state_csv(file, rows);
 }
 
 nlohmann::json flow_json(const FlowState& f, const Grains& g, const ResidenceOutput* residence) {
