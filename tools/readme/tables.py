@@ -170,6 +170,7 @@ TABLES = {
     "liquid_bench_step": lambda: script("tools/liquid/bench_table.py", "--step", "docs/liquid/bench_step.json",
                                         "--before", "docs/liquid/bench_step_before.json"),
     "fluidised_bed": lambda: script("tools/liquid/fluidised_bed.py", "table", "docs/liquid/fluidised_bed.csv"),
+    "coupled_ladder": lambda: script("tools/liquid/ladder_table.py"),
     "liquid_step_rounds": lambda: script("tools/liquid/step_rounds.py", "table", "docs/liquid/step_rounds.csv"),
     "packing": packing_table,
 }
