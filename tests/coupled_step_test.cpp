@@ -154,7 +154,7 @@ TEST_CASE("coupled scene: bad keys are refused with file, line, key and fix", "[
       {"smoothing_radius = 0.0075\ndrag = \"stokes\"\n", "", "coupling.drag", "ergun_wen_yu"},
       {"smoothing_radius = 0.0075\nsubstep = 16\n", "", "coupling.substep", "substeps"},
       {"smoothing_radius = 0.0075\nmodified_pressure = true\n", "", "coupling.modified_pressure", "box"},
-      {"smoothing_radius = 0.0075\n", "[output]\nframe_interval = 0.001\n", "output.frame_interval", "no VTK frames"},
+      {"smoothing_radius = 0.0075\n", "[output]\ncheckpoint_interval = 0.001\n", "output.checkpoint_interval", "no checkpoints"},
       {"smoothing_radius = 0.0075\n", "[settle]\ntime = 0.1\n", "settle", "settling"},
   };
   for (const Bad& b : cases) {
@@ -175,16 +175,17 @@ TEST_CASE("coupled scene: bad keys are refused with file, line, key and fix", "[
   CHECK_THAT(load_error(flat), Contains("'liquid.dim'") && Contains("set dim = 3"));
 }
 
-TEST_CASE("coupled scene through the command line: check prints both parts, run writes the series", "[coupled][cli]") {
+TEST_CASE("coupled scene through the command line: check prints both parts, run writes the series and frames", "[coupled][cli]") {
   gf::test::TempDir dir("coupled_cli");
   const std::string file = dir.write("coupled.toml", scene("substeps = 16\nsmoothing_radius = 0.0075\n",
-                                                            "[output]\nseries_interval = 1.0e-3\n")).string();
+                                                            "[output]\nseries_interval = 1.0e-3\nframe_interval = 1.0e-3\n")).string();
   const gf::test::Exit check = gf::test::run_cli(dir, "check " + gf::test::quote(file));
   INFO(check.out << check.err);
   REQUIRE(check.code == 0);
   CHECK_THAT(check.out, Contains("valid") && Contains("liquid: MPS, 3D") && Contains("grains: 3 in 1 species") &&
                             Contains("k = 16 DEM sub-steps") && Contains("smoothing radius h = 0.0075 m") &&
-                            Contains("drag ergun_wen_yu") && Contains("dem_substeps") && Contains("liquid_force"));
+                            Contains("drag ergun_wen_yu") && Contains("dem_substeps") && Contains("liquid_force") &&
+                            Contains("liquid/frames.pvd, grains/frames.pvd"));
   const std::string out = (dir.path / "run").string();
   const gf::test::Exit run = gf::test::run_cli(dir, "run " + gf::test::quote(file) + " --out " + gf::test::quote(out) +
                                                         " --steps 4 --threads 1 --quiet");
@@ -194,6 +195,15 @@ TEST_CASE("coupled scene through the command line: check prints both parts, run 
   REQUIRE(rows.size() == 4);  // the header, t = 0, 1 ms and 2 ms
   CHECK_THAT(rows[0], Contains("kinetic_energy") && Contains("grain_vy") && Contains("grain_kinetic_energy") &&
                           Contains("impulse_balance"));
+  // Frames of both parts at t = 0, 1 and 2 ms: the liquid's nodes with pressure, the grains as a DEM run writes them.
+  for (const char* part : {"liquid", "grains"}) {
+    CAPTURE(part);
+    const std::string pvd = gf::test::read_file(dir.path / "run" / part / "frames.pvd");
+    CHECK_THAT(pvd, Contains("frame_000002.vtp") && !Contains("frame_000003.vtp"));
+  }
+  CHECK_THAT(gf::test::read_file(dir.path / "run" / "liquid" / "frames" / "frame_000001.vtp"),
+             Contains("Name=\"pressure\"") && Contains("Name=\"number_density\""));
+  CHECK_THAT(gf::test::read_file(dir.path / "run" / "grains" / "frames" / "frame_000001.vtp"), Contains("NumberOfPoints=\"3\""));
   const std::string summary = gf::test::read_file(dir.path / "run" / "summary.json");
   CHECK_THAT(summary, Contains("\"status\": \"completed\"") && Contains("\"substeps\": 16") &&
                           Contains("\"drag\": \"ergun_wen_yu\"") && Contains("liquid_force"));

@@ -18,6 +18,8 @@
 #include "systems/coupling/coupled_observables.hpp"
 #include "systems/coupling/coupled_step.hpp"
 #include "systems/mps/fluid_nodes.hpp"
+#include "systems/mps/liquid_outputs.hpp"
+#include "systems/output/dem_observers.hpp"
 #include "systems/output/series_csv.hpp"
 #include "systems/output/summary_json.hpp"
 #include "systems/setup/app.hpp"
@@ -154,8 +156,11 @@ int check_coupled_command(const CliOptions& opt) {
               static_cast<long long>(s.steps()), s.liquid.dt, s.liquid.duration,
               static_cast<long long>(s.steps()) * s.coupling.substeps);
   const double every = s.liquid.output.series_interval;
-  std::printf("outputs: series.csv %s; summary.json; final_state.csv (the grains); no VTK frames and no checkpoints for coupled scenes yet\n",
-              every > 0 ? ("every " + short_number(every) + " s").c_str() : "none");
+  const double frames = s.liquid.output.frame_interval;
+  std::printf("outputs: series.csv %s; VTK frames %s; summary.json; final_state.csv (the grains); no checkpoints "
+              "for coupled scenes yet\n",
+              every > 0 ? ("every " + short_number(every) + " s").c_str() : "none",
+              frames > 0 ? ("every " + short_number(frames) + " s (liquid/frames.pvd, grains/frames.pvd)").c_str() : "none");
   return 0;
 }
 
@@ -172,7 +177,15 @@ int run_coupled_command(const CliOptions& opt) {
                s.file.string().c_str(), sim.world().grains.n_owned, s.liquid.dt, s.coupling.substeps, out.string().c_str());
   nlohmann::json summary = start_summary(opt, s, sim);
   write_summary_json(out / "summary.json", summary);
+  // VTK frames of both parts on the liquid's step grid: liquid/frames.pvd (every node, with pressure and
+  // number density) and grains/frames.pvd; the coupled series.csv below takes the liquid's series' place.
+  LiquidScene frame_scene = s.liquid;
+  frame_scene.output.series_interval = 0;
   Schedule observe;
+  if (s.liquid.output.frame_interval > 0) {
+    observe.emplace<LiquidOutputs>(out / "liquid", frame_scene, nullptr);
+    observe.emplace<FrameOutput>(out / "grains", s.liquid.output.frame_interval, FrameFields{});
+  }
   const std::int64_t every = std::max<std::int64_t>(1, std::llround(s.liquid.output.series_interval / s.liquid.dt));
   if (s.liquid.output.series_interval > 0) observe.emplace<CoupledSeries>(out / "series.csv", s, every);
   observe.build(sim.world());

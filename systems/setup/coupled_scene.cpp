@@ -29,8 +29,6 @@ void refuse_unsupported(const SceneNode& root) {
 void refuse_outputs(const SceneNode& root) {
   const auto out = root.maybe_table("output");
   if (!out) return;
-  if (out->has("frame_interval") && out->get_double("frame_interval", 0.0, Range::non_negative()) > 0)
-    out->fail("frame_interval", "coupled runs write no VTK frames yet", "set it to 0 or remove it");
   if (out->has("checkpoint_interval") && out->get_double("checkpoint_interval", 0.0, Range::non_negative()) > 0)
     out->fail("checkpoint_interval", "coupled runs write no checkpoints yet", "set it to 0 or remove it");
 }
