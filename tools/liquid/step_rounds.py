@@ -3,10 +3,11 @@
 every round, so that a drift of the shared machine's speed falls on both; one CSV row per build and round.
 
     /usr/bin/python3 tools/liquid/step_rounds.py run --a NAME=BINARY --b NAME=BINARY \\
-        [--filter 'dim:3/side:46/eigen:0'] [--rounds 5] [--out docs/liquid/step_rounds.csv]
+        [--filter 'dim:3/side:46/eigen:0'] [--filter-b FILTER] [--rounds 5] [--out docs/liquid/step_rounds.csv]
     /usr/bin/python3 tools/liquid/step_rounds.py table docs/liquid/step_rounds.csv
 
-The table gives each build's median ms per step with its range, and the per-round ratio A/B (median, range).
+--filter-b gives B another benchmark than A (one build's two solvers: eigen:1 against eigen:0). The table gives
+each build's median ms per step with its range, and the per-round ratio A/B (median, range).
 """
 import argparse
 import csv
@@ -35,8 +36,8 @@ def run(a):
         w = csv.writer(fh)
         w.writerow(["round", "build", "benchmark", "ms_per_step", "ppe_iterations", "date"])
         for r in range(a.rounds):
-            for name, binary in builds:
-                bench, ms, iters, date = one(binary, a.filter)
+            for (name, binary), flt in zip(builds, (a.filter, a.filter_b or a.filter)):
+                bench, ms, iters, date = one(binary, flt)
                 w.writerow([r, name, bench, f"{ms:.4f}", f"{iters:.1f}", date])
                 fh.flush()
                 print(f"round {r} {name}: {ms:.1f} ms per step")
@@ -54,7 +55,8 @@ def table(path):
         v = [by[(r, n)] for r in rounds]
         ratio = f"{statistics.median(ratios):.2f} ({min(ratios):.2f}–{max(ratios):.2f})" if i == 1 else ""
         print(f"| {n} | {len(v)} | {statistics.median(v):.0f} | {min(v):.0f}–{max(v):.0f} | {ratio} |")
-    print(f"\nBenchmark `{rows[0]['benchmark']}`, rounds run {rows[0]['date'][:10]}.")
+    benches = ", ".join(f"`{b}`" for b in dict.fromkeys(r["benchmark"] for r in rows))
+    print(f"\nBenchmark {benches}, rounds run {rows[0]['date'][:10]}.")
 
 
 def main():
@@ -64,6 +66,7 @@ def main():
     r.add_argument("--a", required=True)
     r.add_argument("--b", required=True)
     r.add_argument("--filter", default="dim:3/side:46/eigen:0")
+    r.add_argument("--filter-b", default=None)
     r.add_argument("--rounds", type=int, default=5)
     r.add_argument("--out", type=Path, default=Path("docs/liquid/step_rounds.csv"))
     t = sub.add_parser("table")

@@ -172,6 +172,8 @@ TABLES = {
     "fluidised_bed": lambda: script("tools/liquid/fluidised_bed.py", "table", "docs/liquid/fluidised_bed.csv"),
     "coupled_ladder": lambda: script("tools/liquid/ladder_table.py"),
     "liquid_step_rounds": lambda: script("tools/liquid/step_rounds.py", "table", "docs/liquid/step_rounds.csv"),
+    "liquid_step_rounds_solvers": lambda: script("tools/liquid/step_rounds.py", "table",
+                                                 "docs/liquid/step_rounds_solvers.csv"),
     "packing": packing_table,
 }
 
