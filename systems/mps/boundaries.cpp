@@ -89,6 +89,7 @@ void generate_nodes(const LiquidGeometry& g, const std::vector<FluidBlock>& bloc
   struct Node {
     NodeKind k;
     double x, y, z;
+    std::array<double, 3> v{};
   };
   std::vector<Node> fluid, solid;
   for (long k = i0[2]; k <= i1[2]; ++k)
@@ -109,7 +110,7 @@ void generate_nodes(const LiquidGeometry& g, const std::vector<FluidBlock>& bloc
             bool in = true;
             for (int a = 0; a < g.dim; ++a) in = in && p[a] >= b.lo[a] && p[a] < b.hi[a];
             if (in) {
-              fluid.push_back({kFluid, p[0], p[1], p[2]});
+              fluid.push_back({kFluid, p[0], p[1], p[2], b.velocity});
               break;
             }
           }
@@ -125,6 +126,9 @@ void generate_nodes(const LiquidGeometry& g, const std::vector<FluidBlock>& bloc
       f.x[r] = nd.x;
       f.y[r] = nd.y;
       f.z[r] = nd.z;
+      f.u[r] = nd.v[0];
+      f.v[r] = nd.v[1];
+      f.w[r] = nd.v[2];
       f.kind[r] = nd.k;
       ++r;
     }

@@ -35,9 +35,10 @@ struct LiquidGeometry {
 
 struct FluidBlock {
   std::array<double, 3> lo{}, hi{};  // m; lattice nodes inside [lo, hi) and inside the geometry become fluid
+  std::array<double, 3> velocity{};  // m/s, the block's nodes' starting velocity
 };
 
-// Appends fluid nodes (first), then wall and dummy nodes, all at rest with p = 0.
+// Appends fluid nodes (first, at their block's velocity), then wall and dummy nodes (at rest), all with p = 0.
 void generate_nodes(const LiquidGeometry& g, const std::vector<FluidBlock>& blocks, double l0, FluidNodes& f);
 
 // Dummy pressure from its wall neighbours, hydrostatically corrected:

@@ -1,5 +1,7 @@
 #include "systems/mps/flow_drive.hpp"
 
+#include <cmath>
+
 namespace gf {
 
 std::optional<FlowDrive> read_flow_drive(const SceneNode& root, const LiquidParams& params) {
@@ -24,8 +26,12 @@ double mean_fluid_velocity(const FluidNodes& f, int axis) {
   return n > 0 ? sum / static_cast<double>(n) : 0.0;
 }
 
-void drive_body_force(const FluidNodes& f, const FlowDrive& d, LiquidParams& lp, double dt) {
-  lp.body_force[static_cast<std::size_t>(d.axis)] += d.relaxation * (d.target - mean_fluid_velocity(f, d.axis)) / dt;
+void drive_body_force(const FluidNodes& f, FlowDrive& d, LiquidParams& lp, double dt) {
+  double& force = lp.body_force[static_cast<std::size_t>(d.axis)];
+  const double mean = mean_fluid_velocity(f, d.axis);
+  const double loss = std::isnan(d.last_mean) ? force : force - (mean - d.last_mean) / dt;
+  force = loss + d.relaxation * (d.target - mean) / dt;
+  d.last_mean = mean;
 }
 
 void DriveControl::run(World& w, const StepContext& step) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <tuple>
 
+#include "systems/mps/flow_drive.hpp"
 #include "systems/mps/fluid_nodes.hpp"
 #include "systems/mps/neighbors.hpp"
 #include "systems/mps/stability.hpp"
@@ -138,6 +139,7 @@ void save_liquid_state(CheckpointWriter& out, World& world, const LiquidScene& s
   // The body force a [drive] controls changes during the run.
   const auto& force = world.resources.get<LiquidParams>().body_force;
   for (std::size_t c = 0; c < 3; ++c) out.value("liquid.body_force." + std::to_string(c), force[c]);
+  if (const FlowDrive* d = world.resources.find<FlowDrive>()) out.value("liquid.drive.last_mean", d->last_mean);
 }
 
 void restore_liquid_state(const CheckpointReader& in, World& world, const LiquidScene& scene) {
@@ -165,6 +167,10 @@ void restore_liquid_state(const CheckpointReader& in, World& world, const Liquid
   for (std::size_t c = 0; c < 3; ++c)
     if (in.has("liquid.body_force." + std::to_string(c))) force[c] = in.value<double>("liquid.body_force." + std::to_string(c));
   require(in, std::all_of(force.begin(), force.end(), [](double v) { return std::isfinite(v); }), "the body force is not finite");
+  if (FlowDrive* d = world.resources.find<FlowDrive>(); d && in.has("liquid.drive.last_mean")) {
+    d->last_mean = in.value<double>("liquid.drive.last_mean");  // NaN before the first control step
+    require(in, !std::isinf(d->last_mean), "the drive's last mean velocity is not finite");
+  }
   world.clock.t = in.value<double>("clock.t");
   world.clock.dt = in.value<double>("clock.dt");
   world.clock.step = in.value<std::int64_t>("clock.step");

@@ -95,6 +95,7 @@ void read_fluid(LiquidScene& s, const SceneNode& root) {
     FluidBlock fb;
     fb.lo = b.get_vec3("lo");
     fb.hi = b.get_vec3("hi");
+    fb.velocity = b.get_vec3("velocity", {0, 0, 0});
     for (int a = 0; a < s.params.k.dim; ++a)
       if (!(fb.hi[a] > fb.lo[a])) b.fail("hi", "each component of hi must exceed lo's", "swap or correct lo and hi");
     s.blocks.push_back(fb);
