@@ -60,7 +60,7 @@ TEST_CASE("periodic channel: every fluid node has the full-lattice number densit
     if (f.kind[i] != kDummy) CHECK(f.n[i] == Approx(k.n0).epsilon(1e-12));
 }
 
-TEST_CASE("pipe: fluid within R, wall nodes within l0 outside it, dummies beyond; periodic along x") {
+TEST_CASE("pipe: fluid within R at its block's velocity, wall nodes within l0 outside it, dummies beyond; periodic along x") {
   LiquidGeometry g;
   g.kind = LiquidGeometry::Kind::Pipe;
   g.dim = 3;
@@ -71,10 +71,12 @@ TEST_CASE("pipe: fluid within R, wall nodes within l0 outside it, dummies beyond
   g.layers = 3;
   const double l0 = 0.01;
   FluidNodes f;
-  generate_nodes(g, {FluidBlock{{0, -1, -1}, {0.06, 1, 1}}}, l0, f);
+  generate_nodes(g, {FluidBlock{{0, -1, -1}, {0.06, 1, 1}, {2.0, 0, 0}}}, l0, f);
   std::size_t fluid = 0;
   for (std::size_t i = 0; i < f.size(); ++i) {
     const double r = std::hypot(f.y[i], f.z[i]);
+    CHECK(f.u[i] == (f.kind[i] == kFluid ? 2.0 : 0.0));  // the block's starting velocity; walls at rest
+    CHECK((f.v[i] == 0.0 && f.w[i] == 0.0));
     if (f.kind[i] == kFluid) CHECK(r < 0.05);
     if (f.kind[i] == kWall) CHECK((r >= 0.05 - 1e-12 && r <= 0.06 + 1e-12));  // round-off of the lattice coordinates
     if (f.kind[i] == kDummy) CHECK((r > 0.06 && r <= 0.08 + 1e-12));
