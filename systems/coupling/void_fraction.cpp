@@ -60,20 +60,31 @@ GrainShares compute_shares(const PointSet& grains, const PointSet& nodes, double
 GrainShares compute_shares_periodic(const PointSet& grains, const PointSet& nodes, double h, int axis, double lo,
                                     double hi) {
   if (axis < 0 || axis > 2 || !(hi - lo > 0.0)) throw std::invalid_argument("coupling: a periodic axis needs hi > lo");
+  const double period = hi - lo;
+  // Grains and nodes may stand a little past a face between their lists' rebuilds: both are wrapped
+  // into [lo, hi) first, then the nodes within h of a face are imaged across it.
+  const auto wrap = [&](double v) { return v - period * std::floor((v - lo) / period); };
   std::vector<double> c[3];
   std::vector<std::uint32_t> origin;
   const std::span<const double> in[3] = {nodes.x, nodes.y, nodes.z};
   const auto add = [&](std::size_t n, double shift) {
-    for (int a = 0; a < 3; ++a) c[a].push_back(in[a][n] + (a == axis ? shift : 0.0));
+    for (int a = 0; a < 3; ++a) c[a].push_back(a == axis ? wrap(in[a][n]) + shift : in[a][n]);
     origin.push_back(static_cast<std::uint32_t>(n));
   };
   for (std::size_t n = 0; n < nodes.size(); ++n) add(n, 0.0);
-  const double period = hi - lo;
   for (std::size_t n = 0; n < nodes.size(); ++n) {
-    if (in[axis][n] < lo + h) add(n, period);
-    if (in[axis][n] > hi - h) add(n, -period);
+    const double v = wrap(in[axis][n]);
+    if (v < lo + h) add(n, period);
+    if (v > hi - h) add(n, -period);
   }
-  GrainShares s = compute_shares(grains, PointSet{c[0], c[1], c[2]}, h);
+  std::vector<double> g[3];
+  const std::span<const double> gin[3] = {grains.x, grains.y, grains.z};
+  for (int a = 0; a < 3; ++a) {
+    g[a].assign(gin[a].begin(), gin[a].end());
+    if (a == axis)
+      for (double& v : g[a]) v = wrap(v);
+  }
+  GrainShares s = compute_shares(PointSet{g[0], g[1], g[2]}, PointSet{c[0], c[1], c[2]}, h);
   for (std::uint32_t& n : s.node) n = origin[n];
   return s;
 }

@@ -17,13 +17,33 @@ void refuse_unsupported(const SceneNode& root) {
   for (const char* key : {"feed", "outlet"})
     if (root.has(key)) root.fail(key, "feeds and outlets are not coupled to a liquid yet", fix);
   if (root.has("settle")) root.fail("settle", "a coupled scene has no dry settling stage", fix);
-  if (root.has("periodic")) root.fail("periodic", "periodic grains are not coupled to a liquid yet", fix);
   const SceneNode liquid = root.table("liquid");
   if (liquid.get_int("dim", 2, 3) != 3) liquid.fail("dim", "grains are spheres, so the liquid they sit in is 3D", "set dim = 3");
   const SceneNode run = root.table("run");
   if (!run.has("gravity"))
     run.fail("gravity", "a coupled scene states its gravity: the liquid's default is none, the grains' -9.81 m/s^2 along y",
              "set gravity = [gx, gy, gz] (m/s^2) in [run]");
+}
+
+// Grains may wrap only where the liquid does: along its periodic axis, over the same length.
+void check_periodic(const CoupledScene& s, const SceneNode& root) {
+  const PeriodicBox& box = s.dem.periodic;
+  if (!box.any()) return;
+  const Periodicity& per = s.liquid.params.periodic;
+  const char* names[3] = {"x", "y", "z"};
+  const SceneNode node = root.table("periodic");
+  for (int d = 0; d < 3; ++d) {
+    if (!box.on[d]) continue;
+    if (d != per.axis)
+      node.fail(names[d], "the grains wrap along " + std::string(names[d]) + " and the liquid does not",
+                per.axis < 0 ? std::string("use a liquid geometry with a periodic axis (channel or pipe), or remove [periodic]")
+                             : "make the grains periodic along " + std::string(names[per.axis]) + " only");
+    const double tol = 1e-9 * per.period();
+    if (std::abs(box.lo[d] - per.lo) > tol || std::abs(box.hi[d] - per.hi) > tol)
+      node.fail(names[d], "the grains' period [" + short_number(box.lo[d]) + ", " + short_number(box.hi[d]) +
+                              "] m differs from the liquid's [" + short_number(per.lo) + ", " + short_number(per.hi) + "] m",
+                "set " + std::string(names[d]) + " = [" + short_number(per.lo) + ", " + short_number(per.hi) + "]");
+  }
 }
 
 void refuse_outputs(const SceneNode& root) {
@@ -110,6 +130,7 @@ CoupledScene load_coupled_scene(const SceneDoc& doc) {
   refuse_outputs(root);
   s.dem = load_dem_scene(doc, DemLoadOptions{s.liquid.dt, false});
   read_coupling(s, root);
+  check_periodic(s, root);
   doc.check_all_used();
   return s;
 }

@@ -37,13 +37,14 @@ import math
 import os
 import re
 import shutil
-import struct
 import subprocess
 import sys
 import tempfile
 import tomllib
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "tools", "common"))
+from vtp import read_vtp  # noqa: E402
 INPUTS = os.path.join(ROOT, "docs/mpi/cost_inputs.json")
 MODEL = os.path.join(ROOT, "docs/mpi/cost_model.json")
 FIGURE = os.path.join(ROOT, "docs/mpi/cost_model.png")
@@ -85,24 +86,6 @@ def cpu_description():
     info.pop("flags", None)
     info["cores"] = os.cpu_count()
     return info
-
-
-def read_vtp(path):
-    """ids, diameters and positions of one VTK piece (raw appended data, UInt64 headers)."""
-    data = open(path, "rb").read()
-    head_end = data.index(b"<AppendedData")
-    head = data[:head_end].decode()
-    start = data.index(b"_", data.index(b">", head_end)) + 1
-    arrays = {}
-    for m in re.finditer(r'<DataArray type="(\w+)" Name="(\w+)" NumberOfComponents="(\d+)" format="appended" '
-                         r'offset="(\d+)"', head):
-        typ, name, comps, off = m.group(1), m.group(2), int(m.group(3)), int(m.group(4))
-        (nbytes,) = struct.unpack_from("<Q", data, start + off)
-        fmt = {"Float64": "d", "Int64": "q", "Int32": "i"}[typ]
-        size = struct.calcsize(fmt)
-        vals = struct.unpack_from("<%d%s" % (nbytes // size, fmt), data, start + off + 8)
-        arrays[name] = [vals[i:i + comps] for i in range(0, len(vals), comps)] if comps > 1 else list(vals)
-    return arrays
 
 
 def last_frame_pieces(out, ranks):

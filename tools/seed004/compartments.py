@@ -23,37 +23,17 @@ import json
 import math
 import pathlib
 import re
-import struct
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools" / "seed004"))
+sys.path.insert(0, str(ROOT / "tools" / "common"))
 import mixer_scene as geometry  # noqa: E402  (the scenes' dimensions, one source)
+from vtp import read_vtp  # noqa: E402
 
 BOUNDS = [0.0] + list(geometry.PARTITIONS) + [geometry.LENGTH]
 NAMES = ["stage I", "stage II", "stage III", "outlet (no blades)"]
 KEY_TYPE = 2  # frames number species from 1; the scenes list the carrier first, the key second
-
-
-def read_vtp(path):
-    """The point arrays of a VTK PolyData file with raw appended data (UInt64 block headers), as
-    lists: {name: [values]} with 'Points' as [(x, y, z)]."""
-    raw = pathlib.Path(path).read_bytes()
-    head, _, body = raw.partition(b"<AppendedData encoding=\"raw\">")
-    start = body.index(b"_") + 1
-    text = head.decode()
-    n = int(re.search(r'NumberOfPoints="(\d+)"', text).group(1))
-    sizes = {"Float64": ("d", 8), "Int64": ("q", 8), "Int32": ("i", 4)}
-    out = {}
-    for m in re.finditer(r'<DataArray type="(\w+)" Name="(\w+)" NumberOfComponents="(\d+)" format="appended" '
-                         r'offset="(\d+)"', text):
-        kind, name, comps, offset = m.group(1), m.group(2), int(m.group(3)), int(m.group(4))
-        code, width = sizes[kind]
-        at = start + offset
-        (nbytes,) = struct.unpack_from("<Q", body, at)
-        values = struct.unpack_from(f"<{nbytes // width}{code}", body, at + 8)
-        out[name] = [tuple(values[i * comps:(i + 1) * comps]) for i in range(n)] if comps > 1 else list(values)
-    return out
 
 
 def frame_times(run):
