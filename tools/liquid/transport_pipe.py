@@ -1,0 +1,246 @@
+#!/usr/bin/python3
+"""Seed 003's vertical transport pipe, scaled down (scenes/liquid/transport_pipe.toml): grains carried up a
+periodic pipe of water at the seed's transport speeds, and the seed's observables against its table.
+
+  /usr/bin/python3 tools/liquid/transport_pipe.py run [--speeds 2 3 4 5] [--offaxis] [--binary build/grainflow]
+      one run per speed into runs/liquid/transport_pipe/u<U> (and u2_offaxis: the fill's centre moved
+      0.01 m off the axis, the seed's check), then collect
+  /usr/bin/python3 tools/liquid/transport_pipe.py collect [--from 1.0]
+      docs/liquid/transport_pipe.json, docs/liquid/transport_pipe.png (profiles) and
+      docs/liquid/transport_pipe_views.png (pictures) from the runs' frames
+  /usr/bin/python3 tools/liquid/transport_pipe.py table [docs/liquid/transport_pipe.json]
+      the README's table (tools/readme/tables.py calls it; needs no numpy)
+
+Observables, over the frames from --from s to the end of each run (frames every 0.05 s):
+  u_profile     the fluid nodes' mean axial velocity over U in rings of r/R 0.1 wide
+  phi_profile   the grains' volume fraction in the same rings (each grain's volume at its centre's ring)
+  phi_peak      the ring of the largest volume fraction (its middle r/R) and that fraction
+  r_variance    the variance of the grains' r/R (a disc filled evenly: 1/18 = 0.0556; the seed's values
+                0.029 to 0.040 are below it: the grains gather towards the axis)
+  spin          the grains' mean |omega| (rad/s)
+  grain_speed   the grains' mean axial velocity (m/s)
+The seed's figures (spec/003, after 100 s of its 4 m pipe) are in SEED below.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "tools", "common"))
+from vtp import read_vtp  # noqa: E402
+
+SCENE = "scenes/liquid/transport_pipe.toml"
+RUNS = "runs/liquid/transport_pipe"
+DOCS = "docs/liquid/transport_pipe.json"
+R, LENGTH, RG = 0.1, 0.4, 0.01  # m: pipe radius, periodic length, grain radius
+RINGS = 10
+SEED = {  # speed: (radial variance, peak r/R, peak fraction %, mean spin rad/s)
+    2: (2.875e-2, 0.16, 13.8, 2.86),
+    3: (3.39e-2, 0.18, 13.5, 3.11),
+    4: (3.94e-2, 0.26, 12.3, 3.84),
+    5: (3.96e-2, None, None, 3.85),
+}
+
+
+def grainflow(binary, out, sets, threads):
+    cmd = [binary, "run", SCENE, "--out", out, "--threads", str(threads), "--quiet"]
+    for s in sets:
+        cmd += ["--set", s]
+    return subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+
+
+def cases(a):
+    out = [(f"u{u:g}", u, 0.0) for u in a.speeds]
+    if a.offaxis:
+        out.append(("u2_offaxis", 2.0, 0.01))
+    return out
+
+
+def run(a):
+    for name, u, shift in cases(a):
+        sets = [f"drive.mean_velocity={u}", f"fluid.0.velocity=[{u},0.0,0.0]", f"run.velocity_scale={1.2 * u}",
+                f"run.duration={a.duration}"]
+        if shift:
+            sets.append(f'fill.0.region={{shape="cylinder", center=[0.2,{shift},0.0], axis=[1.0,0.0,0.0], '
+                        f'radius=0.08, length=0.4}}')
+        r = grainflow(a.binary, os.path.join(RUNS, name), sets, a.threads)
+        print(f"{name}: exit {r.returncode} {r.stderr.strip()[-300:]}", flush=True)
+    collect(a)
+
+
+def frames(run_dir, part):
+    import re
+    text = open(os.path.join(run_dir, part, "frames.pvd")).read()
+    return [(float(t), os.path.join(run_dir, part, f))
+            for t, f in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)]
+
+
+def ring(r):
+    return min(RINGS - 1, int(r / R * RINGS))
+
+
+def measure(run_dir, t_from):
+    """The observables of one run, averaged over its frames from t_from on."""
+    u_sum, u_n = [0.0] * RINGS, [0] * RINGS
+    phi = [0.0] * RINGS
+    rr, spin, vx, count = [], 0.0, 0.0, 0
+    used = 0
+    for (t, lf), (_, gf) in zip(frames(run_dir, "liquid"), frames(run_dir, "grains")):
+        if t < t_from - 1e-9:
+            continue
+        used += 1
+        liq = read_vtp(lf)
+        for (x, y, z), (u, _, _), kind in zip(liq["Points"], liq["velocity"], liq["type"]):
+            if kind != 1:  # fluid nodes only
+                continue
+            k = ring(math.hypot(y, z))
+            u_sum[k] += u
+            u_n[k] += 1
+        g = read_vtp(gf)
+        for (x, y, z), (u, _, _), w in zip(g["Points"], g["velocity"], g["angular_velocity"]):
+            r = math.hypot(y, z)
+            rr.append(r / R)
+            phi[ring(r)] += 4.0 / 3.0 * math.pi * RG ** 3
+            spin += math.sqrt(sum(c * c for c in w))
+            vx += u
+            count += 1
+    if used == 0:
+        return None
+    rings = [(k + 0.5) / RINGS for k in range(RINGS)]
+    area = [math.pi * R * R * ((k + 1) ** 2 - k ** 2) / RINGS ** 2 for k in range(RINGS)]
+    phi = [100.0 * p / (used * a * LENGTH) for p, a in zip(phi, area)]
+    mean = sum(rr) / len(rr)
+    peak = max(range(RINGS), key=lambda k: phi[k])
+    summary = json.load(open(os.path.join(run_dir, "summary.json")))
+    return {
+        "frames": used, "from_s": t_from, "to_s": summary.get("simulated_time"), "status": summary.get("status"),
+        "wall_seconds": summary.get("wall_seconds"),
+        "rings": rings, "u_profile": [s / n if n else None for s, n in zip(u_sum, u_n)],
+        "phi_profile": phi, "phi_peak_r": rings[peak], "phi_peak": phi[peak],
+        "r_variance": sum((v - mean) ** 2 for v in rr) / len(rr), "spin": spin / count, "grain_speed": vx / count,
+    }
+
+
+def pictures(run_dirs, path):
+    """Per speed, the last frame: a side view (a slab |z| < 10 mm: liquid nodes by axial speed, grains in
+    it as circles) and a cross-section (every grain projected along the axis, liquid nodes of one layer)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle
+    fig, axes = plt.subplots(2, len(run_dirs), figsize=(3.2 * len(run_dirs), 7.4), squeeze=False,
+                             gridspec_kw={"height_ratios": [2.0, 1.0]})
+    for col, (name, d) in enumerate(run_dirs):
+        t, lf = frames(d, "liquid")[-1]
+        _, gf = frames(d, "grains")[-1]
+        liq, g = read_vtp(lf), read_vtp(gf)
+        pts = [(p, v[0]) for p, v, k in zip(liq["Points"], liq["velocity"], liq["type"]) if k == 1]
+        side, top = axes[0][col], axes[1][col]
+        slab = [(p[1], p[0], u) for p, u in pts if abs(p[2]) < 0.005]
+        sc = side.scatter([s[0] for s in slab], [s[1] for s in slab], c=[s[2] for s in slab], s=9, cmap="viridis",
+                          marker="s", linewidths=0)
+        layer = [(p[1], p[2], u) for p, u in pts if abs(p[0] - 0.205) < 0.005]
+        top.scatter([s[0] for s in layer], [s[1] for s in layer], c=[s[2] for s in layer], s=14, cmap="viridis",
+                    marker="s", linewidths=0, vmin=sc.get_clim()[0], vmax=sc.get_clim()[1])
+        for (x, y, z) in g["Points"]:
+            if abs(z) < RG:
+                side.add_patch(Circle((y, x), math.sqrt(RG * RG - z * z), fc="none", ec="red", lw=0.8))
+            top.add_patch(Circle((y, z), RG, fc="none", ec="red", lw=0.6))
+        for ax in (side, top):
+            ax.set_aspect("equal")
+            ax.set_xlim(-R, R)
+            ax.set_xticks([-0.1, 0, 0.1])
+        side.set_ylim(0, LENGTH)
+        side.set_title(f"{name}, t = {t:.2f} s", fontsize=9)
+        top.set_ylim(-R, R)
+        fig.colorbar(sc, ax=side, shrink=0.6, label="axial liquid speed (m/s)")
+    axes[0][0].set_ylabel("x along the pipe (m)")
+    axes[1][0].set_ylabel("z (m)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
+def chart(result, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
+    for name, m in result["runs"].items():
+        u = m["speed"]
+        a.plot(m["rings"], [v / u if v is not None else None for v in m["u_profile"]], "o-", ms=3, label=name)
+        b.plot(m["rings"], m["phi_profile"], "o-", ms=3, label=name)
+    for speed, (_, r, p, _) in SEED.items():
+        if r is not None:
+            b.plot([r], [p], "k*", ms=9)
+    b.plot([], [], "k*", label="seed's peaks")
+    a.set_xlabel("r/R")
+    a.set_ylabel("axial liquid velocity / U")
+    b.set_xlabel("r/R")
+    b.set_ylabel("grain volume fraction (%)")
+    a.legend(fontsize=8)
+    b.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def collect(a):
+    result = {"scene": SCENE, "from_s": a.from_s, "runs": {}}
+    done = []
+    for name in sorted(os.listdir(os.path.join(ROOT, RUNS))):
+        d = os.path.join(ROOT, RUNS, name)
+        if not os.path.exists(os.path.join(d, "summary.json")):
+            continue
+        m = measure(d, a.from_s)
+        if m is None:
+            continue
+        m["speed"] = float(name[1:].split("_")[0])
+        result["runs"][name] = m
+        done.append((name, d))
+    with open(os.path.join(ROOT, DOCS), "w") as fh:
+        json.dump(result, fh, indent=1)
+    chart(result, os.path.join(ROOT, DOCS.replace(".json", ".png")))
+    pictures(done, os.path.join(ROOT, DOCS.replace(".json", "_views.png")))
+    print(f"wrote {DOCS} ({len(done)} runs) and its pictures")
+
+
+def fmt(v, spec):
+    return "—" if v is None else format(v, spec)
+
+
+def table(a):
+    d = json.load(open(a.path))
+    print("| run | U (m/s) | statistics over (s) | var(r/R) ours / seed | peak r/R ours / seed | peak fraction (%) "
+          "ours / seed | mean spin (rad/s) ours / seed | grains' mean speed (m/s) | centre liquid / U | wall time (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for name, m in d["runs"].items():
+        var, pr, pp, spin = SEED.get(int(m["speed"]), (None,) * 4)
+        centre = m["u_profile"][0] / m["speed"] if m["u_profile"][0] is not None else None
+        print(f"| {name} | {m['speed']:g} | {m['from_s']:g}–{m['to_s']:.2f} ({m['frames']} frames) | "
+              f"{m['r_variance']:.4f} / {fmt(var, '.4f')} | {m['phi_peak_r']:.2f} / {fmt(pr, '.2f')} | "
+              f"{m['phi_peak']:.1f} / {fmt(pp, '.1f')} | {m['spin']:.2f} / {fmt(spin, '.2f')} | "
+              f"{m['grain_speed']:.2f} | {fmt(centre, '.3f')} | {m['wall_seconds']:.0f} |")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("run")
+    r.add_argument("--speeds", type=float, nargs="+", default=[2.0, 3.0, 4.0, 5.0])
+    r.add_argument("--offaxis", action="store_true")
+    r.add_argument("--duration", type=float, default=3.0)
+    r.add_argument("--threads", type=int, default=1)
+    r.add_argument("--binary", default="build/grainflow")
+    r.add_argument("--from", dest="from_s", type=float, default=1.0)
+    c = sub.add_parser("collect")
+    c.add_argument("--from", dest="from_s", type=float, default=1.0)
+    t = sub.add_parser("table")
+    t.add_argument("path", nargs="?", default=os.path.join(ROOT, DOCS))
+    a = p.parse_args()
+    {"run": run, "collect": collect, "table": table}[a.cmd](a)
+
+
+if __name__ == "__main__":
+    main()
