@@ -6,6 +6,7 @@
 #include <string>
 #include <tuple>
 
+#include "engine/clock_checkpoint.hpp"
 #include "systems/mps/flow_drive.hpp"
 #include "systems/mps/fluid_nodes.hpp"
 #include "systems/mps/neighbors.hpp"
@@ -87,9 +88,6 @@ void check_scene(const CheckpointReader& in, const FluidNodes& f, const LiquidSc
                kSameScene);
   require_same(in, "liquid.l0", short_number(in.value<double>("liquid.l0")), short_number(scene.params.k.l0),
                kSameScene);
-  if (in.value<double>("clock.dt") != scene.dt)
-    require_same(in, "run.dt", short_number(in.value<double>("clock.dt")), short_number(scene.dt),
-                 "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
   require_same(in, "nodes (fluid, wall, dummy)",
                std::to_string(in.value<std::uint64_t>("liquid.nodes")) + " (" +
                    std::to_string(in.value<std::uint64_t>("liquid.fluid_nodes")) + " fluid)",
@@ -115,11 +113,21 @@ void check_pairs(const CheckpointReader& in, const NeighborPairs& nb, std::size_
 }  // namespace
 
 void save_liquid_state(CheckpointWriter& out, World& world, const LiquidScene& scene) {
+  save_clock(out, world.clock);
+  save_liquid_nodes(out, world, scene);
+}
+
+void restore_liquid_state(const CheckpointReader& in, World& world, const LiquidScene& scene) {
+  restore_liquid_nodes(in, world, scene);  // refuses another scene's checkpoint first
+  if (in.value<double>("clock.dt") != scene.dt)
+    require_same(in, "run.dt", short_number(in.value<double>("clock.dt")), short_number(scene.dt),
+                 "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
+  restore_clock(in, world.clock);
+  require(in, world.clock.step >= 0, "the step count is negative");
+}
+
+void save_liquid_nodes(CheckpointWriter& out, World& world, const LiquidScene& scene) {
   FluidNodes& f = world.tables.get<FluidNodes>();
-  out.value("clock.t", world.clock.t);
-  out.value("clock.dt", world.clock.dt);
-  out.value("clock.step", world.clock.step);
-  out.value("clock.t0", world.clock.t0);
   out.value("liquid.dim", scene.params.k.dim);
   out.value("liquid.l0", scene.params.k.l0);
   out.value("liquid.nodes", static_cast<std::uint64_t>(f.size()));
@@ -142,7 +150,7 @@ void save_liquid_state(CheckpointWriter& out, World& world, const LiquidScene& s
   if (const FlowDrive* d = world.resources.find<FlowDrive>()) out.value("liquid.drive.last_mean", d->last_mean);
 }
 
-void restore_liquid_state(const CheckpointReader& in, World& world, const LiquidScene& scene) {
+void restore_liquid_nodes(const CheckpointReader& in, World& world, const LiquidScene& scene) {
   FluidNodes& f = world.tables.get<FluidNodes>();
   check_scene(in, f, scene);
   const std::size_t rows = f.size();
@@ -171,11 +179,6 @@ void restore_liquid_state(const CheckpointReader& in, World& world, const Liquid
     d->last_mean = in.value<double>("liquid.drive.last_mean");  // NaN before the first control step
     require(in, !std::isinf(d->last_mean), "the drive's last mean velocity is not finite");
   }
-  world.clock.t = in.value<double>("clock.t");
-  world.clock.dt = in.value<double>("clock.dt");
-  world.clock.step = in.value<std::int64_t>("clock.step");
-  world.clock.t0 = in.value<double>("clock.t0");
-  require(in, world.clock.step >= 0, "the step count is negative");
 }
 
 }  // namespace gf

@@ -18,4 +18,8 @@ void save_liquid_state(CheckpointWriter& out, World& world, const LiquidScene& s
 // CheckpointError naming the file, what differs and the fix.
 void restore_liquid_state(const CheckpointReader& in, World& world, const LiquidScene& scene);
 
+// The same without the clock, for a checkpoint that holds more than the liquid (a coupled run's).
+void save_liquid_nodes(CheckpointWriter& out, World& world, const LiquidScene& scene);
+void restore_liquid_nodes(const CheckpointReader& in, World& world, const LiquidScene& scene);
+
 }  // namespace gf

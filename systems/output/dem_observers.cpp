@@ -168,20 +168,20 @@ void SeriesOutput::write(const SeriesRow& row) {
   ++rows_;
 }
 
-FrameOutput::FrameOutput(std::filesystem::path dir, double interval, FrameFields fields)
-    : series_(std::move(dir)), interval_(interval), fields_(fields) {}
+FrameOutput::FrameOutput(std::filesystem::path dir, double interval, FrameFields fields, std::string key)
+    : series_(std::move(dir)), interval_(interval), fields_(fields), key_(std::move(key)) {}
 
 void FrameOutput::save(CheckpointWriter& out) const {
-  out.value("frame_output.next", next_);
-  out.value("frame_output.last_written", last_written_);
-  out.vector("frame_output.times", series_.times());
+  out.value(key_ + ".next", next_);
+  out.value(key_ + ".last_written", last_written_);
+  out.vector(key_ + ".times", series_.times());
 }
 
 void FrameOutput::restore(const CheckpointReader& in) {
-  next_ = in.value<double>("frame_output.next");
-  last_written_ = in.value<double>("frame_output.last_written");
+  next_ = in.value<double>(key_ + ".next");
+  last_written_ = in.value<double>(key_ + ".last_written");
   std::vector<double> times;
-  in.vector("frame_output.times", times);
+  in.vector(key_ + ".times", times);
   series_.resume(times);
 }
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "engine/checkpoint_file.hpp"
 #include "engine/run_loop.hpp"
@@ -110,7 +111,8 @@ class FrameOutput : public SystemBase<FrameOutput>, public Checkpointable {
  public:
   using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ParticleId, Force, WallForce>;
   using Writes = gf::Writes<FrameSeries>;
-  FrameOutput(std::filesystem::path dir, double interval, FrameFields fields);
+  // `key` names its sections in a checkpoint (another when a checkpoint holds two frame series).
+  FrameOutput(std::filesystem::path dir, double interval, FrameFields fields, std::string key = "frame_output");
   std::string_view name() const override { return "frame_output"; }
   void run(World& world, const StepContext& now) override;
   // Writes the last state as a frame unless the latest frame already shows it.
@@ -123,6 +125,7 @@ class FrameOutput : public SystemBase<FrameOutput>, public Checkpointable {
   FrameSeries series_;
   double interval_;
   FrameFields fields_;
+  std::string key_;
   double next_ = 0;
   double last_written_ = -1;
 };

@@ -1,13 +1,15 @@
 // `grainflow run` and `grainflow check` for scenes of a liquid with grains in it (coupled_scene.hpp):
-// series.csv (output.series_interval) with the liquid's and the grains' columns, summary.json rewritten
+// series.csv (output.series_interval) with the liquid's and the grains' columns, VTK frames of both
+// (output.frame_interval: liquid/frames.pvd, grains/frames.pvd), final_state.csv, summary.json rewritten
 // atomically at start and end, exit code 3 and status "failed" when a stability detector stops the run.
-// No VTK frames and no checkpoints yet: the scene loader refuses the keys that ask for them, and
-// --resume is refused here.
+// Checkpoints (output.checkpoint_interval, and at the end unless output.checkpoint_at_end = false:
+// coupled_checkpoint.hpp) and `--resume` continuing series and frames bit for bit, as a liquid run's.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -19,10 +21,12 @@
 #include "systems/coupling/coupled_step.hpp"
 #include "systems/mps/fluid_nodes.hpp"
 #include "systems/mps/liquid_outputs.hpp"
+#include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
 #include "systems/output/series_csv.hpp"
 #include "systems/output/summary_json.hpp"
 #include "systems/setup/app.hpp"
+#include "systems/setup/coupled_checkpoint.hpp"
 #include "systems/setup/coupled_simulation.hpp"
 #include "systems/setup/final_state.hpp"
 
@@ -104,31 +108,70 @@ struct CoupledRun {
   double wall = 0;
 };
 
-// series.csv: a row every `every` liquid steps, from step 0.
-class CoupledSeries : public SystemBase<CoupledSeries> {
+// series.csv: a row every `every` liquid steps, from step 0; a resumed run continues the file from the
+// rows its checkpoint counted.
+class CoupledSeries : public SystemBase<CoupledSeries>, public Checkpointable {
  public:
   using Reads = gf::Reads<FluidNodes, Position, Velocity>;
-  using Writes = gf::Writes<>;
-  CoupledSeries(const std::filesystem::path& file, const CoupledScene& s, std::int64_t every)
-      : csv_(file, coupled_series_columns()), s_(s), every_(every) {}
+  using Writes = gf::Writes<SeriesRow>;  // before the checkpoint, which counts the rows
+  CoupledSeries(const std::filesystem::path& file, const CoupledScene& s, std::int64_t every, const CheckpointReader* from)
+      : csv_(from ? SeriesCsv::resume(file, coupled_series_columns(), from->value<std::uint64_t>("coupled_series.rows"))
+                  : SeriesCsv(file, coupled_series_columns())),
+        s_(s), every_(every), rows_(from ? from->value<std::uint64_t>("coupled_series.rows") : 0) {}
   std::string_view name() const override { return "series_output"; }
   void run(World& w, const StepContext&) override {
-    if (w.clock.step % every_ == 0) csv_.append(sample_coupled(w, s_));
+    if (w.clock.step % every_ != 0) return;
+    csv_.append(sample_coupled(w, s_));
+    ++rows_;
   }
+  void save(CheckpointWriter& out) const override { out.value("coupled_series.rows", rows_); }
+  void restore(const CheckpointReader& in) override { rows_ = in.value<std::uint64_t>("coupled_series.rows"); }
 
  private:
   SeriesCsv csv_;
   const CoupledScene& s_;
   std::int64_t every_;
+  std::uint64_t rows_ = 0;
 };
 
-void step_to(std::int64_t end, CoupledSimulation& sim, Schedule& observe, bool quiet, CoupledRun& r) {
+// The outputs and the checkpoints, observing the state after each step (and the initial state of a run
+// that does not resume).
+struct CoupledObservers {
+  Schedule schedule;
+  CheckpointOutput* checkpoints = nullptr;
+  LiquidScene frame_scene;  // the liquid's outputs: frames only (the coupled series takes its series' place)
+};
+
+void add_observers(CoupledObservers& o, const std::filesystem::path& out, const CoupledScene& s, World& world,
+                   const CheckpointReader* from) {
+  o.frame_scene = s.liquid;
+  o.frame_scene.output.series_interval = 0;
+  std::vector<const Checkpointable*> parts;
+  if (s.liquid.output.frame_interval > 0) {
+    if (from && !from->has("grain_frames.next"))
+      from->fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
+    parts.push_back(&o.schedule.emplace<LiquidOutputs>(out / "liquid", o.frame_scene, from));
+    auto& grains = o.schedule.emplace<FrameOutput>(out / "grains", s.liquid.output.frame_interval, FrameFields{}, "grain_frames");
+    if (from) grains.restore(*from);
+    parts.push_back(&grains);
+  }
+  const std::int64_t every = std::max<std::int64_t>(1, std::llround(s.liquid.output.series_interval / s.liquid.dt));
+  if (s.liquid.output.series_interval > 0) parts.push_back(&o.schedule.emplace<CoupledSeries>(out / "series.csv", s, every, from));
+  o.checkpoints = &o.schedule.emplace<CheckpointOutput>(
+      CheckpointSettings{out, s.liquid.output.checkpoint_interval, s.liquid.output.checkpoint_keep_all},
+      [&s](CheckpointWriter& w, World& wd) { save_coupled_state(w, wd, s); }, parts);
+  if (from) o.checkpoints->restore(*from);
+  o.schedule.build(world);
+}
+
+void step_to(std::int64_t end, CoupledSimulation& sim, Schedule& observe, bool resumed, bool quiet, CoupledRun& r) {
   World& w = sim.world();
-  sim.prime();
+  if (!resumed) sim.prime();
   const std::int64_t start = w.clock.step;
   StageOptions so;
   so.steps = std::max<std::int64_t>(0, end - start);
   so.observe = &observe;
+  so.observe_start = !resumed;
   so.progress_seconds = quiet ? 0.0 : 2.0;
   try {
     if (run_stage(w, sim.step(), so).interrupted) r.status = "interrupted";
@@ -155,44 +198,49 @@ int check_coupled_command(const CliOptions& opt) {
   std::printf("steps: %lld liquid steps of %g s (%.4g s simulated), %lld DEM sub-steps\n",
               static_cast<long long>(s.steps()), s.liquid.dt, s.liquid.duration,
               static_cast<long long>(s.steps()) * s.coupling.substeps);
-  const double every = s.liquid.output.series_interval;
-  const double frames = s.liquid.output.frame_interval;
-  std::printf("outputs: series.csv %s; VTK frames %s; summary.json; final_state.csv (the grains); no checkpoints "
-              "for coupled scenes yet\n",
-              every > 0 ? ("every " + short_number(every) + " s").c_str() : "none",
-              frames > 0 ? ("every " + short_number(frames) + " s (liquid/frames.pvd, grains/frames.pvd)").c_str() : "none");
+  const LiquidOutput& o = s.liquid.output;
+  const std::string at_end = o.checkpoint_at_end ? "at the end" : "not at the end";
+  std::printf("outputs: series.csv %s; VTK frames %s; summary.json; final_state.csv (the grains); checkpoints "
+              "(checkpoints/checkpoint.gfc) %s; run --resume continues from one\n",
+              o.series_interval > 0 ? ("every " + short_number(o.series_interval) + " s").c_str() : "none",
+              o.frame_interval > 0 ? ("every " + short_number(o.frame_interval) + " s (liquid/frames.pvd, grains/frames.pvd)").c_str() : "none",
+              o.checkpoint_interval > 0 ? ("every " + short_number(o.checkpoint_interval) + " s and " + at_end).c_str() : at_end.c_str());
   return 0;
 }
 
 int run_coupled_command(const CliOptions& opt) {
   const auto wall0 = WallClock::now();
-  if (opt.resume)
-    throw SceneError(opt.scene.string() + ": --resume: coupled scenes write no checkpoints yet, so there is nothing to "
-                     "resume. Fix: run the scene from its start (without --resume)");
   CoupledSimulation sim(load_coupled_scene(SceneDoc::load(opt.scene, opt.overrides)));
   const CoupledScene& s = sim.scene();
+  std::optional<CheckpointReader> ckpt;
+  if (opt.resume) {
+    ckpt.emplace(*opt.resume);
+    sim.resume(*ckpt);
+  }
+  const CheckpointReader* from = ckpt ? &*ckpt : nullptr;
   const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
   ensure_directory(out);
   std::fprintf(stderr, "grainflow: %s: liquid and %zu grains, dt = %.3g s with %d DEM sub-steps -> %s\n",
                s.file.string().c_str(), sim.world().grains.n_owned, s.liquid.dt, s.coupling.substeps, out.string().c_str());
+  if (ckpt)
+    std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", ckpt->file().string().c_str(),
+                 static_cast<long long>(sim.world().clock.step), sim.world().clock.t);
   nlohmann::json summary = start_summary(opt, s, sim);
+  if (ckpt)
+    summary["resumed_from"] = {{"checkpoint", ckpt->file().string()}, {"step", sim.world().clock.step}, {"time", sim.world().clock.t}};
   write_summary_json(out / "summary.json", summary);
-  // VTK frames of both parts on the liquid's step grid: liquid/frames.pvd (every node, with pressure and
-  // number density) and grains/frames.pvd; the coupled series.csv below takes the liquid's series' place.
-  LiquidScene frame_scene = s.liquid;
-  frame_scene.output.series_interval = 0;
-  Schedule observe;
-  if (s.liquid.output.frame_interval > 0) {
-    observe.emplace<LiquidOutputs>(out / "liquid", frame_scene, nullptr);
-    observe.emplace<FrameOutput>(out / "grains", s.liquid.output.frame_interval, FrameFields{});
-  }
-  const std::int64_t every = std::max<std::int64_t>(1, std::llround(s.liquid.output.series_interval / s.liquid.dt));
-  if (s.liquid.output.series_interval > 0) observe.emplace<CoupledSeries>(out / "series.csv", s, every);
-  observe.build(sim.world());
+  CoupledObservers obs;
+  add_observers(obs, out, s, sim.world(), from);
   CoupledRun r;
+  std::string checkpoint_file;
   const auto run0 = WallClock::now();
   try {
-    step_to(opt.steps ? *opt.steps : s.steps(), sim, observe, opt.quiet, r);
+    step_to(opt.steps ? *opt.steps : s.steps(), sim, obs.schedule, ckpt.has_value(), opt.quiet, r);
+    if (s.liquid.output.checkpoint_at_end) checkpoint_file = obs.checkpoints->write(sim.world()).string();
+  } catch (const WriteError& e) {
+    r.status = "failed";
+    r.failure = e.what() + write_failure_fix(opt, out, ckpt.has_value() || obs.checkpoints->written() > 0);
+    r.rc = 3;
   } catch (const std::exception& e) {
     r.status = "failed";
     r.failure = e.what();
@@ -206,9 +254,12 @@ int run_coupled_command(const CliOptions& opt) {
   summary["status"] = r.status;
   if (!r.failure.empty()) summary["failure"] = r.failure;
   summary["steps"] = sim.world().clock.step;
+  summary["steps_this_run"] = r.steps;
   summary["simulated_time"] = sim.world().clock.t;
   summary["wall_seconds"] = r.wall;
   summary["total_wall_seconds"] = seconds_since(wall0);
+  summary["checkpoints_written"] = obs.checkpoints->written();
+  if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
   summary["final"] = fin;
   summary["time_per_system"] = timings(sim.step());
   summary["time_per_dem_system"] = timings(sim.dem_substeps().inner());

@@ -46,13 +46,6 @@ void check_periodic(const CoupledScene& s, const SceneNode& root) {
   }
 }
 
-void refuse_outputs(const SceneNode& root) {
-  const auto out = root.maybe_table("output");
-  if (!out) return;
-  if (out->has("checkpoint_interval") && out->get_double("checkpoint_interval", 0.0, Range::non_negative()) > 0)
-    out->fail("checkpoint_interval", "coupled runs write no checkpoints yet", "set it to 0 or remove it");
-}
-
 void read_substeps(CoupledScene& s, const SceneNode& c) {
   CouplingSpec& k = s.coupling;
   const double dt = s.liquid.dt;
@@ -127,7 +120,6 @@ CoupledScene load_coupled_scene(const SceneDoc& doc) {
   CoupledScene s;
   s.file = doc.file();
   s.liquid = load_liquid_scene(doc, false);
-  refuse_outputs(root);
   s.dem = load_dem_scene(doc, DemLoadOptions{s.liquid.dt, false});
   read_coupling(s, root);
   check_periodic(s, root);

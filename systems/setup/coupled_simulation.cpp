@@ -7,6 +7,7 @@
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/coupling/coupled_step.hpp"
 #include "systems/mps/liquid_simulation.hpp"
+#include "systems/setup/coupled_checkpoint.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -54,6 +55,11 @@ void CoupledSimulation::step_once() {
   if (!primed_) prime();
   step_->run_step(next_step(world_->clock));
   advance_clock(world_->clock);
+}
+
+void CoupledSimulation::resume(const CheckpointReader& in) {
+  restore_coupled_state(in, *world_, scene_);
+  primed_ = true;  // the forces, springs and the liquid's force on the grains are the checkpoint's
 }
 
 void CoupledSimulation::advance(std::int64_t n) {

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/checkpoint_file.hpp"
 #include "engine/schedule.hpp"
 #include "engine/sub_schedule.hpp"
 #include "systems/setup/coupled_scene.hpp"
@@ -24,6 +25,8 @@ class CoupledSimulation {
   // One liquid step with its k DEM sub-steps; primes first if that has not been done.
   void step_once();
   void advance(std::int64_t n);
+  // Continues from a checkpoint of this scene's run (coupled_checkpoint.hpp) instead of priming.
+  void resume(const CheckpointReader& in);
 
   CoupledScene& scene() { return scene_; }
   World& world() { return *world_; }

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <string>
 
+#include "engine/clock_checkpoint.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/walls/walls.hpp"
@@ -123,11 +124,19 @@ void restore_images(const CheckpointReader& in, PeriodicImages& im, const Grains
 }  // namespace
 
 void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) {
+  save_clock(out, world.clock);
+  save_dem_rows(out, world, scene);
+}
+
+void restore_dem_state(const CheckpointReader& in, World& world, const DemScene& scene) {
+  require_equal<double>(in, "run.dt", in.value<double>("clock.dt"), scene.dt,
+                        "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
+  restore_clock(in, world.clock);
+  restore_dem_rows(in, world, scene);
+}
+
+void save_dem_rows(CheckpointWriter& out, World& world, const DemScene& scene) {
   Grains& gr = world.grains;
-  out.value("clock.t", world.clock.t);
-  out.value("clock.dt", world.clock.dt);
-  out.value("clock.step", world.clock.step);
-  out.value("clock.t0", world.clock.t0);
   out.value("scene.species", static_cast<std::uint64_t>(scene.species.size()));
   out.value("scene.walls", static_cast<std::uint64_t>(scene.walls.size()));
   out.vector("contact.law", std::vector<char>(scene.law.begin(), scene.law.end()));
@@ -161,10 +170,8 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) 
   if (const FlowState* f = world.resources.find<FlowState>()) save_flow_state(out, *f);
 }
 
-void restore_dem_state(const CheckpointReader& in, World& world, const DemScene& scene) {
+void restore_dem_rows(const CheckpointReader& in, World& world, const DemScene& scene) {
   const std::string same_scene = "resume with the scene (and --set overrides) of the run that wrote the checkpoint";
-  require_equal<double>(in, "run.dt", in.value<double>("clock.dt"), scene.dt,
-                        "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
   require_equal<std::uint64_t>(in, "species count", in.value<std::uint64_t>("scene.species"), scene.species.size(),
                                same_scene);
   require_equal<std::uint64_t>(in, "wall count", in.value<std::uint64_t>("scene.walls"), scene.walls.size(),
@@ -187,10 +194,6 @@ void restore_dem_state(const CheckpointReader& in, World& world, const DemScene&
   auto& bp = world.resources.get<BroadphaseState>();
   require_equal<double>(in, "run.skin", in.value<double>("broadphase.skin"), bp.skin, "resume with the same run.skin");
 
-  world.clock.t = in.value<double>("clock.t");
-  world.clock.dt = in.value<double>("clock.dt");
-  world.clock.step = in.value<std::int64_t>("clock.step");
-  world.clock.t0 = in.value<double>("clock.t0");
   const auto n = in.value<std::uint64_t>("grains.n");
   // Every row takes at least 8 bytes per column: a larger count is corrupt, not a reason to allocate.
   require(in, n_owned <= n && n <= in.bytes() / 8, "grain counts");

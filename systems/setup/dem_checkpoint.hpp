@@ -18,4 +18,10 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene);
 // the file, what differs and the fix.
 void restore_dem_state(const CheckpointReader& in, World& world, const DemScene& scene);
 
+// The same without the clock, for a checkpoint that holds more than the grains (a coupled run's, whose
+// clock is the liquid's step): restore_dem_rows places the walls at the world's clock, so restore the
+// clock first.
+void save_dem_rows(CheckpointWriter& out, World& world, const DemScene& scene);
+void restore_dem_rows(const CheckpointReader& in, World& world, const DemScene& scene);
+
 }  // namespace gf
