@@ -10,6 +10,7 @@
 #include "systems/contact/pair_contact.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/mps/fluid_nodes.hpp"
+#include "systems/mps/liquid_fraction.hpp"
 #include "systems/mps/liquid_params.hpp"
 #include "systems/mps/liquid_step.hpp"
 #include "systems/walls/wall_contact.hpp"
@@ -22,7 +23,7 @@ std::span<const double> owned(const ColumnD& c, std::size_t n) { return {c.data(
 
 struct CouplingPrepare : SystemBase<CouplingPrepare> {
   using Reads = gf::Reads<Position, Radius, FluidNodes>;
-  using Writes = gf::Writes<LiquidAtGrain, LiquidImpulse, CouplingState>;
+  using Writes = gf::Writes<LiquidAtGrain, LiquidImpulse, CouplingState, LiquidFraction>;
   std::string_view name() const override { return "coupling_prepare"; }
   void run(World& w, const StepContext&) override { prepare_coupling(w); }
 };
@@ -122,6 +123,7 @@ void prepare_coupling(World& w) {
   std::vector<double> volume(n);
   for (std::size_t i = 0; i < n; ++i) volume[i] = 4.0 / 3.0 * std::numbers::pi * std::pow(g.radius.r[i], 3);
   c.node_eps = liquid_fraction(solid_volume(c.shares, volume, f.size()), c.node_volume, c.eps_min);
+  if (LiquidFraction* averaged = w.resources.find<LiquidFraction>()) averaged->eps = c.node_eps;
   const std::vector<double> eps = at_grains(c.shares, c.node_eps);
   const std::vector<double> ux = at_grains(c.shares, owned(f.u, f.size()));
   const std::vector<double> uy = at_grains(c.shares, owned(f.v, f.size()));
@@ -151,6 +153,7 @@ void attach_coupling(const CoupledScene& s, World& w) {
   c.periodic = s.liquid.params.periodic;
   c.fluid_nodes_only = s.coupling.fluid_nodes_only;
   c.liquid = {s.liquid.params.rho, s.liquid.params.rho * s.liquid.params.nu};
+  if (s.coupling.averaged) w.resources.emplace<LiquidFraction>();
 }
 
 std::unique_ptr<Schedule> coupled_dem_step(const DemScene& scene) {

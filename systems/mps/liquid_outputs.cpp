@@ -1,5 +1,7 @@
 #include "systems/mps/liquid_outputs.hpp"
 
+#include "systems/mps/liquid_fraction.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -53,8 +55,12 @@ void LiquidOutputs::observe(World& w) {
   if (frames_ && k % frame_every_ == 0) {
     const FluidNodes& f = w.tables.get<FluidNodes>();
     to_grains(f, s_.params.k.l0, scratch_);
-    const PointScalars extra[] = {{"pressure", f.p.data()}, {"number_density", f.n.data()}};
-    frames_->write(scratch_, w.clock.t, {}, extra);
+    // A locally averaged liquid's frames carry each node's liquid fraction too.
+    const LiquidFraction* eps = w.resources.find<LiquidFraction>();
+    const bool with_eps = eps && eps->eps.size() == f.size();
+    const PointScalars extra[] = {{"pressure", f.p.data()}, {"number_density", f.n.data()},
+                                  {"liquid_fraction", with_eps ? eps->eps.data() : nullptr}};
+    frames_->write(scratch_, w.clock.t, {}, std::span<const PointScalars>(extra, with_eps ? 3 : 2));
   }
 }
 

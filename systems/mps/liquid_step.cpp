@@ -5,6 +5,7 @@
 #include "systems/mps/explicit_step.hpp"
 #include "systems/mps/flow_drive.hpp"
 #include "systems/mps/free_surface.hpp"
+#include "systems/mps/liquid_fraction.hpp"
 #include "systems/mps/neighbors.hpp"
 #include "systems/mps/number_density.hpp"
 #include "systems/mps/ppe.hpp"
@@ -61,22 +62,22 @@ struct PredictedDensity : SystemBase<PredictedDensity> {
 };
 
 struct FreeSurface : SystemBase<FreeSurface> {
-  using Reads = gf::Reads<LiquidParams>;
+  using Reads = gf::Reads<LiquidParams, LiquidFraction>;
   using Writes = gf::Writes<FluidNodes, LiquidDiagnostics>;
   std::string_view name() const override { return "free_surface"; }
   void run(World& w, const StepContext&) override {
-    res<LiquidDiagnostics>(w).surface_nodes = detect_free_surface(nodes(w), res<LiquidParams>(w));
+    res<LiquidDiagnostics>(w).surface_nodes = detect_free_surface(nodes(w), res<LiquidParams>(w), liquid_fraction_of(w));
   }
 };
 
 struct PressureSolve : SystemBase<PressureSolve> {
-  using Reads = gf::Reads<LiquidParams, NeighborPairs>;
+  using Reads = gf::Reads<LiquidParams, NeighborPairs, LiquidFraction>;
   using Writes = gf::Writes<FluidNodes, PpeWorkspace, LiquidDiagnostics>;
   std::string_view name() const override { return "pressure_solve"; }
   void run(World& w, const StepContext& step) override {
     auto& lp = res<LiquidParams>(w);
     auto& d = res<LiquidDiagnostics>(w);
-    d.ppe = solve_pressure(nodes(w), res<NeighborPairs>(w), lp, step.dt, res<PpeWorkspace>(w));
+    d.ppe = solve_pressure(nodes(w), res<NeighborPairs>(w), lp, step.dt, res<PpeWorkspace>(w), liquid_fraction_of(w));
     ++d.ppe_solves;
     d.ppe_iterations_total += static_cast<double>(d.ppe.iterations);
     check_ppe(d.ppe, lp.solver, step.t + step.dt);

@@ -33,7 +33,8 @@ void compute_divergence(FluidNodes& f, const NeighborPairs& nb, const MpsConstan
   });
 }
 
-void ppe_prepare(const FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeProblem& pb) {
+void ppe_prepare(const FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeProblem& pb,
+                 std::span<const double> eps) {
   const std::size_t n = f.size();
   pb.active.assign(n, 0);
   pb.b.assign(n, 0.0);
@@ -51,8 +52,9 @@ void ppe_prepare(const FluidNodes& f, const NeighborPairs& nb, const LiquidParam
       for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q)
         if (f.kind[nb.j[q]] != kDummy) sw += nb.w[q];
       pb.diag[i] = pb.c * sw + shift;
+      const double target = eps.empty() ? n0 : eps[i] * n0;  // a locally averaged liquid's n~0 = eps n0
       const double source = (1.0 - lp.gamma) * lp.rho / dt * f.div[i] -
-                            lp.gamma * lp.rho / (dt * dt) * (f.n[i] - n0) / n0;
+                            lp.gamma * lp.rho / (dt * dt) * (f.n[i] - target) / n0;
       pb.b[i] = -source;
     }
   });
@@ -187,9 +189,10 @@ PpeResult ppe_solve_eigen(const EigenPpe& sys, const PpeProblem& pb, const PpeSe
   return res;
 }
 
-PpeResult solve_pressure(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeWorkspace& ws) {
+PpeResult solve_pressure(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeWorkspace& ws,
+                         std::span<const double> eps) {
   compute_divergence(f, nb, lp.k);
-  ppe_prepare(f, nb, lp, dt, ws.problem);
+  ppe_prepare(f, nb, lp, dt, ws.problem, eps);
   PpeResult res;
   if (lp.solver.kind == PpeSolverKind::EigenCg) {
     ppe_assemble_eigen(nb, ws.problem, ws.eigen);

@@ -17,6 +17,8 @@
 // pressure.
 #pragma once
 
+#include <span>
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -54,7 +56,9 @@ struct PpeResult {
 void compute_divergence(FluidNodes& f, const NeighborPairs& nb, const MpsConstants& k);
 
 // Builds the source, the active set and the diagonal.
-void ppe_prepare(const FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeProblem& pb);
+// `eps`: the nodes' liquid fractions of a locally averaged liquid (liquid_fraction.hpp), empty for eps = 1.
+void ppe_prepare(const FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeProblem& pb,
+                 std::span<const double> eps = {});
 
 // The system's rows: node -> row (-1 where inactive) and row -> node, rows in node order.
 void number_rows(const PpeProblem& pb, std::vector<std::int32_t>& row_of, std::vector<std::uint32_t>& node_of);
@@ -77,6 +81,7 @@ struct PpeWorkspace {
   EigenPpe eigen;
   CompactPpe compact;
 };
-PpeResult solve_pressure(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeWorkspace& ws);
+PpeResult solve_pressure(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeWorkspace& ws,
+                         std::span<const double> eps = {});
 
 }  // namespace gf

@@ -69,8 +69,9 @@ void print_coupling(const CoupledScene& s) {
   if (c.modified_pressure)
     std::printf("liquid pressure: modified (the hydrostatic part removed, no gravity in the liquid's step: a closed, "
                 "filled box)\n");
-  std::printf("liquid model: not locally averaged yet (its density and number density do not see eps); the reaction "
-              "reaches the nodes as a momentum change\n");
+  std::printf("liquid model: %s; the reaction reaches the nodes as a momentum change\n",
+              c.averaged ? "locally averaged (coupling.averaged: the nodes' number-density target and free-surface test are eps n0)"
+                         : "not locally averaged (coupling.averaged = false: the liquid fills the grains' volume)");
 }
 
 nlohmann::json start_summary(const CliOptions& opt, const CoupledScene& s, CoupledSimulation& sim) {
@@ -91,6 +92,7 @@ nlohmann::json start_summary(const CliOptions& opt, const CoupledScene& s, Coupl
   j["modified_pressure"] = s.coupling.modified_pressure;
   j["fixed_grains"] = s.coupling.fixed_grains;
   j["share_with"] = s.coupling.fluid_nodes_only ? "fluid_nodes" : "all_nodes";
+  j["averaged"] = s.coupling.averaged;
   j["status"] = "running";
   return j;
 }

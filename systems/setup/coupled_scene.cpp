@@ -104,6 +104,7 @@ void read_coupling(CoupledScene& s, const SceneNode& root) {
   s.coupling.drag = drag == "blend" ? DragModel::Blended : DragModel::ErgunWenYu;
   s.coupling.min_liquid_fraction = c.get_double("min_liquid_fraction", 0.2, Range::open_closed(0.0, 1.0));
   s.coupling.fluid_nodes_only = c.get_choice("share_with", {"all_nodes", "fluid_nodes"}, "all_nodes") == "fluid_nodes";
+  s.coupling.averaged = c.get_bool("averaged", false);
   read_modified_pressure(s, c);
 }
 

@@ -16,6 +16,10 @@
 //   modified_pressure  true: a closed box filled with liquid solves for the pressure less its hydrostatic
 //                      part, without gravity in the liquid's step (exact for one density in a closed box;
 //                      the grains keep gravity and buoyancy); the pressure outputs are then that part
+//   averaged          true: the liquid is locally averaged (seed 003's model B): its nodes target the
+//                      number density eps n0 at their liquid fraction eps (systems/mps/liquid_fraction.hpp),
+//                      so the liquid makes room for the grains; default false (the liquid fills the grains'
+//                      volume as it fills clear liquid)
 // [run] is shared: dt, duration and gravity (required here, both parts feel it) serve both parts; skin,
 // seed and max_overlap are the grains', [liquid] and [geometry] the liquid's. Each part's loader reads
 // its keys; unknown keys are checked once, over the whole file.
@@ -42,6 +46,7 @@ struct CouplingSpec {
   bool modified_pressure = false;
   bool fixed_grains = false;
   bool fluid_nodes_only = false;  // share_with = "fluid_nodes"
+  bool averaged = false;          // the liquid locally averaged (eps n0 as its number-density target)
 };
 
 struct CoupledScene {
