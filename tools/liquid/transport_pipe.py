@@ -2,16 +2,23 @@
 """Seed 003's vertical transport pipe, scaled down (scenes/liquid/transport_pipe.toml): grains carried up a
 periodic pipe of water at the seed's transport speeds, and the seed's observables against its table.
 
-  /usr/bin/python3 tools/liquid/transport_pipe.py run [--speeds 2 3 4 5] [--offaxis] [--binary build/grainflow]
-      one run per speed into runs/liquid/transport_pipe/u<U> (and u2_offaxis: the fill's centre moved
-      0.01 m off the axis, the seed's check), then collect
+  /usr/bin/python3 tools/liquid/transport_pipe.py run [--speeds 2 3 4 5] [--offaxis] [--duration 2.5]
+                                                     [--budget-minutes 30] [--binary build/grainflow]
+      one case per speed into runs/liquid/transport_pipe/u<U> (and u2_offaxis: the fill's centre moved
+      0.01 m off the axis, the seed's check), each in resumable pieces of at most the budget
+      (tools/common/resumable.py: a piece stops with a checkpoint and the next resumes from it), each to
+      its end before the next; after each piece the new frames are reduced to rows of frames.csv and the
+      case archived under docs/liquid/transport_pipe/<case>; then collect
   /usr/bin/python3 tools/liquid/transport_pipe.py collect [--from 1.0]
-      docs/liquid/transport_pipe.json, docs/liquid/transport_pipe.png (profiles) and
-      docs/liquid/transport_pipe_views.png (pictures) from the runs' frames
+      docs/liquid/transport_pipe.json and docs/liquid/transport_pipe.png (profiles) from the cases'
+      frames.csv, docs/liquid/transport_pipe_views.png (pictures) from the last frames where a run
+      folder has them
   /usr/bin/python3 tools/liquid/transport_pipe.py table [docs/liquid/transport_pipe.json]
       the README's table (tools/readme/tables.py calls it; needs no numpy)
 
-Observables, over the frames from --from s to the end of each run (frames every 0.05 s):
+Each frame (every 0.05 s) is reduced to one row of frames.csv: per ring of r/R 0.1 wide the fluid nodes'
+count and mean axial velocity and the grains' count; the grains' mean r/R, mean (r/R)^2, mean |omega| and
+mean axial velocity. Observables, over the rows from --from s to the end of each case:
   u_profile     the fluid nodes' mean axial velocity over U in rings of r/R 0.1 wide
   phi_profile   the grains' volume fraction in the same rings (each grain's volume at its centre's ring)
   phi_peak      the ring of the largest volume fraction (its middle r/R) and that fraction
@@ -25,7 +32,6 @@ import argparse
 import json
 import math
 import os
-import subprocess
 import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
@@ -34,6 +40,7 @@ from vtp import read_vtp  # noqa: E402
 
 SCENE = "scenes/liquid/transport_pipe.toml"
 RUNS = "runs/liquid/transport_pipe"
+ARCHIVE = "docs/liquid/transport_pipe"
 DOCS = "docs/liquid/transport_pipe.json"
 R, LENGTH, RG = 0.1, 0.4, 0.01  # m: pipe radius, periodic length, grain radius
 RINGS = 10
@@ -45,11 +52,10 @@ SEED = {  # speed: (radial variance, peak r/R, peak fraction %, mean spin rad/s)
 }
 
 
-def grainflow(binary, out, sets, threads):
-    cmd = [binary, "run", SCENE, "--out", out, "--threads", str(threads), "--quiet"]
-    for s in sets:
-        cmd += ["--set", s]
-    return subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+def resumable():
+    """tools/common/resumable.py, imported where runs are read (it needs numpy; the table does not)."""
+    import resumable as r
+    return r
 
 
 def cases(a):
@@ -59,21 +65,40 @@ def cases(a):
     return out
 
 
+def overrides(u, shift, duration):
+    sets = [f"drive.mean_velocity={u}", f"run.velocity_scale={1.2 * u}",
+            f"run.duration={duration}", "output.checkpoint_interval=0.5"]
+    if shift:
+        sets.append(f'fill.0.region={{shape="cylinder", center=[0.2,{shift},0.0], axis=[1.0,0.0,0.0], '
+                    f'radius=0.08, length=0.4}}')
+    return sets
+
+
 def run(a):
+    r = resumable()
+    pathlib = __import__("pathlib")
     for name, u, shift in cases(a):
-        sets = [f"drive.mean_velocity={u}", f"fluid.0.velocity=[{u},0.0,0.0]", f"run.velocity_scale={1.2 * u}",
-                f"run.duration={a.duration}"]
-        if shift:
-            sets.append(f'fill.0.region={{shape="cylinder", center=[0.2,{shift},0.0], axis=[1.0,0.0,0.0], '
-                        f'radius=0.08, length=0.4}}')
-        r = grainflow(a.binary, os.path.join(RUNS, name), sets, a.threads)
-        print(f"{name}: exit {r.returncode} {r.stderr.strip()[-300:]}", flush=True)
+        folder, dest = pathlib.Path(ROOT) / RUNS / name, pathlib.Path(ROOT) / ARCHIVE / name
+        r.restore(folder, dest)
+        done = lambda s: float(s[-1]["time"]) >= a.duration - 1e-9  # noqa: E731
+        while True:
+            piece = r.run_piece(name, a.binary, pathlib.Path(ROOT) / SCENE, folder, overrides(u, shift, a.duration),
+                                a.threads, a.budget_minutes * 60, done)
+            update_frames(str(folder))
+            s = r.load_series(folder)
+            finished = s is not None and done(s)
+            r.archive(folder, dest, finished, extra=("frames.csv", "final_state.csv"))
+            if piece is None or piece["status"] != "interrupted":
+                break
     collect(a)
 
 
 def frames(run_dir, part):
     import re
-    text = open(os.path.join(run_dir, part, "frames.pvd")).read()
+    path = os.path.join(run_dir, part, "frames.pvd")
+    if not os.path.exists(path):
+        return []
+    text = open(path).read()
     return [(float(t), os.path.join(run_dir, part, f))
             for t, f in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)]
 
@@ -82,45 +107,86 @@ def ring(r):
     return min(RINGS - 1, int(r / R * RINGS))
 
 
-def measure(run_dir, t_from):
-    """The observables of one run, averaged over its frames from t_from on."""
-    u_sum, u_n = [0.0] * RINGS, [0] * RINGS
-    phi = [0.0] * RINGS
-    rr, spin, vx, count = [], 0.0, 0.0, 0
-    used = 0
-    for (t, lf), (_, gf) in zip(frames(run_dir, "liquid"), frames(run_dir, "grains")):
-        if t < t_from - 1e-9:
-            continue
-        used += 1
-        liq = read_vtp(lf)
-        for (x, y, z), (u, _, _), kind in zip(liq["Points"], liq["velocity"], liq["type"]):
-            if kind != 1:  # fluid nodes only
-                continue
+COLUMNS = (["time"] + [f"fluid_{k}" for k in range(RINGS)] + [f"u_{k}" for k in range(RINGS)] +
+           [f"grains_{k}" for k in range(RINGS)] + ["grains", "r_mean", "r2_mean", "spin", "grain_vx"])
+
+
+def reduce_frame(t, liquid_file, grain_file):
+    """One row of frames.csv from a frame of both parts."""
+    count, u_sum, grains = [0] * RINGS, [0.0] * RINGS, [0] * RINGS
+    liq = read_vtp(liquid_file)
+    for (_, y, z), (u, _, _), kind in zip(liq["Points"], liq["velocity"], liq["type"]):
+        if kind == 1:  # fluid nodes only
             k = ring(math.hypot(y, z))
+            count[k] += 1
             u_sum[k] += u
-            u_n[k] += 1
-        g = read_vtp(gf)
-        for (x, y, z), (u, _, _), w in zip(g["Points"], g["velocity"], g["angular_velocity"]):
-            r = math.hypot(y, z)
-            rr.append(r / R)
-            phi[ring(r)] += 4.0 / 3.0 * math.pi * RG ** 3
-            spin += math.sqrt(sum(c * c for c in w))
-            vx += u
-            count += 1
-    if used == 0:
+    g = read_vtp(grain_file)
+    rr, spin, vx = [], 0.0, 0.0
+    for (_, y, z), (u, _, _), w in zip(g["Points"], g["velocity"], g["angular_velocity"]):
+        r = math.hypot(y, z)
+        rr.append(r / R)
+        grains[ring(r)] += 1
+        spin += math.sqrt(sum(c * c for c in w))
+        vx += u
+    n = len(rr)
+    return ([t] + count + [s / c if c else 0.0 for s, c in zip(u_sum, count)] + grains +
+            [n, sum(rr) / n, sum(v * v for v in rr) / n, spin / n, vx / n])
+
+
+def update_frames(run_dir):
+    """Appends to run_dir/frames.csv the rows of the frames it does not hold yet."""
+    path = os.path.join(run_dir, "frames.csv")
+    rows = read_rows(path)
+    have = {round(r["time"], 9) for r in rows}
+    new = [(t, lf, gf) for (t, lf), (_, gf) in zip(frames(run_dir, "liquid"), frames(run_dir, "grains"))
+           if round(t, 9) not in have and os.path.exists(lf) and os.path.exists(gf)]
+    if not new:
+        return
+    exists = os.path.exists(path)
+    with open(path, "a") as fh:
+        if not exists:
+            fh.write(",".join(COLUMNS) + "\n")
+        for t, lf, gf in new:
+            fh.write(",".join(repr(float(v)) for v in reduce_frame(t, lf, gf)) + "\n")
+
+
+def read_rows(path):
+    if not os.path.exists(path):
+        return []
+    with open(path) as fh:
+        lines = [l.strip() for l in fh if l.strip()]
+    head = lines[0].split(",")
+    return [dict(zip(head, map(float, l.split(",")))) for l in lines[1:]]
+
+
+def measure(run_dir, t_from):
+    """The observables of one case, averaged over its frames.csv rows from t_from on."""
+    rows = [r for r in read_rows(os.path.join(run_dir, "frames.csv")) if r["time"] >= t_from - 1e-9]
+    summary_path = os.path.join(run_dir, "summary.json")
+    if not os.path.exists(summary_path):
         return None
+    summary = json.load(open(summary_path))
+    if not rows:  # stopped before the statistics begin: what stopped it
+        if summary.get("status") != "failed":
+            return None
+        return {"status": "failed", "to_s": summary.get("simulated_time"), "failure": summary.get("failure", "")}
+    used = len(rows)
     rings = [(k + 0.5) / RINGS for k in range(RINGS)]
     area = [math.pi * R * R * ((k + 1) ** 2 - k ** 2) / RINGS ** 2 for k in range(RINGS)]
-    phi = [100.0 * p / (used * a * LENGTH) for p, a in zip(phi, area)]
-    mean = sum(rr) / len(rr)
+    fluid = [sum(r[f"fluid_{k}"] for r in rows) for k in range(RINGS)]
+    u = [sum(r[f"fluid_{k}"] * r[f"u_{k}"] for r in rows) / fluid[k] if fluid[k] else None for k in range(RINGS)]
+    volume = 4.0 / 3.0 * math.pi * RG ** 3
+    phi = [100.0 * volume * sum(r[f"grains_{k}"] for r in rows) / (used * area[k] * LENGTH) for k in range(RINGS)]
+    mean = sum(r["r_mean"] for r in rows) / used
+    mean2 = sum(r["r2_mean"] for r in rows) / used
     peak = max(range(RINGS), key=lambda k: phi[k])
-    summary = json.load(open(os.path.join(run_dir, "summary.json")))
+    pieces = resumable().pieces(__import__("pathlib").Path(run_dir))
+    wall = sum(p["wall_seconds"] or 0 for p in pieces) if pieces else summary.get("wall_seconds")
     return {
-        "frames": used, "from_s": t_from, "to_s": summary.get("simulated_time"), "status": summary.get("status"),
-        "wall_seconds": summary.get("wall_seconds"),
-        "rings": rings, "u_profile": [s / n if n else None for s, n in zip(u_sum, u_n)],
-        "phi_profile": phi, "phi_peak_r": rings[peak], "phi_peak": phi[peak],
-        "r_variance": sum((v - mean) ** 2 for v in rr) / len(rr), "spin": spin / count, "grain_speed": vx / count,
+        "frames": used, "from_s": t_from, "to_s": rows[-1]["time"], "status": summary.get("status"),
+        "wall_seconds": wall, "rings": rings, "u_profile": u, "phi_profile": phi, "phi_peak_r": rings[peak],
+        "phi_peak": phi[peak], "r_variance": mean2 - mean * mean, "spin": sum(r["spin"] for r in rows) / used,
+        "grain_speed": sum(r["grain_vx"] for r in rows) / used,
     }
 
 
@@ -169,6 +235,8 @@ def chart(result, path):
     import matplotlib.pyplot as plt
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
     for name, m in result["runs"].items():
+        if "u_profile" not in m:
+            continue
         u = m["speed"]
         a.plot(m["rings"], [v / u if v is not None else None for v in m["u_profile"]], "o-", ms=3, label=name)
         b.plot(m["rings"], m["phi_profile"], "o-", ms=3, label=name)
@@ -187,23 +255,31 @@ def chart(result, path):
 
 
 def collect(a):
+    r = resumable()
+    pathlib = __import__("pathlib")
     result = {"scene": SCENE, "from_s": a.from_s, "runs": {}}
-    done = []
-    for name in sorted(os.listdir(os.path.join(ROOT, RUNS))):
-        d = os.path.join(ROOT, RUNS, name)
-        if not os.path.exists(os.path.join(d, "summary.json")):
-            continue
-        m = measure(d, a.from_s)
+    pictured = []
+    names = set()
+    for base in (RUNS, ARCHIVE):
+        if os.path.isdir(os.path.join(ROOT, base)):
+            names |= {n for n in os.listdir(os.path.join(ROOT, base)) if n.startswith("u")}
+    for name in sorted(names, key=lambda n: (len(n), n)):
+        folder, dest = pathlib.Path(ROOT) / RUNS / name, pathlib.Path(ROOT) / ARCHIVE / name
+        r.restore(folder, dest)
+        update_frames(str(folder))
+        m = measure(str(folder), a.from_s)
         if m is None:
             continue
         m["speed"] = float(name[1:].split("_")[0])
         result["runs"][name] = m
-        done.append((name, d))
+        if frames(str(folder), "liquid"):
+            pictured.append((name, str(folder)))
     with open(os.path.join(ROOT, DOCS), "w") as fh:
         json.dump(result, fh, indent=1)
     chart(result, os.path.join(ROOT, DOCS.replace(".json", ".png")))
-    pictures(done, os.path.join(ROOT, DOCS.replace(".json", "_views.png")))
-    print(f"wrote {DOCS} ({len(done)} runs) and its pictures")
+    if pictured:
+        pictures(pictured, os.path.join(ROOT, DOCS.replace(".json", "_views.png")))
+    print(f"wrote {DOCS} ({len(result['runs'])} cases; pictures of {len(pictured)})")
 
 
 def fmt(v, spec):
@@ -216,6 +292,10 @@ def table(a):
           "ours / seed | mean spin (rad/s) ours / seed | grains' mean speed (m/s) | centre liquid / U | wall time (s) |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for name, m in d["runs"].items():
+        if "r_variance" not in m:
+            print(f"| {name} | {m['speed']:g} | failed at t = {m['to_s']:.3f} s: {m['failure'].split(':')[0]} "
+                  "| | | | | | | |")
+            continue
         var, pr, pp, spin = SEED.get(int(m["speed"]), (None,) * 4)
         centre = m["u_profile"][0] / m["speed"] if m["u_profile"][0] is not None else None
         print(f"| {name} | {m['speed']:g} | {m['from_s']:g}–{m['to_s']:.2f} ({m['frames']} frames) | "
@@ -228,10 +308,11 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("run")
-    r.add_argument("--speeds", type=float, nargs="+", default=[2.0, 3.0, 4.0, 5.0])
+    r.add_argument("--speeds", type=float, nargs="*", default=[2.0, 3.0, 4.0, 5.0])
     r.add_argument("--offaxis", action="store_true")
-    r.add_argument("--duration", type=float, default=3.0)
+    r.add_argument("--duration", type=float, default=2.5)
     r.add_argument("--threads", type=int, default=1)
+    r.add_argument("--budget-minutes", type=float, default=30.0)
     r.add_argument("--binary", default="build/grainflow")
     r.add_argument("--from", dest="from_s", type=float, default=1.0)
     c = sub.add_parser("collect")
