@@ -1,6 +1,6 @@
 // The locally averaged liquid (coupling.averaged, systems/mps/liquid_fraction.hpp): the PPE's density term
-// targets eps n0 at each node and the free-surface test reads beta eps n0; in a tank over a fixed bed of
-// grains the liquid makes room for them and its level rises, where the plain liquid's does not.
+// targets eps n0 at each node (the free-surface test's part: mps_free_surface_test.cpp); in a tank over a
+// fixed bed of grains the liquid makes room for them and its level rises, where the plain liquid's does not.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -19,7 +19,7 @@
 
 using namespace gf;
 
-TEST_CASE("averaged liquid: the PPE's density term and the free-surface test read eps n0", "[coupled]") {
+TEST_CASE("averaged liquid: the PPE's density term reads eps n0", "[coupled]") {
   auto sim = LiquidSimulation::from_file(test::liquid_scene("hydrostatic_2d.toml"));
   FluidNodes& f = sim.nodes();
   LiquidParams& lp = sim.params();
@@ -44,18 +44,6 @@ TEST_CASE("averaged liquid: the PPE's density term and the free-surface test rea
     CHECK(averaged.diag[i] == plain.diag[i]);
   }
   CHECK(rows > 100);
-  // A node of the still tank's interior at n0 is no surface at eps = 1 and none at eps = 0.8; squeezed to
-  // 0.9 n0 it is surface in clear liquid (0.9 < beta = 0.97) and not at eps = 0.8 (0.9 > 0.97 x 0.8).
-  std::size_t interior = 0;
-  for (std::size_t i = 0; i < f.size(); ++i)
-    if (f.kind[i] == kFluid && !f.surface[i] && std::abs(f.n[i] / lp.k.n0 - 1.0) < 1e-9) interior = i;
-  REQUIRE(f.kind[interior] == kFluid);
-  f.n[interior] = 0.9 * lp.k.n0;
-  detect_free_surface(f, lp);
-  CHECK(f.surface[interior]);
-  std::vector<double> thin(f.size(), 0.8);
-  detect_free_surface(f, lp, thin);
-  CHECK(!f.surface[interior]);
 }
 
 namespace {

@@ -30,6 +30,7 @@ struct LiquidParams {
   std::array<double, 3> body_force{};     // m/s^2, extra acceleration (drives periodic flows)
   double gamma = 0.001;                   // Tanaka's weight of the number-density source term
   double beta = 0.97;                     // free surface where n* < beta n0
+  bool free_surface = true;               // false: a closed liquid, no node is ever a surface node
   GradientForm gradient = GradientForm::Sum;
   bool clip_negative = true;              // p = max(p, 0) after the solve
   double compressibility = 0.0;           // 1/Pa, alpha of Ikeda's term: lap p - rho alpha / dt^2 p = source

@@ -138,6 +138,7 @@ LiquidScene load_liquid_scene(const SceneDoc& doc, bool check_unused_keys) {
   p.nu = liq.get_double("viscosity", Range::non_negative());
   p.gamma = liq.get_double("gamma", 0.001, Range::closed(0, 1));
   p.beta = liq.get_double("surface_threshold", 0.97, Range::open_closed(0, 1));
+  p.free_surface = liq.get_bool("free_surface", true);
   p.gradient = liq.get_choice("gradient", {"sum", "min"}, "sum") == "sum" ? GradientForm::Sum : GradientForm::MinPressure;
   p.clip_negative = liq.get_bool("clip_negative", true);
   p.compressibility = liq.get_double("compressibility", 0.0, Range::non_negative());
