@@ -22,8 +22,9 @@ mean axial velocity. Observables, over the rows from --from s to the end of each
   u_profile     the fluid nodes' mean axial velocity over U in rings of r/R 0.1 wide
   phi_profile   the grains' volume fraction in the same rings (each grain's volume at its centre's ring)
   phi_peak      the ring of the largest volume fraction (its middle r/R) and that fraction
-  r_variance    the variance of the grains' r/R (a disc filled evenly: 1/18 = 0.0556; the seed's values
-                0.029 to 0.040 are below it: the grains gather towards the axis)
+  r_variance    the variance of the grains' r/R over all frames' grains (a disc filled evenly: 1/18 =
+                0.0556; the seed's values 0.029 to 0.040 are below it: the grains gather towards the axis),
+                with the standard deviation of the frames' own variances beside it
   spin          the grains' mean |omega| (rad/s)
   grain_speed   the grains' mean axial velocity (m/s)
 The seed's figures (spec/003, after 100 s of its 4 m pipe) are in SEED below.
@@ -179,13 +180,15 @@ def measure(run_dir, t_from):
     phi = [100.0 * volume * sum(r[f"grains_{k}"] for r in rows) / (used * area[k] * LENGTH) for k in range(RINGS)]
     mean = sum(r["r_mean"] for r in rows) / used
     mean2 = sum(r["r2_mean"] for r in rows) / used
+    per_frame = [r["r2_mean"] - r["r_mean"] ** 2 for r in rows]  # each frame's own variance of r/R
+    spread = (sum((v - sum(per_frame) / used) ** 2 for v in per_frame) / max(1, used - 1)) ** 0.5
     peak = max(range(RINGS), key=lambda k: phi[k])
     pieces = resumable().pieces(__import__("pathlib").Path(run_dir))
     wall = sum(p["wall_seconds"] or 0 for p in pieces) if pieces else summary.get("wall_seconds")
     return {
         "frames": used, "from_s": t_from, "to_s": rows[-1]["time"], "status": summary.get("status"),
         "wall_seconds": wall, "rings": rings, "u_profile": u, "phi_profile": phi, "phi_peak_r": rings[peak],
-        "phi_peak": phi[peak], "r_variance": mean2 - mean * mean, "spin": sum(r["spin"] for r in rows) / used,
+        "phi_peak": phi[peak], "r_variance": mean2 - mean * mean, "r_variance_frame_sd": spread, "spin": sum(r["spin"] for r in rows) / used,
         "grain_speed": sum(r["grain_vx"] for r in rows) / used,
     }
 
@@ -288,7 +291,7 @@ def fmt(v, spec):
 
 def table(a):
     d = json.load(open(a.path))
-    print("| run | U (m/s) | statistics over (s) | var(r/R) ours / seed | peak r/R ours / seed | peak fraction (%) "
+    print("| run | U (m/s) | statistics over (s) | var(r/R) ours (frames' sd) / seed | peak r/R ours / seed | peak fraction (%) "
           "ours / seed | mean spin (rad/s) ours / seed | grains' mean speed (m/s) | centre liquid / U | wall time (s) |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for name, m in d["runs"].items():
@@ -299,7 +302,7 @@ def table(a):
         var, pr, pp, spin = SEED.get(int(m["speed"]), (None,) * 4)
         centre = m["u_profile"][0] / m["speed"] if m["u_profile"][0] is not None else None
         print(f"| {name} | {m['speed']:g} | {m['from_s']:g}–{m['to_s']:.2f} ({m['frames']} frames) | "
-              f"{m['r_variance']:.4f} / {fmt(var, '.4f')} | {m['phi_peak_r']:.2f} / {fmt(pr, '.2f')} | "
+              f"{m['r_variance']:.4f} (± {m['r_variance_frame_sd']:.4f}) / {fmt(var, '.4f')} | {m['phi_peak_r']:.2f} / {fmt(pr, '.2f')} | "
               f"{m['phi_peak']:.1f} / {fmt(pp, '.1f')} | {m['spin']:.2f} / {fmt(spin, '.2f')} | "
               f"{m['grain_speed']:.2f} | {fmt(centre, '.3f')} | {m['wall_seconds']:.0f} |")
 
