@@ -24,9 +24,7 @@ TEST_CASE("averaged liquid: the PPE's density term reads eps n0", "[coupled]") {
   FluidNodes& f = sim.nodes();
   LiquidParams& lp = sim.params();
   NeighborPairs nb;
-  build_neighbors(f, lp.k.re + lp.skin, lp.periodic, nb);
-  compute_number_density(f, nb, lp.k.re);
-  detect_free_surface(f, lp);
+  test::prepare_nodes(sim, nb);
   std::vector<double> eps(f.size());
   for (std::size_t i = 0; i < f.size(); ++i) eps[i] = 0.5 + 0.5 * static_cast<double>(i % 7) / 6.0;
   const double dt = sim.scene().dt;

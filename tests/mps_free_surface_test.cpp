@@ -20,9 +20,7 @@ std::size_t interior_node(LiquidSimulation& sim) {
   FluidNodes& f = sim.nodes();
   LiquidParams& lp = sim.params();
   NeighborPairs nb;
-  build_neighbors(f, lp.k.re + lp.skin, lp.periodic, nb);
-  compute_number_density(f, nb, lp.k.re);
-  detect_free_surface(f, lp);
+  test::prepare_nodes(sim, nb);
   std::size_t interior = 0;
   for (std::size_t i = 0; i < f.size(); ++i)
     if (f.kind[i] == kFluid && !f.surface[i] && std::abs(f.n[i] / lp.k.n0 - 1.0) < 1e-9) interior = i;

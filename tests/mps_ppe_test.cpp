@@ -7,9 +7,8 @@
 #include <random>
 #include <string>
 
-#include "systems/mps/free_surface.hpp"
+#include "mps_support.hpp"
 #include "systems/mps/liquid_simulation.hpp"
-#include "systems/mps/number_density.hpp"
 #include "systems/mps/ppe.hpp"
 
 using namespace gf;
@@ -68,14 +67,6 @@ struct Prepared {
   NeighborPairs nb;
 };
 
-// Positions as they are, neighbours and n*, free surface: the state the PPE sees.
-void prepare(LiquidSimulation& sim, NeighborPairs& nb) {
-  FluidNodes& f = sim.nodes();
-  LiquidParams& lp = sim.params();
-  build_neighbors(f, lp.k.re + lp.skin, lp.periodic, nb);
-  compute_number_density(f, nb, lp.k.re);
-  detect_free_surface(f, lp);
-}
 
 std::size_t nearest_fluid(const FluidNodes& f, double x, double y) {
   std::size_t best = 0;
@@ -115,7 +106,7 @@ TEST_CASE("a compressed region gets positive pressure (number-density and diverg
       }
     }
     NeighborPairs nb;
-    prepare(sim, nb);
+    test::prepare_nodes(sim, nb);
     PpeWorkspace ws;
     const PpeResult r = solve_pressure(f, nb, sim.params(), sim.scene().dt, ws);
     REQUIRE(r.converged);
@@ -138,7 +129,7 @@ TEST_CASE("Eigen CG (Jacobi and incomplete Cholesky) and the parallel CG solve t
       f.v[i] = vel(rng);
     }
   NeighborPairs nb;
-  prepare(sim, nb);
+  test::prepare_nodes(sim, nb);
   LiquidParams& lp = sim.params();
   lp.clip_negative = false;
   lp.solver.tolerance = 1e-10;
@@ -181,7 +172,7 @@ TEST_CASE("a closed domain without free surface is solvable: zero-mean source an
           f.v[i] = vel(rng);
         }
       NeighborPairs nb;
-      prepare(sim, nb);
+      test::prepare_nodes(sim, nb);
       PpeWorkspace ws;
       const PpeResult r = solve_pressure(f, nb, sim.params(), sim.scene().dt, ws);
       const bool with_alpha = extra.find("compressibility") != std::string::npos;

@@ -9,11 +9,23 @@
 #include <string>
 #include <vector>
 
+#include "systems/mps/free_surface.hpp"
 #include "systems/mps/liquid_observables.hpp"
 #include "systems/mps/liquid_simulation.hpp"
+#include "systems/mps/neighbors.hpp"
+#include "systems/mps/number_density.hpp"
 #include "test_support.hpp"
 
 namespace gf::test {
+
+// The state the PPE sees, from the nodes as they are: neighbours (into nb), number densities, free surface.
+inline void prepare_nodes(LiquidSimulation& sim, NeighborPairs& nb) {
+  FluidNodes& f = sim.nodes();
+  LiquidParams& lp = sim.params();
+  build_neighbors(f, lp.k.re + lp.skin, lp.periodic, nb);
+  compute_number_density(f, nb, lp.k.re);
+  detect_free_surface(f, lp);
+}
 
 inline std::string liquid_scene(const std::string& name) {
   return std::string(GRAINFLOW_SOURCE_DIR) + "/scenes/liquid/" + name;
