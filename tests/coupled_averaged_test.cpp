@@ -97,6 +97,12 @@ TEST_CASE("averaged liquid: a tank's level rises over a fixed bed as the liquid 
   const double displaced = averaged.grains / (0.03 * 0.03);  // m, the bed's volume over the tank's section
   const double rise = averaged.rise - plain.rise;            // both runs settle alike under their weight
   CAPTURE(plain.rise, averaged.rise, displaced, averaged.bed_ratio, averaged.bed_eps, plain.bed_ratio);
+  test::record_result("averaged_liquid.csv",
+                      "plain_rise_m,averaged_rise_m,displaced_height_m,rise_share,bed_n_over_n0,bed_eps,plain_bed_n_over_n0",
+                      test::csv_number(plain.rise, 6) + "," + test::csv_number(averaged.rise, 6) + "," +
+                          test::csv_number(displaced, 6) + "," + test::csv_number(rise / displaced, 4) + "," +
+                          test::csv_number(averaged.bed_ratio, 4) + "," + test::csv_number(averaged.bed_eps, 4) + "," +
+                          test::csv_number(plain.bed_ratio, 4));
   // Measured: the clear liquid rises 1.5 mm against the plain run's of 2.9 mm displaced, and the bed's
   // nodes sit at n/n0 = 0.84 against their eps 0.69: the liquid makes room for about half the grains'
   // volume (the other half stays compressed into the bed). The bounds hold that partial displacement and
