@@ -25,12 +25,12 @@ struct Points {
   }
 };
 
-// A cubic lattice of nodes, n per side, spacing l0, from the origin.
-Points lattice(int n) {
+// A cubic lattice of nodes, n per side, spacing `a` (default l0), from the origin.
+Points lattice(int n, double a = kL0) {
   Points p;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) p.add(i * kL0, j * kL0, k * kL0);
+      for (int i = 0; i < n; ++i) p.add(i * a, j * a, k * a);
   return p;
 }
 
@@ -118,6 +118,44 @@ TEST_CASE("void fraction: a uniform suspension shows its solid fraction at the i
     CHECK(1.0 - eps[i] == Approx(phi).epsilon(0.002));
   }
   CHECK(inner == 27);
+}
+
+TEST_CASE("void fraction: the nodes of a thinned (averaged) liquid hold the grains' fraction in their own volume", "[coupling]") {
+  // A locally averaged liquid's nodes sit at n = eps n0 among grains of solid fraction phi = 1 - eps.
+  // The suspension of the test above (phi = 0.268), with nodes on a lattice thinned to eps: spacing
+  // l0 eps^(-1/3), number density eps n0 (given, as the liquid would have computed it). Each node's
+  // mixture volume is then l0^3 / eps, its spacing cubed, so S_i / V_i is phi as on the full lattice
+  // (the same sampling bound, 0.2 %); with the fixed l0^3 it reads phi / eps, 37 % high.
+  const double a = 2.5e-3, d = 2e-3, vp = std::numbers::pi / 6.0 * d * d * d, phi = vp / (a * a * a);
+  const double eps_true = 1.0 - phi, spacing = kL0 / std::cbrt(eps_true), h = 2.5 * kL0, n0 = 25.0;
+  const Points nodes = lattice(8, spacing);  // 0 .. 58 mm
+  Points grains;
+  for (int k = 0; k < 24; ++k)
+    for (int j = 0; j < 24; ++j)
+      for (int i = 0; i < 24; ++i) grains.add((i + 1.0 / 3.0) * a, (j + 1.0 / 3.0) * a, (k + 1.0 / 3.0) * a);
+  const gf::GrainShares s = gf::compute_shares(grains.view(), nodes.view(), h);
+  const std::vector<double> solid = gf::solid_volume(s, std::vector<double>(grains.x.size(), vp), nodes.x.size());
+  const std::vector<double> n(nodes.x.size(), eps_true * n0);
+  const std::vector<double> volume = gf::mixture_volumes(n, n0, kL0 * kL0 * kL0);
+  const std::vector<double> eps = gf::liquid_fraction(solid, volume, 0.2);
+  const std::vector<double> eps_fixed = gf::liquid_fraction(solid, kL0 * kL0 * kL0, 0.2);
+  const double side = 7 * spacing;
+  int inner = 0;
+  for (std::size_t i = 0; i < nodes.x.size(); ++i) {
+    bool deep = true;
+    for (const double c : {nodes.x[i], nodes.y[i], nodes.z[i]}) deep = deep && c > h && c < side - h;
+    if (!deep) continue;
+    ++inner;
+    CHECK(volume[i] == Approx(spacing * spacing * spacing).epsilon(1e-12));
+    CHECK(1.0 - eps[i] == Approx(phi).epsilon(0.002));
+    CHECK(1.0 - eps_fixed[i] == Approx(phi / eps_true).epsilon(0.002));
+  }
+  CHECK(inner == 8);
+  // A node whose kernel is cut (a free surface) counts as n0 / 2 at least; one not computed yet as n0.
+  const std::vector<double> edge = gf::mixture_volumes(std::vector<double>{0.1 * n0, 0.0, n0}, n0, 1.0);
+  CHECK(edge[0] == 2.0);
+  CHECK(edge[1] == 1.0);
+  CHECK(edge[2] == 1.0);
 }
 
 TEST_CASE("void fraction: a grain beyond every node's reach is reported, the floor holds", "[coupling]") {

@@ -122,8 +122,15 @@ void prepare_coupling(World& w) {
   c.shares = node_shares(grains, f, c);
   std::vector<double> volume(n);
   for (std::size_t i = 0; i < n; ++i) volume[i] = 4.0 / 3.0 * std::numbers::pi * std::pow(g.radius.r[i], 3);
-  c.node_eps = liquid_fraction(solid_volume(c.shares, volume, f.size()), c.node_volume, c.eps_min);
-  if (LiquidFraction* averaged = w.resources.find<LiquidFraction>()) averaged->eps = c.node_eps;
+  const std::vector<double> solid = solid_volume(c.shares, volume, f.size());
+  LiquidFraction* averaged = w.resources.find<LiquidFraction>();
+  if (averaged) {  // the nodes thin out where grains are: each stands for its own volume of mixture
+    const std::vector<double> mixture = mixture_volumes(owned(f.n, f.size()), w.resources.get<LiquidParams>().k.n0, c.node_volume);
+    c.node_eps = liquid_fraction(solid, mixture, c.eps_min);
+    averaged->eps = c.node_eps;
+  } else {
+    c.node_eps = liquid_fraction(solid, c.node_volume, c.eps_min);
+  }
   const std::vector<double> eps = at_grains(c.shares, c.node_eps);
   const std::vector<double> ux = at_grains(c.shares, owned(f.u, f.size()));
   const std::vector<double> uy = at_grains(c.shares, owned(f.v, f.size()));

@@ -17,7 +17,8 @@ void mps_laplacian(const FluidNodes& f, const NeighborPairs& nb, const MpsConsta
   });
 }
 
-void predict_velocity(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt) {
+void predict_velocity(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt,
+                      std::span<const double> eps) {
   const std::size_t n = f.size();
   const double c = lp.nu * lp.k.lap_coef();
   const double gx = lp.gravity[0] + lp.body_force[0];
@@ -35,9 +36,10 @@ void predict_velocity(FluidNodes& f, const NeighborPairs& nb, const LiquidParams
         sy += (f.v[j] - f.v[i]) * w;
         sz += (f.w[j] - f.w[i]) * w;
       }
-      f.ax[i] = c * sx + gx;
-      f.ay[i] = c * sy + gy;
-      f.az[i] = c * sz + gz;
+      const double ci = eps.empty() ? c : c / eps[i];  // a locally averaged liquid's n~0 = eps n0
+      f.ax[i] = ci * sx + gx;
+      f.ay[i] = ci * sy + gy;
+      f.az[i] = ci * sz + gz;
     }
   });
   const bool three = lp.k.dim == 3;

@@ -43,10 +43,12 @@ struct NumberDensity : SystemBase<NumberDensity> {
 };
 
 struct ExplicitStep : SystemBase<ExplicitStep> {
-  using Reads = gf::Reads<LiquidParams, NeighborPairs>;
+  using Reads = gf::Reads<LiquidParams, NeighborPairs, LiquidFraction>;
   using Writes = gf::Writes<FluidNodes>;
   std::string_view name() const override { return "explicit_step"; }
-  void run(World& w, const StepContext& step) override { predict_velocity(nodes(w), res<NeighborPairs>(w), res<LiquidParams>(w), step.dt); }
+  void run(World& w, const StepContext& step) override {
+    predict_velocity(nodes(w), res<NeighborPairs>(w), res<LiquidParams>(w), step.dt, liquid_fraction_of(w));
+  }
 };
 
 struct PredictedDensity : SystemBase<PredictedDensity> {
