@@ -7,8 +7,10 @@ column 30 x 30 mm across, driven up through them at a sweep of mean liquid speed
       pours the beads into still liquid (3 s) and writes the packed bed the scene starts from,
       scenes/data/fluidised_bed_packed.csv
   /usr/bin/python3 tools/liquid/fluidised_bed.py run [--speeds 0.003 0.006 ...] [--binary build/grainflow]
-      one run per drive speed (1.5 s each, from the packed bed) into runs/liquid/fluidised_bed/, then collect
-  /usr/bin/python3 tools/liquid/fluidised_bed.py collect
+                  [--runs runs/liquid/fluidised_bed] [--set KEY=VALUE ...] [--out docs/liquid]
+      one run per drive speed (1.5 s each, from the packed bed) into the --runs folder, every run with the
+      --set overrides, then collect (into --out)
+  /usr/bin/python3 tools/liquid/fluidised_bed.py collect [--runs DIR] [--out docs/liquid]
       docs/liquid/fluidised_bed.csv and docs/liquid/fluidised_bed.png from the runs
   /usr/bin/python3 tools/liquid/fluidised_bed.py table [docs/liquid/fluidised_bed.csv]
       the README's table (tools/readme/tables.py calls it)
@@ -96,8 +98,8 @@ def settle(a):
 
 def run(a):
     for u in a.speeds:
-        out = os.path.join(RUNS, f"drive_{u:.3f}")
-        r = grainflow(a.binary, out, [f"drive.mean_velocity={u}"])
+        out = os.path.join(a.runs, f"drive_{u:.3f}")
+        r = grainflow(a.binary, out, [f"drive.mean_velocity={u}"] + a.set)
         print(f"drive {u} m/s: exit {r.returncode}", flush=True)
     collect(a)
 
@@ -151,9 +153,9 @@ def collect(a):
     u_t = schiller_naumann_speed()
     n_rz = rz_exponent(RHO_L * D * u_t / MU)
     rows = []
-    for name in sorted(os.listdir(os.path.join(ROOT, RUNS))):
+    for name in sorted(os.listdir(os.path.join(ROOT, a.runs))):
         if name.startswith("drive_"):
-            folder = os.path.join(ROOT, RUNS, name)
+            folder = os.path.join(ROOT, a.runs, name)
             if os.path.isfile(os.path.join(folder, "final_state.csv")):  # finished
                 rows.append(one(folder, float(name[6:]), u_t, n_rz))
     rows.sort(key=lambda r: r["drive"])
@@ -243,8 +245,11 @@ def main():
         p.add_argument("--out", default="docs/liquid")
         if name == "run":
             p.add_argument("--speeds", type=float, nargs="+", default=SPEEDS)
+            p.add_argument("--runs", default=RUNS, help="work folder of the runs (one drive_U folder per speed)")
+            p.add_argument("--set", action="append", default=[], help="a scene override for every run, as grainflow's --set")
     c = sub.add_parser("collect")
     c.add_argument("--out", default="docs/liquid")
+    c.add_argument("--runs", default=RUNS)
     t = sub.add_parser("table")
     t.add_argument("csv", nargs="?", default=os.path.join(ROOT, "docs/liquid/fluidised_bed.csv"))
     a = ap.parse_args()

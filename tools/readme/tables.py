@@ -208,6 +208,8 @@ TABLES = {
     "liquid_bench_step": lambda: script("tools/liquid/bench_table.py", "--step", "docs/liquid/bench_step.json",
                                         "--before", "docs/liquid/bench_step_before.json"),
     "fluidised_bed": lambda: script("tools/liquid/fluidised_bed.py", "table", "docs/liquid/fluidised_bed.csv"),
+    "fluidised_bed_closed": lambda: script("tools/liquid/fluidised_bed.py", "table",
+                                           "docs/liquid/closed/fluidised_bed.csv"),
     "coupled_ladder": lambda: script("tools/liquid/ladder_table.py"),
     "transport_pipe": lambda: script("tools/liquid/transport_pipe.py", "table", "docs/liquid/transport_pipe.json"),
     "liquid_step_rounds": lambda: script("tools/liquid/step_rounds.py", "table", "docs/liquid/step_rounds.csv"),
