@@ -75,6 +75,9 @@ TEST_CASE("averaged liquid: the viscous term of thinned nodes is normalised by e
   const std::vector<double> fraction(f.size(), eps);
   const double plain = viscous({}), averaged = viscous(fraction);
   CAPTURE(plain, averaged, f.n[c] / lp.k.n0);
+  test::record_result("averaged_viscous.csv", "eps,n_over_n0,lap_n0_form_over_exact,lap_eps_n0_form_over_exact",
+                      test::csv_number(eps, 3) + "," + test::csv_number(f.n[c] / lp.k.n0, 4) + "," +
+                          test::csv_number(plain, 4) + "," + test::csv_number(averaged, 4));
   CHECK(plain == Approx(0.767).margin(1e-3));
   CHECK(averaged == Approx(1.096).margin(1e-3));
   CHECK(averaged == Approx(plain / eps).epsilon(1e-12));
@@ -155,8 +158,9 @@ TEST_CASE("averaged liquid: a tank's level rises over a fixed bed as the liquid 
   CAPTURE(sum.rise, sum.averaged.bed_ratio, sum.averaged.bed_eps);
   // The bed is 24 % grains, so its nodes should thin to eps = 0.76 (the kernel reads 0.74 in its
   // middle) and the clear liquid rise by the displaced 2.87 mm. Measured with the "min" gradient: the
-  // rise is 63 % of that and the nodes sit at n/n0 = 0.815 (the "sum" form: 47 %, 0.859). The bounds hold that partial displacement
-  // and no overshoot: above half the displaced height, below all of it; the nodes thinned, not past eps.
+  // rise is 63 % of that and the nodes sit at n/n0 = 0.815 (the "sum" form: 47 %, 0.859). The bounds
+  // hold that partial displacement and no overshoot: above half the displaced height, below all of it;
+  // the nodes thinned, not past eps.
   CHECK(min.rise > min.displaced / 2.0);
   CHECK(min.rise < min.displaced);
   CHECK(min.averaged.bed_ratio < min.plain.bed_ratio - 0.15);

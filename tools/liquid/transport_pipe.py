@@ -5,10 +5,10 @@ periodic pipe of water at the seed's transport speeds, and the seed's observable
   /usr/bin/python3 tools/liquid/transport_pipe.py run [--speeds 2 3 4 5] [--offaxis] [--duration 2.5]
                                                      [--budget-minutes 30] [--binary build/grainflow]
       one case per speed into runs/liquid/transport_pipe/u<U> (and with --offaxis u<U>_offaxis for each
-      of those speeds: the fill's centre moved 0.01 m off the axis, the seed's check), each in resumable pieces of at most the budget
-      (tools/common/resumable.py: a piece stops with a checkpoint and the next resumes from it), each to
-      its end before the next; after each piece the new frames are reduced to rows of frames.csv and the
-      case archived under docs/liquid/transport_pipe/<case>; then collect
+      of those speeds: the fill's centre moved 0.01 m off the axis, the seed's check), each in resumable
+      pieces of at most the budget (tools/common/resumable.py: a piece stops with a checkpoint and the
+      next resumes from it), each to its end before the next; after each piece the new frames are reduced
+      to rows of frames.csv and the case archived under docs/liquid/transport_pipe/<case>; then collect
   /usr/bin/python3 tools/liquid/transport_pipe.py collect [--from 1.0]
       docs/liquid/transport_pipe.json and docs/liquid/transport_pipe.png (profiles) from the cases'
       frames.csv, docs/liquid/transport_pipe_views.png (pictures) from the last frames where a run

@@ -89,7 +89,7 @@ def amg_probe_table(path="docs/liquid/amg_probe.jsonl"):
         name = (f"hypre PCG + BoomerAMG: {coarsen.get(r['coarsen'], r['coarsen'])}, θ {r['theta']}, "
                 f"{interp.get(r['interp'], r['interp'])}, aggressive levels {r['agg_levels']}, P max {r['pmax']}, "
                 f"{relax.get(r['relax'], r['relax'])}")
-        rows.append(f"| {name} | {r['omp_threads']} (OpenMP) | {r['iterations']} | {r['setup_ms_median']:.0f} | "
+        rows.append(f"| {name} | OMP_NUM_THREADS={r['omp_threads']} (hypre runs one thread) | {r['iterations']} | {r['setup_ms_median']:.0f} | "
                     f"{r['solve_ms_median']:.0f} | {r['setup_ms_median'] + r['solve_ms_median']:.0f} |")
     rows.append("")
     rows.append(f"{head['tank']}: {ours['rows']:,} unknowns, {ours['off_diagonal']:,} off-diagonal couplings; "
