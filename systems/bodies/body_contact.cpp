@@ -173,14 +173,7 @@ void shape_wall_history(MemberWallHistory& w, std::size_t members, std::size_t p
 
 // ---- Evaluation ----------------------------------------------------------------------------------
 
-// One contact's outcome: the force on the owner (the other body gets minus it), the torques about
-// each body's centre of mass, and the law's history after it.
-struct Outcome {
-  bool touching = false;
-  double delta = 0;
-  Vector3d force = Vector3d::Zero(), torque_a = Vector3d::Zero(), torque_b = Vector3d::Zero();
-  std::array<double, kMaxHistory> history{};
-};
+using Outcome = ContactOutcome;
 
 Vector3d eig(const V3<double>& v) { return {v.x, v.y, v.z}; }
 
@@ -209,14 +202,16 @@ Outcome evaluate(const Bodies& bodies, const MemberContact& c, std::size_t body_
   return o;
 }
 
-// Every listed pair, in parallel: geometry, then the law where the members touch.
+// The listed pairs of b (every one without a split), in parallel: geometry, then the law where the members touch.
 template <class L>
 std::vector<Outcome> evaluate_pairs(const Bodies& bodies, const Members& members,
-                                    const std::vector<MemberShape>& shapes, const BodyContactState& s, double dt) {
+                                    const std::vector<MemberShape>& shapes, const BodyContactState& s, double dt,
+                                    const SplitBlocks& b) {
   const MemberPairList& list = s.list;
   std::vector<Outcome> out(list.pairs());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, list.pairs(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b.count(list.pairs()), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      const std::size_t k = b.item(j);
       const MemberContact c = member_member(shapes[list.a[k]], shapes[list.b[k]]);
       if (!c.touching()) continue;
       std::array<double, kMaxHistory> h{};
@@ -229,16 +224,17 @@ std::vector<Outcome> evaluate_pairs(const Bodies& bodies, const Members& members
   return out;
 }
 
-// Every member against every plane, in parallel; the springs of (member, plane) pairs apart reset.
-// Per member, its walls' forces and torques summed in plane order.
+// The members of b against every plane, in parallel; the springs of (member, plane) pairs apart
+// reset. Per member, its walls' forces and torques summed in plane order.
 template <class L>
 std::vector<Outcome> evaluate_walls(const Bodies& bodies, const Members& members, const BodyPlanes& planes,
                                     const std::vector<MemberShape>& shapes, BodyContactState& s, double dt,
-                                    bool turning) {
+                                    bool turning, const SplitBlocks& b) {
   std::vector<Outcome> out(members.n);
   MemberWallHistory& w = s.walls;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.n, 16), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t m = r.begin(); m != r.end(); ++m)
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b.count(members.n), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      const std::size_t m = b.item(j);
       for (std::size_t p = 0; p < planes.list.size(); ++p) {
         double* h = w.at(m, p);
         if (!bodies.moving(members.body.row[m])) {  // fixed on a wall, or removed: no contact
@@ -265,6 +261,7 @@ std::vector<Outcome> evaluate_walls(const Bodies& bodies, const Members& members
         out[m].force += o.force;
         out[m].torque_a += o.torque_a;
       }
+    }
   });
   return out;
 }
@@ -361,7 +358,7 @@ void rebuild_member_pairs(const Members& members, BodyContactState& state) {
 template <class L>
 BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, const BodyPlanes& planes,
                                         const BodyContactModel<L>& model, BodyContactState& state, double dt,
-                                        bool turning) {
+                                        bool turning, const BodyContactSplit* split) {
   check_members(bodies, members);
   adopt_layout<L>(state.history);
   BodyContactReport report;
@@ -387,8 +384,15 @@ BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, 
 
   std::vector<MemberShape> shapes(members.n);
   tbb::parallel_for(std::size_t(0), members.n, [&](std::size_t m) { shapes[m] = member_shape(bodies, members, m); });
-  const std::vector<Outcome> pairs = evaluate_pairs<L>(bodies, members, shapes, state, dt);
-  const std::vector<Outcome> walls = evaluate_walls<L>(bodies, members, planes, shapes, state, dt, turning);
+  // Shared among processes: each evaluates its items, then every process holds every outcome.
+  const bool shared = split && split->ranks > 1;
+  const SplitBlocks b = shared ? split_blocks(*split) : SplitBlocks{};
+  std::vector<Outcome> pairs = evaluate_pairs<L>(bodies, members, shapes, state, dt, b);
+  std::vector<Outcome> walls = evaluate_walls<L>(bodies, members, planes, shapes, state, dt, turning, b);
+  if (shared && !share_outcomes(*split, body_state_hash(bodies), pairs, state.history.width, walls, state.walls, b))
+    throw StabilityError("the processes sharing the bodies' contacts hold different states (their hashes differ): "
+                         "they must run one build of grainflow_mpi on machines that round alike; run on one kind of "
+                         "node, or on one process");
   zero_loads(bodies);
   sum_pairs(bodies, members, pairs, state, report);
   sum_walls(bodies, members, walls, state, report);

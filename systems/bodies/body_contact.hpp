@@ -64,6 +64,7 @@
 
 #include "engine/system.hpp"
 #include "systems/bodies/bodies.hpp"
+#include "systems/bodies/body_contact_split.hpp"
 #include "systems/broadphase/cell_grid.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/contact/contact_law.hpp"
@@ -164,11 +165,13 @@ void rebuild_member_pairs(const Members& members, BodyContactState& state);
 // (place_members) at the bodies' current pose. dt is the step (the springs' increment). Instantiated
 // for every law of ContactLaws. Throws std::invalid_argument for a skin that is not positive, a
 // member naming no body, or law constants that are not finite.
-// With turning = false the walls stand still (a drum while its fill settles).
+// With turning = false the walls stand still (a drum while its fill settles). With a split of more
+// than one process (body_contact_split.hpp) this process evaluates its blocks and the outcomes are
+// shared; every process must then make the call with the same state (collective).
 template <class L>
 BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, const BodyPlanes& planes,
                                         const BodyContactModel<L>& model, BodyContactState& state, double dt,
-                                        bool turning = true);
+                                        bool turning = true, const BodyContactSplit* split = nullptr);
 
 // compute_body_contacts as a system: after the members are placed, before the bodies' closing kick.
 template <class L>
@@ -176,7 +179,7 @@ class BodyContact : public SystemBase<BodyContact<L>> {
  public:
   using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMass, BodyInertia,
                           BodyMotion, MemberBody, MemberCore, MemberDilation, MemberBound, MemberCentre, CoreVertices, BodyPlanes,
-                          BodyContactModel<L>, Walls>;
+                          BodyContactModel<L>, Walls, BodyContactSplit>;
   using Writes = gf::Writes<BodyForce, BodyTorque, BodyContactState>;
   std::string_view name() const override { return "body_contact"; }
   // The walls turn unless the scene's walls have their rotation off (while a fill settles).
@@ -188,7 +191,7 @@ class BodyContact : public SystemBase<BodyContact<L>> {
     BodyContactState& state = world.resources.get<BodyContactState>();
     compute_body_contacts<L>(world.tables.get<Bodies>(), world.tables.get<Members>(),
                              world.resources.get<BodyPlanes>(), world.resources.get<BodyContactModel<L>>(), state,
-                             step.dt, turning(world));
+                             step.dt, turning(world), world.resources.find<BodyContactSplit>());
     if (state.last.max_overlap > state.overlap_limit) check_body_overlap(state, step);
   }
 };
