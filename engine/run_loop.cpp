@@ -4,12 +4,15 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <exception>
+#include <utility>
 
 namespace gf {
 
 namespace {
 std::atomic<bool> g_stop{false};
 extern "C" void on_stop_signal(int) { g_stop.store(true); }
+std::function<bool(bool)> g_agree;
 
 std::string human_seconds(double s) {
   char buf[64];
@@ -31,6 +34,7 @@ void install_stop_handlers() {
   std::signal(SIGXFSZ, SIG_IGN);
 }
 bool stop_requested() { return g_stop.load(); }
+void install_stop_agreement(std::function<bool(bool)> any) { g_agree = std::move(any); }
 
 StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
   using clock = std::chrono::steady_clock;
@@ -44,15 +48,27 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
     c.stage = opt.label;
     return c;
   };
-  if (opt.observe && opt.observe_start) opt.observe->run_step(context());
+  // Under an agreement an observer's failure is held until every process has stopped.
+  std::exception_ptr held;
+  auto observe = [&] {
+    if (!opt.observe) return;
+    if (!g_agree) return opt.observe->run_step(context());
+    try {
+      opt.observe->run_step(context());
+    } catch (...) {
+      held = std::current_exception();
+    }
+  };
+  if (opt.observe_start) observe();
   for (std::int64_t k = 0; k < opt.steps; ++k) {
-    if (stop_requested()) {
+    const bool mine = stop_requested() || held;
+    if (g_agree ? g_agree(mine) : mine) {
       rep.interrupted = true;
       break;
     }
     step.run_step(context());
     advance_clock(world.clock);
-    if (opt.observe) opt.observe->run_step(context());
+    observe();
     ++rep.steps;
     rep.particle_steps += rows();
     if (opt.progress_seconds > 0) {
@@ -70,6 +86,7 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
     }
   }
   rep.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  if (held) std::rethrow_exception(held);
   return rep;
 }
 

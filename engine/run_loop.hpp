@@ -47,4 +47,11 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt);
 void install_stop_handlers();
 bool stop_requested();
 
+// Processes that step one state together (grainflow_mpi's body scenes) must stop after the same
+// step. With an agreement installed, run_stage asks it before every step whether any process wants
+// to stop (`any(mine)`, a collective call on every process): for a signal, or for an observer that
+// failed on this process, whose exception is then held until every process has stopped and
+// rethrown. Installed once by such a program; an empty function removes it.
+void install_stop_agreement(std::function<bool(bool)> any);
+
 }  // namespace gf

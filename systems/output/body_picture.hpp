@@ -19,13 +19,17 @@ namespace gf {
 
 // The window drawn: the world box [lo, hi] (m) seen along axis `view` (2: along -z with x to the
 // right; 0: along +x with z to the right), the axis `up` upwards in the image (1: y).
+// Checkpoints store it as raw bytes: its padding is spelled out, so that no byte is left uninitialised.
 struct BodyView {
   int view = 2;
   int right = 0;
   int up = 1;
+  int padding_ = 0;
   std::array<double, 3> lo{}, hi{};
   int size = 800;  // px, the longer side of the image
+  int padding_end_ = 0;
 };
+static_assert(sizeof(BodyView) == 72, "BodyView has no implicit padding (checkpoints hold its bytes)");
 
 // The view of axis `view_axis` (2 or 0) with y up, over a box holding every body that is not removed
 // plus a margin of a twentieth of its larger side (and down to `lowest` along y, when finite, so

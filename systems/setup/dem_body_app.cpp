@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <functional>
+#include <memory>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -197,102 +199,114 @@ int check_body_command(const CliOptions& opt, const DemScene& s) {
   return 0;
 }
 
-int run_body_command(const CliOptions& opt, const DemScene& s) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
-  ensure_directory(out);
-  DemSimulation sim(s);
-  World& world = sim.world();
-  Schedule& step = sim.step();
-  const BodyCounts counts = count_bodies(s, world);
-  std::optional<CheckpointReader> ckpt;
-  if (opt.resume) {
-    ckpt.emplace(*opt.resume);
-    restore_body_state(*ckpt, world, s);
-  }
-  std::fprintf(stderr, "grainflow: %s: %zu moving and %zu fixed bodies (%zu members), dt = %.3g s (%.3f of the "
-               "critical period), %zu threads -> %s\n",
-               s.file.string().c_str(), counts.moving, counts.fixed, counts.members, s.dt, s.dt / s.critical.period,
-               threads_in_use(), out.string().c_str());
+namespace {
 
+// One run of a body scene: the simulation, its checkpoint when resumed, the observers (on the
+// process that writes) and the summary.
+struct BodyRun {
+  std::filesystem::path out;
+  std::unique_ptr<DemSimulation> sim;
+  BodyCounts counts;
+  std::optional<CheckpointReader> ckpt;
   nlohmann::json summary;
+  Schedule observe;
+  BodySeriesOutput* series = nullptr;
+  BodyFrameOutput* frames = nullptr;
+  BodyPictureOutput* pictures = nullptr;
+  CheckpointOutput* checkpoints = nullptr;
+};
+
+void together(const BodyRunHooks& hooks, const std::function<void()>& f) {
+  if (hooks.together) hooks.together(f);
+  else f();
+}
+
+// The simulation (restored from the checkpoint when resumed) and, on the writer, the output folder
+// and the summary's opening.
+void start_body_run(BodyRun& run, const CliOptions& opt, const DemScene& s, const BodyRunHooks& hooks) {
+  run.out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
+  if (hooks.writer) ensure_directory(run.out);
+  run.sim = std::make_unique<DemSimulation>(s);
+  World& world = run.sim->world();
+  if (hooks.install) hooks.install(world);
+  run.counts = count_bodies(s, world);
+  if (opt.resume) {
+    run.ckpt.emplace(*opt.resume);
+    restore_body_state(*run.ckpt, world, s);
+  }
+  if (!hooks.writer) return;
+  std::fprintf(stderr, "grainflow: %s: %zu moving and %zu fixed bodies (%zu members), dt = %.3g s (%.3f of the "
+               "critical period), %zu threads%s -> %s\n",
+               s.file.string().c_str(), run.counts.moving, run.counts.fixed, run.counts.members, s.dt,
+               s.dt / s.critical.period, threads_in_use(),
+               hooks.ranks > 1 ? (" on each of " + std::to_string(hooks.ranks) + " ranks").c_str() : "",
+               run.out.string().c_str());
+  nlohmann::json& summary = run.summary;
   summary["scene"] = s.file.string();
   summary["overrides"] = opt.overrides;
-  summary["bodies"] = {{"moving", counts.moving}, {"fixed", counts.fixed}, {"members", counts.members}};
+  summary["bodies"] = {{"moving", run.counts.moving}, {"fixed", run.counts.fixed}, {"members", run.counts.members}};
   for (const BodyShape& sh : s.bodies->shapes)
     summary["shapes"][sh.name] = {{"parts", sh.shape.parts.size()}, {"mass", sh.props.mass}, {"volume", sh.props.volume},
                                   {"moments", {sh.props.moments[0], sh.props.moments[1], sh.props.moments[2]}}};
   summary["threads"] = threads_in_use();
+  summary["ranks"] = hooks.ranks;
   summary["dt"] = s.dt;
   summary["critical_period"] = s.critical.period;
   summary["critical_term"] = s.critical.term;
   summary["status"] = "running";
-  if (ckpt) {
-    summary["resumed_from"] = {{"checkpoint", ckpt->file().string()}, {"step", world.clock.step}, {"time", world.clock.t}};
-    std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", ckpt->file().string().c_str(),
+  if (run.ckpt) {
+    summary["resumed_from"] = {{"checkpoint", run.ckpt->file().string()}, {"step", world.clock.step}, {"time", world.clock.t}};
+    std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", run.ckpt->file().string().c_str(),
                  static_cast<long long>(world.clock.step), world.clock.t);
   }
-  write_summary_json(out / "summary.json", summary);
+  write_summary_json(run.out / "summary.json", summary);
+}
 
-  // A resumed run continues the main stage; its settling was done by the run that wrote the checkpoint.
-  StageReport settle;
-  try {
-    if (!ckpt) settle = sim.settle(opt.quiet ? 0.0 : 2.0);
-  } catch (const StabilityError& e) {
-    summary["status"] = "failed";
-    summary["failure"] = std::string("while settling: ") + e.what();
-    summary["steps"] = 0;
-    write_summary_json(out / "summary.json", summary);
-    std::fprintf(stderr, "grainflow: failed while settling\ngrainflow: error: %s\n", e.what());
-    return 3;
-  }
-  step.reset_timings();
-
-  // The state at the start of the main stage: layers, the remaining fraction's denominator, the
-  // pictures' window; a resumed run takes them from its checkpoint.
+// The observers of the main stage, from the state at its start (layers, the remaining fraction's
+// denominator, the pictures' window); a resumed run takes them and the observers' state from its
+// checkpoint.
+void make_body_observers(BodyRun& run, const DemScene& s) {
+  World& world = run.sim->world();
   const Bodies& bodies = world.tables.get<Bodies>();
-  const Gravity& g = world.resources.get<Gravity>();
   const BodyOutputSpec& bo = s.bodies->output;
   std::vector<int> layers;
   std::uint64_t initial_moving = 0;
   const double lowest = bo.has_sink ? bo.sink_height : std::numeric_limits<double>::quiet_NaN();
   BodyView view;
+  const std::optional<CheckpointReader>& ckpt = run.ckpt;
   if (ckpt) {
     ckpt->vector("body_run.layers", layers);
     initial_moving = ckpt->value<std::uint64_t>("body_run.initial_moving");
     view = ckpt->value<BodyView>("body_run.view");
     if (layers.size() != bodies.n) ckpt->fail("its layers are not one per body", "resume with the scene of the run that wrote it");
   } else {
-    layers = body_layers(bodies, g);
+    layers = body_layers(bodies, world.resources.get<Gravity>());
     for (std::size_t i = 0; i < bodies.n; ++i) initial_moving += bodies.moving(i);
     view = body_view(bodies, world.tables.get<Members>(), bo.view_axis, bo.picture_size, lowest);
   }
-
-  Schedule observe;
+  Schedule& observe = run.observe;
   world.resources.emplace<BodySeriesRow>();
   BodySeriesSettings ss;
-  if (s.output.series_interval > 0) ss.csv = out / "series.csv";
+  if (s.output.series_interval > 0) ss.csv = run.out / "series.csv";
   ss.interval = s.output.series_interval > 0 ? s.output.series_interval : 1000 * s.dt;
   ss.overlap_scale = bo.overlap_scale;
   if (bo.has_outlet) ss.outlet_height = bo.outlet_height;
   ss.initial_moving = initial_moving;
   if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("body_series_output.rows");
-  BodySeriesOutput& series = observe.emplace<BodySeriesOutput>(ss);
-  BodyFrameOutput* frames = nullptr;
+  run.series = &observe.emplace<BodySeriesOutput>(ss);
   if (s.output.frame_interval > 0)
-    frames = &observe.emplace<BodyFrameOutput>(out, s.output.frame_interval, s.bodies, layers);
-  BodyPictureOutput* pictures = nullptr;
+    run.frames = &observe.emplace<BodyFrameOutput>(run.out, s.output.frame_interval, s.bodies, layers);
   if (bo.picture_interval > 0) {
     std::string legend;
     std::vector<Rgb> colours = picture_colours(s, layers, legend);
-    pictures = &observe.emplace<BodyPictureOutput>(out / "pictures", bo.picture_interval, view, std::move(colours),
-                                                   std::move(legend));
+    run.pictures = &observe.emplace<BodyPictureOutput>(run.out / "pictures", bo.picture_interval, view,
+                                                       std::move(colours), std::move(legend));
   }
-  std::vector<const Checkpointable*> parts{&series};
-  if (frames) parts.push_back(frames);
-  if (pictures) parts.push_back(pictures);
-  CheckpointOutput& checkpoints = observe.emplace<CheckpointOutput>(
-      CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
+  std::vector<const Checkpointable*> parts{run.series};
+  if (run.frames) parts.push_back(run.frames);
+  if (run.pictures) parts.push_back(run.pictures);
+  run.checkpoints = &observe.emplace<CheckpointOutput>(
+      CheckpointSettings{run.out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
       [&s, layers, initial_moving, view](CheckpointWriter& w, World& wd) {
         save_body_state(w, wd, s);
         w.vector("body_run.layers", layers);
@@ -301,75 +315,60 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
       },
       parts);
   observe.build(world);
-  if (ckpt) {
-    series.restore(*ckpt);
-    if (frames) {
-      if (!ckpt->has("body_frame_output.next"))
-        ckpt->fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
-      frames->restore(*ckpt);
-    }
-    if (pictures) {
-      if (!ckpt->has("body_picture_output.next"))
-        ckpt->fail("the run that wrote it drew no pictures", "resume with output.picture_interval = 0, as that run had");
-      pictures->restore(*ckpt);
-    }
-    checkpoints.restore(*ckpt);
+  if (!ckpt) return;
+  run.series->restore(*ckpt);
+  if (run.frames) {
+    if (!ckpt->has("body_frame_output.next"))
+      ckpt->fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
+    run.frames->restore(*ckpt);
   }
+  if (run.pictures) {
+    if (!ckpt->has("body_picture_output.next"))
+      ckpt->fail("the run that wrote it drew no pictures", "resume with output.picture_interval = 0, as that run had");
+    run.pictures->restore(*ckpt);
+  }
+  run.checkpoints->restore(*ckpt);
+}
 
-  StageOptions so;
-  so.progress_seconds = opt.quiet ? 0.0 : 2.0;
-  so.label = "run";
-  // --steps and the scene's duration count the whole main stage, so a resumed run ends where the
-  // uninterrupted one would.
-  so.steps = std::max<std::int64_t>(0, (opt.steps ? *opt.steps : s.main_steps()) - world.clock.step);
-  so.observe = &observe;
-  StageReport main;
-  std::string status = "completed", failure, checkpoint_file;
-  int rc = 0;
-  const std::int64_t first_step = world.clock.step;
-  const auto run0 = std::chrono::steady_clock::now();
-  try {
-    main = run_stage(world, step, so);
-    if (main.interrupted) status = "interrupted";
-  } catch (const std::exception& e) {
+// After the main stage, on the writer: the last checkpoint, the outputs closed, the final bed's
+// packing and repose, and the summary. Returns the exit status.
+int finish_body_run(BodyRun& run, const DemScene& s, const StageReport& settle, const StageReport& main,
+                    std::string status, std::string failure, std::chrono::steady_clock::time_point wall0) {
+  World& world = run.sim->world();
+  int rc = status == "failed" ? 3 : 0;
+  auto fail = [&](const std::string& what) {
     status = "failed";
-    failure = e.what();
-    main.steps = world.clock.step - first_step;
-    main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
+    failure = what;
     rc = 3;
-  }
+  };
+  std::string checkpoint_file;
   if (status != "failed" && s.output.checkpoint_at_end) {
     try {
-      checkpoint_file = checkpoints.write(world).string();
+      checkpoint_file = run.checkpoints->write(world).string();
     } catch (const std::exception& e) {
-      status = "failed";
-      failure = e.what();
-      rc = 3;
+      fail(e.what());
     }
   }
   if (status != "failed") {
     try {
-      series.finish(world);
-      if (frames) frames->finish(world);
+      run.series->finish(world);
+      if (run.frames) run.frames->finish(world);
     } catch (const std::exception& e) {
-      status = "failed";
-      failure = e.what();
-      rc = 3;
+      fail(e.what());
     }
   }
   nlohmann::json packing, repose;
   if (status != "failed") {
     try {
-      packing = final_packing(s, world, out);
+      packing = final_packing(s, world, run.out);
       repose = final_repose(s, world);
     } catch (const std::exception& e) {
-      status = "failed";
-      failure = std::string("the final packing or repose: ") + e.what();
-      rc = 3;
+      fail(std::string("the final packing or repose: ") + e.what());
     }
   }
-  const double bsps = main.wall_seconds > 0 ? static_cast<double>(main.steps) * counts.moving / main.wall_seconds : 0.0;
+  const double bsps = main.wall_seconds > 0 ? static_cast<double>(main.steps) * run.counts.moving / main.wall_seconds : 0.0;
   const BodySeriesRow& row = world.resources.get<BodySeriesRow>();
+  nlohmann::json& summary = run.summary;
   summary["status"] = status;
   if (!failure.empty()) summary["failure"] = failure;
   summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle.wall_seconds}};
@@ -379,11 +378,11 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
   summary["total_wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   summary["body_steps_per_second"] = bsps;
   summary["steps_this_run"] = main.steps;
-  summary["checkpoints_written"] = checkpoints.written();
+  summary["checkpoints_written"] = run.checkpoints->written();
   if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
   summary["member_list_rebuilds"] = world.resources.get<BodyContactState>().rebuilds;
-  summary["frames"] = frames ? frames->frames() : 0;
-  summary["pictures"] = pictures ? pictures->pictures() : 0;
+  summary["frames"] = run.frames ? run.frames->frames() : 0;
+  summary["pictures"] = run.pictures ? run.pictures->pictures() : 0;
   summary["final"] = {{"time", row.time},
                       {"ke_translational", row.ke_translational},
                       {"ke_rotational", row.ke_rotational},
@@ -391,22 +390,74 @@ int run_body_command(const CliOptions& opt, const DemScene& s) {
                       {"wall_contacts", row.wall_contacts},
                       {"max_overlap_ratio", row.max_overlap_ratio},
                       {"moving", row.moving}};
-  if (bo.has_outlet) summary["final"]["remaining_fraction"] = number_or_null(row.remaining_fraction);
+  if (s.bodies->output.has_outlet) summary["final"]["remaining_fraction"] = number_or_null(row.remaining_fraction);
   if (!packing.is_null()) summary["packing"] = packing;
   if (!repose.empty()) summary["repose"] = repose;
   double total = 0;
-  for (auto& t : step.timings()) total += t.seconds;
-  for (auto& t : observe.timings()) total += t.seconds;
-  nlohmann::json per = timings_json(step, total);
-  for (auto& j : timings_json(observe, total)) per.push_back(j);
+  for (auto& t : run.sim->step().timings()) total += t.seconds;
+  for (auto& t : run.observe.timings()) total += t.seconds;
+  nlohmann::json per = timings_json(run.sim->step(), total);
+  for (auto& j : timings_json(run.observe, total)) per.push_back(j);
   summary["time_per_system"] = per;
-  write_summary_json(out / "summary.json", summary);
+  write_summary_json(run.out / "summary.json", summary);
   std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g body-steps/s\n",
                status.c_str(), static_cast<long long>(main.steps), world.clock.t, main.wall_seconds, bsps);
   if (!failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", failure.c_str());
-  else if (pictures && !pictures->last_picture().empty())
-    std::fprintf(stderr, "grainflow: last picture: %s\n", pictures->last_picture().string().c_str());
+  else if (run.pictures && !run.pictures->last_picture().empty())
+    std::fprintf(stderr, "grainflow: last picture: %s\n", run.pictures->last_picture().string().c_str());
   return rc;
+}
+
+}  // namespace
+
+int run_body_command(const CliOptions& opt, const DemScene& s, const BodyRunHooks& hooks) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  BodyRun run;
+  together(hooks, [&] { start_body_run(run, opt, s, hooks); });
+  World& world = run.sim->world();
+  const bool progress = hooks.writer && !opt.quiet;
+
+  // A resumed run continues the main stage; its settling was done by the run that wrote the checkpoint.
+  StageReport settle;
+  try {
+    if (!run.ckpt) settle = run.sim->settle(progress ? 2.0 : 0.0);
+  } catch (const StabilityError& e) {
+    if (!hooks.writer) return 3;
+    run.summary["status"] = "failed";
+    run.summary["failure"] = std::string("while settling: ") + e.what();
+    run.summary["steps"] = 0;
+    write_summary_json(run.out / "summary.json", run.summary);
+    std::fprintf(stderr, "grainflow: failed while settling\ngrainflow: error: %s\n", e.what());
+    return 3;
+  }
+  run.sim->step().reset_timings();
+  together(hooks, [&] {
+    if (hooks.writer) make_body_observers(run, s);
+  });
+
+  StageOptions so;
+  so.progress_seconds = progress ? 2.0 : 0.0;
+  so.label = "run";
+  so.rows = [n = static_cast<double>(run.counts.moving)](const World&) { return n; };  // body-steps
+  // --steps and the scene's duration count the whole main stage, so a resumed run ends where the
+  // uninterrupted one would.
+  so.steps = std::max<std::int64_t>(0, (opt.steps ? *opt.steps : s.main_steps()) - world.clock.step);
+  so.observe = hooks.writer ? &run.observe : nullptr;
+  StageReport main;
+  std::string status = "completed", failure;
+  const std::int64_t first_step = world.clock.step;
+  const auto run0 = std::chrono::steady_clock::now();
+  try {
+    main = run_stage(world, run.sim->step(), so);
+    if (main.interrupted) status = "interrupted";
+  } catch (const std::exception& e) {
+    status = "failed";
+    failure = e.what();
+    main.steps = world.clock.step - first_step;
+    main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
+  }
+  if (!hooks.writer) return status == "failed" ? 3 : 0;
+  return finish_body_run(run, s, settle, main, status, failure, wall0);
 }
 
 }  // namespace gf

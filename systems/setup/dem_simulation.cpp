@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <type_traits>
 
+#include "systems/bodies/bodies.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/setup/dem_body_checkpoint.hpp"
@@ -58,6 +59,13 @@ StageReport DemSimulation::settle(double progress_seconds) {
   StageOptions so;
   so.label = "settle";
   so.steps = scene_.settle_steps();
+  if (scene_.bodies)  // progress in body-steps
+    so.rows = [w = world_.get()](const World&) {
+      const Bodies& b = w->tables.get<Bodies>();
+      double n = 0;
+      for (std::size_t i = 0; i < b.n; ++i) n += b.moving(i);
+      return n;
+    };
   so.progress_seconds = progress_seconds;
   rep = run_stage(*world_, *step_, so);
   walls.rotation_enabled = true;
