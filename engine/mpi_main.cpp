@@ -22,6 +22,11 @@
 // left on disk. Exit status 2 for a scene, usage or checkpoint error (every rank stops; rank 0 names
 // the file), 3 when the run became unphysical (every rank is stopped by MPI_Abort) or an output could
 // not be written (every rank stops and finalises; rank 0 names the file).
+//
+// A scene of composite bodies ([[bodies]]) runs differently (systems/setup/mpi/rank_body_app.hpp):
+// every rank steps the whole scene with the member contacts shared out, bit-identical to `grainflow
+// run`, whose outputs rank 0 writes; --resume takes DIR/checkpoints/checkpoint.gfc on any rank count,
+// and --rebalance does not apply.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -44,6 +49,7 @@
 #include "systems/output/mpi/rank_checkpoints.hpp"
 #include "systems/output/mpi/rank_outputs.hpp"
 #include "systems/output/summary_json.hpp"
+#include "systems/setup/mpi/rank_body_app.hpp"
 
 namespace {
 
@@ -54,6 +60,7 @@ struct Options {
   std::vector<std::string> overrides;
   std::optional<std::filesystem::path> resume;
   double rebalance = 1.25;  // the boxes are cut again past this ratio of most to mean cost; 0: never
+  bool quiet = false;
 };
 
 const char* kUsage =
@@ -68,7 +75,10 @@ bool parse(int argc, char** argv, Options& o) {
   o.scene = argv[2];
   for (int k = 3; k < argc; ++k) {
     const std::string a = argv[k];
-    if (a == "--quiet") continue;  // grainflow's flag: this program prints no progress lines
+    if (a == "--quiet") {  // grainflow's flag: progress lines (body scenes' rank 0 prints them) off
+      o.quiet = true;
+      continue;
+    }
     if (k + 1 >= argc) return false;
     const std::string v = argv[++k];
     if (a == "--out") o.out = v;
@@ -183,6 +193,26 @@ int fail_write(const gf::RankFailure& e, const Options& opt, const gf::MpiContex
   return 3;
 }
 
+// A scene of composite bodies: every rank steps it, the contacts shared out (rank_body_app.hpp).
+int run_bodies(const Options& o, const gf::DemScene& scene, const gf::MpiContext& mpi) {
+  gf::CliOptions c;
+  c.command = "run";
+  c.scene = o.scene;
+  c.out = o.out;
+  c.threads = o.threads;
+  if (o.steps >= 0) c.steps = o.steps;
+  c.overrides = o.overrides;
+  c.quiet = o.quiet;
+  c.resume = o.resume;
+  try {
+    return gf::run_rank_body_command(c, scene, mpi);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "grainflow_mpi: rank %d: %s\n", mpi.rank(), e.what());
+    MPI_Abort(mpi.comm(), 2);
+  }
+  return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -203,7 +233,9 @@ int main(int argc, char** argv) {
 
   std::unique_ptr<gf::RankSimulation> sim;
   try {
-    sim = std::make_unique<gf::RankSimulation>(gf::RankSimulation::from_file(opt.scene, mpi, opt.overrides));
+    gf::DemScene scene = gf::RankSimulation::load_scene(opt.scene, opt.overrides);
+    if (scene.bodies) return run_bodies(opt, scene, mpi);
+    sim = std::make_unique<gf::RankSimulation>(std::move(scene), mpi);
   } catch (const std::exception& e) {
     // Every rank loads the same scene and fails alike: rank 0 reports.
     if (mpi.rank() == 0) std::fprintf(stderr, "grainflow_mpi: %s\n", e.what());

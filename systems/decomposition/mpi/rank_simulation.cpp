@@ -69,7 +69,9 @@ void put(std::vector<std::byte>& out, const void* p, std::size_t n) {
 }  // namespace
 
 RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mpi) {
-  if (scene.bodies) throw std::invalid_argument("a scene of composite bodies does not run on several ranks yet");
+  if (scene.bodies)
+    throw std::invalid_argument("a scene of composite bodies runs on ranks through run_rank_body_command "
+                                "(grainflow_mpi does so), not as a RankSimulation");
   periodic_ = scene.periodic;
   max_grains_ = memory_grain_limit(scene);
   const FlowSpec scene_flow = scene.flow;
@@ -134,6 +136,10 @@ RankSimulation RankSimulation::from_text(std::string_view toml, const MpiContext
 RankSimulation RankSimulation::from_file(const std::filesystem::path& file, const MpiContext& mpi,
                                          const std::vector<std::string>& overrides) {
   return RankSimulation(rank_scene(SceneDoc::load(file, overrides)), mpi);
+}
+
+DemScene RankSimulation::load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return rank_scene(SceneDoc::load(file, overrides));
 }
 
 RankSimulation::RankSimulation(RankSimulation&&) noexcept = default;
