@@ -188,6 +188,7 @@ TABLES = {
     "seed002_cost": seed002_cost,
     "mpi_cost_model": lambda: script("tools/mpi/cost_model.py", "table"),
     "mpi_mixer_ranks": lambda: script("tools/mpi/mixer_ranks.py", "table"),
+    "mpi_body_ranks": lambda: script("tools/mpi/body_ranks.py", "table"),
     "coupled_sweep": lambda: script("tools/liquid/coupled_sweep.py", "table"),
     "seed002_shapes": lambda: script("tools/seed002/shapes_hopper.py", "table", "docs/seed002/shapes/shapes.json"),
     "mesh_drum": lambda: script("tools/walls/mesh_drum_compare.py", "table", "docs/walls/mesh_drum_compare.json"),
