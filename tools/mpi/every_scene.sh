@@ -1,5 +1,6 @@
 #!/bin/bash
-# Every scene under scenes/ on two ranks for a few steps (settling skipped where the scene has a
+# Every scene under scenes/ on two ranks for a few steps, as a user starts it (mpirun -np 2
+# build/grainflow run SCENE, which hands the ranks over to grainflow_mpi) (settling skipped where the scene has a
 # [settle] table): the run's exit status and its last line, into docs/mpi/every_scene.csv. DEM
 # scenes of spheres and of composite bodies must complete; liquid scenes are refused with the reason.
 #   tools/mpi/every_scene.sh [STEPS]      (from the repository root, after the build)
@@ -15,7 +16,7 @@ for s in scenes/*.toml scenes/tests/*.toml scenes/liquid/*.toml; do
   extra=()
   grep -q '^\[settle\]' "$s" && extra=(--set settle.time=0)
   t0=$(date +%s.%N)
-  log=$(timeout 600 mpirun --allow-run-as-root --oversubscribe -np 2 build/grainflow_mpi run "$s" \
+  log=$(timeout 600 mpirun --allow-run-as-root --oversubscribe -np 2 build/grainflow run "$s" \
         --out "$work/$(basename "$s" .toml)" --steps "$steps" --threads 1 --quiet "${extra[@]}" 2>&1)
   rc=$?
   t1=$(date +%s.%N)
