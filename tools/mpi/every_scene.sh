@@ -20,7 +20,7 @@ for s in scenes/*.toml scenes/tests/*.toml scenes/liquid/*.toml; do
         --out "$work/$(basename "$s" .toml)" --steps "$steps" --threads 1 --quiet "${extra[@]}" 2>&1)
   rc=$?
   t1=$(date +%s.%N)
-  last=$(printf '%s\n' "$log" | grep -E '^grainflow(_mpi)?: ' | tail -1 | tr -d '",' | cut -c1-200)
+  last=$(printf '%s\n' "$log" | grep -E '^grainflow(_mpi)?: .*(steps in | after [0-9]+ steps| key |error)' | tail -1 | tr -d '",' | cut -c1-200)
   last=${last//$work/DIR}
   printf '%s,%s,%d,%.1f,"%s"\n' "$s" "$kind" "$rc" "$(echo "$t1 - $t0" | bc)" "$last" | tee -a $out
 done

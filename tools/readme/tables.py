@@ -73,6 +73,19 @@ def averaged_liquid_table(path="docs/liquid/averaged_liquid.csv"):
     return "\n".join(rows) + "\n"
 
 
+def every_scene_table(path="docs/mpi/every_scene.csv"):
+    """Every scene on two ranks (tools/mpi/every_scene.sh): scenes per kind and exit status."""
+    import csv
+    counts = {}
+    for r in csv.DictReader(open(ROOT / path)):
+        key = (r["kind"], "completed" if r["exit_status"] == "0" else f"exit status {r['exit_status']}")
+        counts.setdefault(key, []).append(pathlib.Path(r["scene"]).stem)
+    rows = ["| scenes | on 2 ranks | how many | which |", "|---|---|---|---|"]
+    for (kind, status), names in sorted(counts.items()):
+        rows.append(f"| {kind} | {status} | {len(names)} | {', '.join(names)} |")
+    return "\n".join(rows) + "\n"
+
+
 def amg_probe_table(path="docs/liquid/amg_probe.jsonl"):
     """grainflow's Jacobi CG against hypre's PCG + BoomerAMG on one pressure system (tools/liquid/amg_probe.sh)."""
     lines = [json.loads(l) for l in (ROOT / path).read_text().splitlines() if l.strip()]
@@ -189,6 +202,7 @@ TABLES = {
     "mpi_cost_model": lambda: script("tools/mpi/cost_model.py", "table"),
     "mpi_mixer_ranks": lambda: script("tools/mpi/mixer_ranks.py", "table"),
     "mpi_body_ranks": lambda: script("tools/mpi/body_ranks.py", "table"),
+    "mpi_every_scene": every_scene_table,
     "coupled_sweep": lambda: script("tools/liquid/coupled_sweep.py", "table"),
     "seed002_shapes": lambda: script("tools/seed002/shapes_hopper.py", "table", "docs/seed002/shapes/shapes.json"),
     "mesh_drum": lambda: script("tools/walls/mesh_drum_compare.py", "table", "docs/walls/mesh_drum_compare.json"),
