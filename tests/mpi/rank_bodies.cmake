@@ -1,5 +1,5 @@
-# Composite bodies on two ranks against grainflow on one process: every file the run writes
-# (series.csv, frames, pictures, packing.csv, the checkpoint) byte for byte, and a run stopped at a
+# Composite bodies on two ranks (and three) against grainflow on one process: every file the run
+# writes (series.csv, frames, pictures, packing.csv, the checkpoint) byte for byte, and a run stopped at a
 # checkpoint and resumed on two ranks, on one (grainflow_mpi) and by grainflow ends with the same
 # files as the run that was not stopped. The split of the contacts keeps one process's order of
 # every sum (body_contact_split.hpp), so nothing is compared with a tolerance.
@@ -37,6 +37,8 @@ endfunction()
 run_checked("grainflow" ${ONE} run ${SCENE} --out ${WORK}/one ${common})
 run_checked("grainflow_mpi on 2 ranks" ${mpi} ${NP_FLAG} 2 ${PROGRAM} run ${SCENE} --out ${WORK}/two ${common})
 same_files(${WORK}/one ${WORK}/two "2 ranks")
+run_checked("grainflow_mpi on 3 ranks" ${mpi} ${NP_FLAG} 3 ${PROGRAM} run ${SCENE} --out ${WORK}/three ${common})
+same_files(${WORK}/one ${WORK}/three "3 ranks")
 file(READ ${WORK}/two/summary.json summary)
 string(JSON ranks GET "${summary}" ranks)
 string(JSON status GET "${summary}" status)
