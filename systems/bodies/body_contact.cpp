@@ -202,7 +202,8 @@ Outcome evaluate(const Bodies& bodies, const MemberContact& c, std::size_t body_
   return o;
 }
 
-// The listed pairs of b (every one without a split), in parallel: geometry, then the law where the members touch.
+// The listed pairs of b (every one without a split), in parallel: geometry, then the law where the
+// members touch.
 template <class L>
 std::vector<Outcome> evaluate_pairs(const Bodies& bodies, const Members& members,
                                     const std::vector<MemberShape>& shapes, const BodyContactState& s, double dt,

@@ -166,7 +166,7 @@ void rebuild_member_pairs(const Members& members, BodyContactState& state);
 // for every law of ContactLaws. Throws std::invalid_argument for a skin that is not positive, a
 // member naming no body, or law constants that are not finite.
 // With turning = false the walls stand still (a drum while its fill settles). With a split of more
-// than one process (body_contact_split.hpp) this process evaluates its blocks and the outcomes are
+// than one process (body_contact_split.hpp) this process evaluates its share and the outcomes are
 // shared; every process must then make the call with the same state (collective).
 template <class L>
 BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, const BodyPlanes& planes,

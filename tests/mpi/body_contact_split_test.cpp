@@ -16,6 +16,7 @@
 #include "engine/table.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/setup/dem_simulation.hpp"
+#include "systems/setup/mpi/rank_body_app.hpp"
 #include "tests/mpi/mpi_test_support.hpp"
 
 namespace {
@@ -28,11 +29,11 @@ gf::DemSimulation hopper() {
 }
 
 void install_split(gf::World& world, const gf::MpiContext& mpi, std::size_t& shares) {
-  gf::BodyContactSplit split;
-  split.rank = mpi.rank(), split.ranks = mpi.size();
-  split.share = [&mpi, &shares](std::vector<std::byte> mine) {
+  // grainflow_mpi's split, its exchanges counted.
+  gf::BodyContactSplit split = gf::rank_contact_split(mpi);
+  split.share = [share = split.share, &shares](std::vector<std::byte> mine) {
     ++shares;
-    return mpi.exchange(std::vector<std::vector<std::byte>>(static_cast<std::size_t>(mpi.size()), mine));
+    return share(std::move(mine));
   };
   world.resources.emplace<gf::BodyContactSplit>(std::move(split));
 }
@@ -89,9 +90,7 @@ TEST_CASE("composite bodies with their contacts shared among ranks step byte for
   REQUIRE(most_pairs >= 8);
   REQUIRE(most_walls >= 10);
   REQUIRE(a.rebuilds >= 3);
-  gf::BodyContactSplit probe;
-  probe.rank = mpi.rank(), probe.ranks = mpi.size();
-  CHECK(gf::split_blocks(probe).count(a.list.pairs()) > 0);
+  CHECK(gf::split_blocks(gf::rank_contact_split(mpi)).count(a.list.pairs()) > 0);
 
   CHECK(differing_columns(one.world().tables.get<gf::Bodies>(), shared.world().tables.get<gf::Bodies>()).empty());
   CHECK(b.last.pair_contacts == a.last.pair_contacts);
