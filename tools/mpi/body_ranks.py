@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """Composite bodies on ranks: speed of the contacts shared out (grainflow_mpi) against one process.
 
+  body_ranks.py settle [--checkpoint runs/mpi_bodies/settled]
+      The starting state: the prism hopper's settling stage on 2 ranks (grainflow_mpi), stopped as
+      the gate would open (--steps 0), its checkpoint at the end (about 5 min here).
   body_ranks.py run [--checkpoint C] [--steps N] [--rounds R] [--out docs/mpi/body_ranks.json]
       From one checkpoint of a body scene (default: the seed-002 prism hopper settled on its closed
       gate, runs/mpi_bodies/settled), N main-stage steps (the gate opens: the discharge's first
@@ -48,6 +51,12 @@ def one_run(config, settled, steps, work):
     return summary, last
 
 
+def settle(args):
+    subprocess.run(["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", "2", str(ROOT / "build/grainflow_mpi"),
+                    "run", SCENE, "--out", args.checkpoint, "--steps", "0", "--threads", "1", "--quiet"],
+                   cwd=ROOT, check=True)
+
+
 def run(args):
     settled = pathlib.Path(args.checkpoint)
     base = json.loads((settled / "summary.json").read_text())
@@ -90,15 +99,17 @@ def table(args):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="cmd", required=True)
+    st = sub.add_parser("settle")
+    st.add_argument("--checkpoint", default="runs/mpi_bodies/settled")
     r = sub.add_parser("run")
     r.add_argument("--checkpoint", default="runs/mpi_bodies/settled")
-    r.add_argument("--steps", type=int, default=4000)
+    r.add_argument("--steps", type=int, default=3000)
     r.add_argument("--rounds", type=int, default=5)
     r.add_argument("--out", default="docs/mpi/body_ranks.json")
     t = sub.add_parser("table")
     t.add_argument("file", nargs="?", default=str(ROOT / "docs/mpi/body_ranks.json"))
     args = p.parse_args()
-    {"run": run, "table": table}[args.cmd](args)
+    {"settle": settle, "run": run, "table": table}[args.cmd](args)
 
 
 if __name__ == "__main__":
