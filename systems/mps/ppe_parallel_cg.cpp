@@ -6,6 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "engine/simd.hpp"
 #include "systems/mps/ppe.hpp"
 
 namespace gf {
@@ -75,10 +76,17 @@ PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSet
   const std::uint32_t* col = sys.col.data();
   const double* w = sys.w.data();
   const double c = pb.c;
+  const auto* col32 = reinterpret_cast<const std::int32_t*>(col);  // rows < 2^31: the same values
+  // A row's couplings kLanes at a time (one hardware gather of v each), the rest one by one, so the sum is
+  // not one chain of dependent additions; the order is fixed by the row's length alone.
   auto apply_row = [&](std::size_t i, const double* v) {
-    double acc = 0;
-    for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) acc += w[k] * v[col[k]];
-    return diag[i] * v[i] - c * acc;
+    std::uint32_t k = start[i];
+    const std::uint32_t end = start[i + 1];
+    BatchD acc(0.0);
+    for (; k + kLanes <= end; k += kLanes) acc = xsimd::fma(BatchD::load_unaligned(w + k), gather32(v, col32 + k), acc);
+    double tail = 0;
+    for (; k < end; ++k) tail += w[k] * v[col[k]];
+    return diag[i] * v[i] - c * (xsimd::hadd(acc) + tail);
   };
   blockwise(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
     double bb = 0;
@@ -124,8 +132,19 @@ PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSet
     if (!(dq > 0)) break;  // loss of positive definiteness: reported as non-convergence below
     const double alpha = rz / dq;
     blockwise(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
-      double rz_b = 0, rr_b = 0;
-      for (std::size_t i = i0; i < i1; ++i) {
+      // kLanes rows at a time with one partial sum per lane (blocks start at multiples of kLanes), the block's
+      // last rows one by one: a fixed order, whatever the thread count.
+      BatchD rz_v(0.0), rr_v(0.0);
+      std::size_t i = i0;
+      for (; i + kLanes <= i1; i += kLanes) {
+        (BatchD::load_unaligned(x + i) + BatchD(alpha) * BatchD::load_unaligned(d + i)).store_unaligned(x + i);
+        const BatchD ri = BatchD::load_unaligned(r + i) - BatchD(alpha) * BatchD::load_unaligned(q + i);
+        ri.store_unaligned(r + i);
+        rz_v += ri * ri * BatchD::load_unaligned(inv + i);
+        rr_v += ri * ri;
+      }
+      double rz_b = xsimd::hadd(rz_v), rr_b = xsimd::hadd(rr_v);
+      for (; i < i1; ++i) {
         x[i] += alpha * d[i];
         r[i] -= alpha * q[i];
         rz_b += r[i] * r[i] * inv[i];

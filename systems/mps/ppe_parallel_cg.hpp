@@ -6,7 +6,9 @@
 // row r is the r-th active node, its off-diagonal entries are the neighbours j that are active with
 // W_ij != 0, stored as (column, W_ij); A = diag - c W as in ppe.hpp. Counting, filling and every CG pass run
 // over fixed blocks of rows in parallel, and each dot product is summed per block then over the blocks in
-// order, so the result does not depend on the thread count (bit for bit).
+// order, so the result does not depend on the thread count (bit for bit). The passes run on SIMD batches:
+// a row's couplings kLanes at a time with hardware gathers, the vector updates kLanes rows at a time, so no
+// sum is one long chain of dependent additions.
 #pragma once
 
 #include <cstdint>
