@@ -4,7 +4,7 @@ every round, so that a drift of the shared machine's speed falls on both; one CS
 
     /usr/bin/python3 tools/liquid/step_rounds.py run --a NAME=BINARY --b NAME=BINARY \\
         [--filter 'dim:3/side:46/eigen:0'] [--filter-b FILTER] [--rounds 5] [--out docs/liquid/step_rounds.csv]
-    /usr/bin/python3 tools/liquid/step_rounds.py table docs/liquid/step_rounds.csv
+    /usr/bin/python3 tools/liquid/step_rounds.py table docs/liquid/step_rounds.csv [--per solve]
 
 --filter-b gives B another benchmark than A (one build's two solvers: eigen:1 against eigen:0). The table gives
 each build's median ms per step with its range, and the per-round ratio A/B (median, range).
@@ -43,12 +43,12 @@ def run(a):
                 print(f"round {r} {name}: {ms:.1f} ms per step")
 
 
-def table(path):
+def table(path, per="step"):
     rows = list(csv.DictReader(open(path)))
     names = list(dict.fromkeys(r["build"] for r in rows))
     by = {(int(r["round"]), r["build"]): float(r["ms_per_step"]) for r in rows}
     rounds = sorted({k[0] for k in by})
-    print(f"| build | rounds | median ms per step | range | {names[0]} / {names[1]} per round: median (range) |")
+    print(f"| build | rounds | median ms per {per} | range | {names[0]} / {names[1]} per round: median (range) |")
     print("|---|---|---|---|---|")
     ratios = [by[(r, names[0])] / by[(r, names[1])] for r in rounds]
     for i, n in enumerate(names):
@@ -71,8 +71,9 @@ def main():
     r.add_argument("--out", type=Path, default=Path("docs/liquid/step_rounds.csv"))
     t = sub.add_parser("table")
     t.add_argument("csv", type=Path)
+    t.add_argument("--per", default="step", help="what one benchmark iteration is (step, solve)")
     a = ap.parse_args()
-    run(a) if a.cmd == "run" else table(a.csv)
+    run(a) if a.cmd == "run" else table(a.csv, a.per)
 
 
 if __name__ == "__main__":
