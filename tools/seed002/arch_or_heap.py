@@ -9,11 +9,18 @@ an arch holds bodies there while nothing leaves; a flow that stopped on dead zon
 space over the outlet empty. Writes JSON with one entry per run.
 
     /usr/bin/python3 tools/seed002/arch_or_heap.py RUN [RUN ...] -o docs/seed002/friction/friction.json
+    /usr/bin/python3 tools/seed002/arch_or_heap.py --table docs/seed002/outlet/outlet.json
+
+--table prints a Markdown table of a written JSON, a row per run: the grain's size (the prism's side, or
+the cone element's triangle side, from the run's overrides), the gate's width in those sides, when half
+had gone, what was left at the end and since when, the stalls, and the verdict: an arch (discharge
+stopped with bodies over the outlet), stopped on dead zones (nothing over it) or still flowing.
 """
 import argparse
 import csv
 import glob
 import json
+import math
 import pathlib
 
 HALF_GATE = 0.02  # m
@@ -49,17 +56,50 @@ def over_outlet(run):
     return sum(abs(float(r["x"])) < HALF_GATE and 0.0 < float(r["y"]) < ABOVE for r in rows)
 
 
+def grain_side_mm(overrides):
+    """The prism's side, or the cone element's triangle side (corners on base_radius), in mm; 10 unless set."""
+    for o in overrides:
+        key, _, value = o.partition("=")
+        if key == "shape.0.side":
+            return 1e3 * float(value)
+        if key == "shape.0.base_radius":
+            return 1e3 * float(value) * math.sqrt(3)
+    return 10.0
+
+
+def table(path):
+    runs = json.loads(pathlib.Path(path).read_text())
+    print("| run | grain side (mm) | gate in grain sides | half gone at (s) | left at the end | unchanged since (s) "
+          "| stalls of 0.1 s or more (from, lasting) | bodies over the outlet | verdict |")
+    print("|---" * 9 + "|")
+    for run, e in runs.items():
+        side = grain_side_mm(e["overrides"])
+        stopped = e["end_s"] - e["last_change_s"] >= 0.5
+        verdict = ("arch" if e["bodies_over_outlet_at_end"] else "dead zones") if stopped else "still flowing"
+        st = "; ".join(f"{x['from_s']:.2f} s, {x['lasting_s']:.2f} s" for x in e["stalls"]) or "none"
+        half = f"{e['half_gone_s']:.2f}" if e.get("half_gone_s") is not None else "not reached"
+        over = "—" if e["bodies_over_outlet_at_end"] is None else e["bodies_over_outlet_at_end"]
+        print(f"| `{pathlib.Path(run).name}` | {side:.1f} | {40 / side:.1f} | {half} | {e['remaining_at_end']:.3f} "
+              f"at {e['end_s']:.1f} s | {e['last_change_s']:.2f} | {st} | {over} | {verdict} |")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("runs", nargs="+")
+    ap.add_argument("runs", nargs="*")
     ap.add_argument("-o", "--output")
+    ap.add_argument("--table", help="print the table of this JSON instead")
     a = ap.parse_args()
+    if a.table:
+        table(a.table)
+        return
     result = {}
     for run in a.runs:
         t, f = series(run)
         summary = json.loads((pathlib.Path(run) / "summary.json").read_text())
         ended = next(ti for ti, fi in zip(t, f) if fi == f[-1])
+        half = next((ti for ti, fi in zip(t, f) if fi <= 0.5), None)
         entry = {"overrides": summary.get("overrides", []), "remaining_at_end": f[-1], "end_s": t[-1],
+                 "half_gone_s": half,
                  "last_change_s": round(ended, 3), "stalls": stalls(t, f), "bodies_over_outlet_at_end": over_outlet(run)}
         result[run] = entry
         print(f"{run}: {f[-1]:.3f} left at {t[-1]:.2f} s, unchanged since {ended:.2f} s; stalls {entry['stalls']}; "
