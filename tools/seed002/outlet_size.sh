@@ -10,7 +10,8 @@
 #   tools/seed002/outlet_size.sh archive RUN_DIR DOCS_DIR [PICTURE_TIMES...]    (a finished run)
 #   e.g. tools/seed002/outlet_size.sh prisms 13.333 runs/seed002_outlet/prisms_side13.3 \
 #          docs/seed002/outlet/prisms_side13.3 1.4 2.0 3.0
-# Environment: GRAINFLOW (default build/grainflow), THREADS (default 1).
+# Environment: GRAINFLOW (default build/grainflow), THREADS (default 1), SEED (the fill's orientation
+# seed, bodies.2.seed; the scenes' own when unset): another SEED is another pour of the same grains.
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 archive() {  # RUN_DIR DOCS_DIR [PICTURE_TIMES...]
@@ -44,6 +45,6 @@ esac
 cd "$REPO"
 "$bin" run "$scene" --out "$out" --threads "${THREADS:-1}" --quiet "${size[@]}" \
   --set 'bodies.2.region={shape="box", lo=[-0.07,0.03,-0.025], hi=[0.07,2.2,0.025]}' \
-  --set settle.time=1.5 --set run.max_overlap=0.3
+  --set settle.time=1.5 --set run.max_overlap=0.3 ${SEED:+--set bodies.2.seed=$SEED}
 [ -z "$docs" ] && exit 0
 archive "$out" "$docs" "$@"
