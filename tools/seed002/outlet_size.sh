@@ -14,6 +14,8 @@
 # seed, bodies.2.seed; the scenes' own when unset): another SEED is another pour of the same grains.
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+usage() { sed -n '9,12p' "${BASH_SOURCE[0]}" >&2; exit 2; }
+[ $# -ge 3 ] || usage
 archive() {  # RUN_DIR DOCS_DIR [PICTURE_TIMES...]
   local out="$1" docs="$2"
   shift 2
