@@ -15,14 +15,18 @@ ROW = re.compile(r"^(liggghts|grainflow_mpi|grainflow)\s+(\d+)\s+(\d+)\s+([0-9.]
 
 
 SKIN = re.compile(r"^# state .*, skin ([0-9.eE+-]+) m,")
+CPU = re.compile(r"^# cpu: (.+)$")
 
 
 def main(path):
-    runs, builds, skin = {}, {}, None
+    runs, builds, skin, cpu = {}, {}, None, None
     for line in open(path):
         k = SKIN.match(line.strip())
         if k:
             skin = float(k.group(1))
+        c = CPU.match(line.strip())
+        if c:
+            cpu = c.group(1)
         m = ROW.match(line.strip())
         if m:
             runs[m.group(1), int(m.group(2)), int(m.group(3))] = float(m.group(6))
@@ -55,6 +59,8 @@ def main(path):
         print(f"| neighbour-list rebuilds per run | {text} | | |")
     if skin is not None:  # logs from before the SKIN setting ran at the scene's, 0.15 mm
         print(f"| Verlet skin, both codes | {skin * 1e3:g} mm | | |")
+    if cpu:  # logs from before the cpu line name the machine in the README's text
+        print(f"| processor | {cpu} | | |")
 
 
 if __name__ == "__main__":

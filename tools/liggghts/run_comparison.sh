@@ -48,6 +48,7 @@ command -v mpirun >/dev/null || { echo "run_comparison: mpirun not found" >&2; e
 mkdir -p "$WORK"
 
 echo "# run_comparison: $(date -u +%Y-%m-%dT%H:%M:%SZ), $(nproc --all) cores, load: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "# cpu: $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)"
 # One MPI rank or TBB thread per core; nothing else should spread over the cores.
 export OMP_NUM_THREADS=1
 echo "# grainflow: $BUILD/grainflow (built $(date -u -r "$BUILD/grainflow" +%H:%M:%SZ 2>/dev/null || echo '?')), repo $(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo '?')$(git -C "$REPO" diff --quiet 2>/dev/null || echo ' (working tree modified)')"

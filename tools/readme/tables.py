@@ -189,6 +189,8 @@ TABLES = {
     "system_benchmarks": lambda: script("tools/bench/system_table.py"),
     "liggghts": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison.log"),
     "liggghts_flowing": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison_flowing.log"),
+    "liggghts_flowing_xeon": lambda: script("tools/liggghts/comparison_table.py",
+                                            "docs/liggghts/comparison_flowing_xeon.log"),
     "liggghts_flowing_skin": lambda: script("tools/liggghts/comparison_table.py",
                                             "docs/liggghts/comparison_flowing_skin0.3mm.log"),
     "liggghts_flowing_mpi": lambda: script("tools/liggghts/comparison_table.py",
