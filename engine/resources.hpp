@@ -34,6 +34,14 @@ class Resources {
     if (R* r = find<R>()) return *r;
     throw std::logic_error(std::string("resource missing from world: ") + typeid(R).name());
   }
+  template <class R>
+  const R* find() const {
+    return const_cast<Resources*>(this)->find<R>();
+  }
+  template <class R>
+  const R& get() const {
+    return const_cast<Resources*>(this)->get<R>();
+  }
 
  private:
   struct Base {

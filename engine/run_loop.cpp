@@ -24,6 +24,16 @@ std::string human_seconds(double s) {
     std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
   return buf;
 }
+// Whether an observer will read the state at the end of the step about to run: asked with the
+// context the observers will be given then.
+bool observed_after(const World& world, const StageOptions& opt) {
+  if (!opt.observe) return false;
+  Clock after = world.clock;
+  advance_clock(after);
+  StepContext c = next_step(after);
+  c.stage = opt.label;
+  return opt.observe->samples(world, c);
+}
 }  // namespace
 
 void install_stop_handlers() {
@@ -66,7 +76,9 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
       rep.interrupted = true;
       break;
     }
-    step.run_step(context());
+    StepContext ctx = context();
+    ctx.observed = k + 1 == opt.steps || observed_after(world, opt);
+    step.run_step(ctx);
     advance_clock(world.clock);
     observe();
     ++rep.steps;
@@ -85,6 +97,7 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {
       }
     }
   }
+  step.complete(world);  // a stage stopped early (a signal, an observer's failure) ends whole too
   rep.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   if (held) std::rethrow_exception(held);
   return rep;

@@ -102,6 +102,14 @@ void Schedule::run_step(const StepContext& ctx) {
   }
 }
 
+bool Schedule::samples(const World& world, const StepContext& now) const {
+  return std::any_of(systems_.begin(), systems_.end(), [&](const auto& s) { return s->samples(world, now); });
+}
+
+void Schedule::complete(World& world) {
+  for (auto& s : systems_) s->complete(world);
+}
+
 Access Schedule::access() const {
   Access all;
   auto add = [](std::vector<std::size_t>& to, const std::vector<std::size_t>& from) {

@@ -40,6 +40,10 @@ class Schedule {
   void build(World& world);
   // Triggers the graph once for the step `ctx` and waits; rethrows the first failure of a system.
   void run_step(const StepContext& ctx);
+  // Whether any of its systems (observers) will read the state when run at `now`.
+  bool samples(const World& world, const StepContext& now) const;
+  // System::complete of every system, in order.
+  void complete(World& world);
   // Every component and resource its systems read and write (a sub-schedule declares these).
   Access access() const;
 

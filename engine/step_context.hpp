@@ -14,6 +14,10 @@ struct StepContext {
   int substep = 0;         // 0 .. substeps-1 inside a sub-schedule, else 0
   int substeps = 1;
   bool prime = false;      // forces of the current state only: nothing moves and no time passes
+  // Whether anything reads the state at the end of this step (an observer sampling, the stage's last
+  // step). When false, the closing half-kick may be left to the next step's opening pass
+  // (integrate.hpp); the stepping loop sets it, and anything else stepping leaves it true.
+  bool observed = true;
   std::string_view stage = "run";  // the stage being run ("settle", "run"), for messages
 };
 

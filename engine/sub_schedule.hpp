@@ -33,6 +33,7 @@ class SubSchedule : public System {
       inner_->run_step(c);
     }
   }
+  void complete(World& world) override { inner_->complete(world); }
   Schedule& inner() { return *inner_; }
   int substeps() const { return substeps_; }
 

@@ -48,6 +48,16 @@ class System {
   // Called once by Schedule::build, before the first run (a sub-schedule builds its own graph).
   virtual void build(World&) {}
   virtual void run(World& world, const StepContext& step) = 0;
+  // An observer: whether it will read the state when run at `now` (the stepping loop asks before
+  // the step, so that the step completes the state for it). Unsure: true.
+  virtual bool samples(const World& world, const StepContext& now) const {
+    (void)world;
+    (void)now;
+    return true;
+  }
+  // Brings the state to the end of the last step run (work a step left to the next one); the
+  // stepping loop calls it when it stops stepping.
+  virtual void complete(World& world) { (void)world; }
 };
 
 template <class Derived>

@@ -11,10 +11,13 @@ CheckpointOutput::CheckpointOutput(CheckpointSettings s, SaveWorld save_world, s
   ensure_directory(s_.dir / "checkpoints");
 }
 
+bool CheckpointOutput::due(const StepContext& now) const {
+  return s_.interval > 0 && now.t >= next_ - 1e-6 * now.dt;
+}
+
 void CheckpointOutput::run(World& world, const StepContext& now) {
-  if (s_.interval <= 0) return;
+  if (!due(now)) return;
   const double t = now.t, dt = now.dt;
-  if (t < next_ - 1e-6 * dt) return;
   while (t >= next_ - 1e-6 * dt) next_ += s_.interval;  // stays on the grid k * interval
   write(world);
 }

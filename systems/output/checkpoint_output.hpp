@@ -34,6 +34,7 @@ class CheckpointOutput : public SystemBase<CheckpointOutput>, public Checkpointa
   CheckpointOutput(CheckpointSettings s, SaveWorld save_world, std::vector<const Checkpointable*> parts);
   std::string_view name() const override { return "checkpoint_output"; }
   void run(World& world, const StepContext& now) override;
+  bool samples(const World&, const StepContext& now) const override { return due(now); }
   // Writes a checkpoint of the current state now; returns its path.
   std::filesystem::path write(World& world);
   std::size_t written() const { return written_; }
@@ -42,6 +43,7 @@ class CheckpointOutput : public SystemBase<CheckpointOutput>, public Checkpointa
   void restore(const CheckpointReader& in) override;
 
  private:
+  bool due(const StepContext& now) const;  // a checkpoint is due at `now`
   CheckpointSettings s_;
   SaveWorld save_world_;
   std::vector<const Checkpointable*> parts_;

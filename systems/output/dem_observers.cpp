@@ -67,6 +67,8 @@ void SeriesOutput::restore(const CheckpointReader& in) {
   rows_ = in.value<std::uint64_t>("series_output.rows");
 }
 
+bool SeriesOutput::samples(const World&, const StepContext& now) const { return sample_due(now.t, next_, now.dt); }
+
 void SeriesOutput::run(World& world, const StepContext& now) {
   const double t = now.t;
   if (!sample_due(t, next_, now.dt)) return;
@@ -185,6 +187,8 @@ void FrameOutput::restore(const CheckpointReader& in) {
   series_.resume(times);
 }
 
+bool FrameOutput::samples(const World&, const StepContext& now) const { return sample_due(now.t, next_, now.dt); }
+
 void FrameOutput::run(World& world, const StepContext& now) {
   const double t = now.t;
   if (!sample_due(t, next_, now.dt)) return;
@@ -237,6 +241,10 @@ double PictureOutput::next_target() const {
   if (next_angle_ < s_.angles.size()) t = s_.angles[next_angle_];
   if (s_.interval > 0) t = std::min(t, static_cast<double>(next_multiple_) * s_.interval);
   return t;
+}
+
+bool PictureOutput::samples(const World& world, const StepContext& now) const {
+  return due(world.resources.get<Walls>(), now).has_value();
 }
 
 void PictureOutput::run(World& world, const StepContext& now) {

@@ -89,6 +89,7 @@ class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
   explicit SeriesOutput(SeriesSettings s);
   std::string_view name() const override { return "series_output"; }
   void run(World& world, const StepContext& now) override;
+  bool samples(const World& world, const StepContext& now) const override;
   // Samples the last state too (summary.json reports it) unless the latest row already is it.
   void finish(World& world);
   void save(CheckpointWriter& out) const override;
@@ -115,6 +116,7 @@ class FrameOutput : public SystemBase<FrameOutput>, public Checkpointable {
   FrameOutput(std::filesystem::path dir, double interval, FrameFields fields, std::string key = "frame_output");
   std::string_view name() const override { return "frame_output"; }
   void run(World& world, const StepContext& now) override;
+  bool samples(const World& world, const StepContext& now) const override;
   // Writes the last state as a frame unless the latest frame already shows it.
   void finish(World& world);
   std::size_t frames() const { return series_.count(); }
@@ -156,6 +158,7 @@ class PictureOutput : public SystemBase<PictureOutput>, public Checkpointable {
   explicit PictureOutput(PictureSettings s);
   std::string_view name() const override { return "picture_output"; }
   void run(World& world, const StepContext& now) override;
+  bool samples(const World& world, const StepContext& now) const override;
   // The drum's rotation angle now when a picture is due there (every rank of a run on several ranks
   // computes the same), else nothing.
   std::optional<double> due(const Walls& walls, const StepContext& now) const;

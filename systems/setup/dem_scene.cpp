@@ -525,7 +525,10 @@ void schedule_dem_step(Schedule& step, const DemScene& scene) {
   }
   const std::string& law = scene.law;
   if (!scene.flow.feeds.empty()) step.emplace<FeedSystem>(scene.flow.feeds, memory_grain_limit(scene));
-  step.emplace<IntegratePositions>(dem_force_terms(scene));
+  // The closing kick may be left to the next opening pass unless rows come or go between the two.
+  const bool rows_change = !scene.flow.feeds.empty() || !scene.flow.outlets.empty();
+  const auto deferred = rows_change ? nullptr : std::make_shared<DeferredKick>();
+  step.emplace<IntegratePositions>(dem_force_terms(scene), deferred);
   step.emplace<Broadphase>();
   if (scene.periodic.any()) step.emplace<PeriodicRefresh>();
   const bool known = with_law(law, [&]<class Law>() {
@@ -535,7 +538,7 @@ void schedule_dem_step(Schedule& step, const DemScene& scene) {
   });
   if (scene.periodic.any()) step.emplace<PeriodicFold>();
   if (!known) throw std::invalid_argument("schedule_dem_step: no contact law is named '" + std::string(law) + "'");
-  step.emplace<IntegrateVelocities>(dem_force_terms(scene));
+  step.emplace<IntegrateVelocities>(dem_force_terms(scene), deferred);
   if (!scene.flow.outlets.empty()) step.emplace<OutletSystem>(scene.flow.outlets);
 }
 

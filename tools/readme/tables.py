@@ -177,6 +177,8 @@ TABLES = {
     "bench_flowing_before_after": lambda: script("tools/contact/bench_table.py",
                                                  "docs/contact/bench_flowing_before_after.csv", "before",
                                                  "list changes"),
+    "bench_deferred_kick": lambda: script("tools/contact/bench_table.py", "docs/contact/bench_deferred_kick.csv",
+                                          "two passes", "deferred closing kick"),
     "bench_hertz": lambda: script("tools/contact/bench_table.py", "docs/contact/bench_hertz.csv", "Hertz-Mindlin",
                                   "--pooled"),
     "fuzz": fuzz_table,
