@@ -194,6 +194,8 @@ TABLES = {
     "liggghts_flowing": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison_flowing.log"),
     "liggghts_flowing_xeon": lambda: script("tools/liggghts/comparison_table.py",
                                             "docs/liggghts/comparison_flowing_xeon.log"),
+    "liggghts_flowing_xeon_before": lambda: script("tools/liggghts/comparison_table.py",
+                                                   "docs/liggghts/comparison_flowing_xeon_before.log"),
     "liggghts_flowing_skin": lambda: script("tools/liggghts/comparison_table.py",
                                             "docs/liggghts/comparison_flowing_skin0.3mm.log"),
     "liggghts_flowing_mpi": lambda: script("tools/liggghts/comparison_table.py",
