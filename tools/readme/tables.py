@@ -186,6 +186,7 @@ TABLES = {
     "time_split": time_split_table,
     "time_split_flowing": lambda: time_split_table("docs/bench/drum_time_split_flowing.json"),
     "time_split_flowing_xeon": lambda: time_split_table("docs/bench/drum_time_split_flowing_xeon.json"),
+    "time_split_flowing_xeon_before": lambda: time_split_table("docs/bench/drum_time_split_flowing_xeon_before.json"),
     "scaling": lambda: script("tools/bench/scaling_table.py", "docs/bench/scaling.log"),
     "scaling_knee": lambda: script("tools/bench/scaling_knee_table.py", "docs/bench/scaling_knee.log",
                                    "docs/bench/memory_bandwidth.json"),
