@@ -10,11 +10,16 @@ space over the outlet empty. Writes JSON with one entry per run.
 
     /usr/bin/python3 tools/seed002/arch_or_heap.py RUN [RUN ...] -o docs/seed002/friction/friction.json
     /usr/bin/python3 tools/seed002/arch_or_heap.py --table docs/seed002/outlet/outlet.json
+    /usr/bin/python3 tools/seed002/arch_or_heap.py --ensemble docs/seed002/outlet/outlet.json
 
 --table prints a Markdown table of a written JSON, a row per run: the grain's size (the prism's side, or
 the cone element's triangle side, from the run's overrides), the gate's width in those sides, when half
 had gone, what was left at the end and since when, the stalls, and the verdict: an arch (discharge
 stopped with bodies over the outlet), stopped on dead zones (nothing over it) or still flowing.
+
+--ensemble prints a row per grain shape and gate width over every pour of them in the JSON: how many
+pours ended on an arch, each pour's count of stops of 0.1 s or more (stalls and the final stop), when
+the flow first stopped so, and what was left at the end, as median and range.
 """
 import argparse
 import csv
@@ -22,6 +27,7 @@ import glob
 import json
 import math
 import pathlib
+import statistics
 
 HALF_GATE = 0.02  # m
 ABOVE = 0.03      # m
@@ -67,6 +73,48 @@ def grain_side_mm(overrides):
     return 10.0
 
 
+def verdict(e):
+    stopped = e["end_s"] - e["last_change_s"] >= 0.5
+    return ("arch" if e["bodies_over_outlet_at_end"] else "dead zones") if stopped else "still flowing"
+
+
+def shape_of(overrides):
+    return "cones" if any(o.startswith("shape.0.base_radius=") for o in overrides) else "prisms"
+
+
+def first_stop(e):
+    """When the flow first stopped for 0.1 s or more: the first stall, or the final stop; None if never."""
+    times = [x["from_s"] for x in e["stalls"]]
+    if verdict(e) != "still flowing":
+        times.append(e["last_change_s"])
+    return min(times) if times else None
+
+
+def spread(values, fmt):
+    if not values:
+        return "—"
+    values = sorted(values)
+    med = statistics.median(values)
+    return fmt.format(med) if len(values) == 1 else f"{fmt.format(med)} ({fmt.format(values[0])}–{fmt.format(values[-1])})"
+
+
+def ensemble(path):
+    runs = json.loads(pathlib.Path(path).read_text())
+    groups = {}
+    for run, e in runs.items():
+        key = (shape_of(e["overrides"]), round(40 / grain_side_mm(e["overrides"]), 1))
+        groups.setdefault(key, []).append(e)
+    print("| grains | gate in grain sides | pours | ended on an arch | stops of 0.1 s or more per pour "
+          "| first stop (s): median (range) | left at the end: median (range) |")
+    print("|---" * 7 + "|")
+    for (shape, sides), es in sorted(groups.items()):
+        stops = [first_stop(e) for e in es if first_stop(e) is not None]
+        arches = sum(verdict(e) == "arch" for e in es)
+        counts = ", ".join(str(len(e["stalls"]) + (verdict(e) != "still flowing")) for e in es)
+        print(f"| {shape} | {sides:.1f} | {len(es)} | {arches} | {counts} | {spread(stops, '{:.2f}')} "
+              f"| {spread([e['remaining_at_end'] for e in es], '{:.3f}')} |")
+
+
 def table(path):
     runs = json.loads(pathlib.Path(path).read_text())
     print("| run | grain side (mm) | gate in grain sides | half gone at (s) | left at the end | unchanged since (s) "
@@ -74,13 +122,11 @@ def table(path):
     print("|---" * 9 + "|")
     for run, e in runs.items():
         side = grain_side_mm(e["overrides"])
-        stopped = e["end_s"] - e["last_change_s"] >= 0.5
-        verdict = ("arch" if e["bodies_over_outlet_at_end"] else "dead zones") if stopped else "still flowing"
         st = "; ".join(f"{x['from_s']:.2f} s, {x['lasting_s']:.2f} s" for x in e["stalls"]) or "none"
         half = f"{e['half_gone_s']:.2f}" if e.get("half_gone_s") is not None else "not reached"
         over = "—" if e["bodies_over_outlet_at_end"] is None else e["bodies_over_outlet_at_end"]
         print(f"| `{pathlib.Path(run).name}` | {side:.1f} | {40 / side:.1f} | {half} | {e['remaining_at_end']:.3f} "
-              f"at {e['end_s']:.1f} s | {e['last_change_s']:.2f} | {st} | {over} | {verdict} |")
+              f"at {e['end_s']:.1f} s | {e['last_change_s']:.2f} | {st} | {over} | {verdict(e)} |")
 
 
 def main():
@@ -88,9 +134,13 @@ def main():
     ap.add_argument("runs", nargs="*")
     ap.add_argument("-o", "--output")
     ap.add_argument("--table", help="print the table of this JSON instead")
+    ap.add_argument("--ensemble", help="print the table of pours per shape and gate width of this JSON instead")
     a = ap.parse_args()
     if a.table:
         table(a.table)
+        return
+    if a.ensemble:
+        ensemble(a.ensemble)
         return
     result = {}
     for run in a.runs:
