@@ -19,6 +19,10 @@ usage() { sed -n '9,12p' "${BASH_SOURCE[0]}" >&2; exit 2; }
 archive() {  # RUN_DIR DOCS_DIR [PICTURE_TIMES...]
   local out="$1" docs="$2"
   shift 2
+  if ! grep -q '"status": "completed"' "$out/summary.json"; then
+    echo "outlet_size: $out did not complete (see its summary.json); not archived" >&2
+    exit 1
+  fi
   mkdir -p "$docs"
   cp "$out/series.csv" "$out/summary.json" "$docs/"
   cp "$(ls "$out"/frames/frame_0*.csv | sort | tail -1)" "$docs/final_frame.csv"
