@@ -58,6 +58,19 @@ std::string scene_args(const fs::path& scene, const fs::path& out, const std::st
   return "run " + quote(scene.string()) + " --out " + quote(out.string()) + " --threads 2 --quiet " + more;
 }
 
+// Resumes the run in `out` from `ckpt` (its step `at`) to step at + 300, runs the scene from its start
+// to that step in dir/whole, both with `sets` (the caller compares their files).
+void resume_and_whole(const TempDir& dir, const fs::path& scene, const fs::path& out, const fs::path& ckpt,
+                      std::int64_t at, const std::string& sets) {
+  const std::string end = std::to_string(at + 300);
+  auto r = run_cli(dir, scene_args(scene, out, "--steps " + end + sets + " --resume " + quote(ckpt.string())));
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  auto u = run_cli(dir, scene_args(scene, dir.path / "whole", "--steps " + end + sets));
+  INFO(u.err);
+  REQUIRE(u.code == 0);
+}
+
 }  // namespace
 
 TEST_CASE("checkpoint: a simulation resumed from a checkpoint is bit-identical to an uninterrupted one",
@@ -211,13 +224,7 @@ TEST_CASE("checkpoint: a run killed mid-way keeps its rows and resumes from its 
   REQUIRE(at % 500 == 0);
 
   // Resumed to a fixed end, it matches a run that was never killed.
-  const std::string end = std::to_string(at + 300);
-  const std::string sets = " --set output.checkpoint_interval=5e-3 --set output.series_interval=1e-4";
-  auto r = run_cli(dir, scene_args(scene, out, "--steps " + end + sets + " --resume " + quote(ckpt.string())));
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  auto u = run_cli(dir, scene_args(scene, dir.path / "whole", "--steps " + end + sets));
-  REQUIRE(u.code == 0);
+  resume_and_whole(dir, scene, out, ckpt, at, " --set output.checkpoint_interval=5e-3 --set output.series_interval=1e-4");
   CHECK(read_file(out / "final_state.csv") == read_file(dir.path / "whole" / "final_state.csv"));
   CHECK(read_file(out / "series.csv") == read_file(dir.path / "whole" / "series.csv"));
 }
@@ -249,12 +256,7 @@ TEST_CASE("checkpoint: a run stopped by SIGINT between outputs resumes to the un
   const auto at = reader.value<std::int64_t>("clock.step");
   REQUIRE(at > 0);
   INFO("stopped after step " << at);
-  const std::string end = std::to_string(at + 300), sets = " --set output.frame_interval=0";
-  auto r = run_cli(dir, scene_args(scene, out, "--steps " + end + sets + " --resume " + quote(ckpt.string())));
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  auto u = run_cli(dir, scene_args(scene, dir.path / "whole", "--steps " + end + sets));
-  REQUIRE(u.code == 0);
+  resume_and_whole(dir, scene, out, ckpt, at, " --set output.frame_interval=0");
   CHECK(read_file(out / "final_state.csv") == read_file(dir.path / "whole" / "final_state.csv"));
   // A stop on a sampled step (one in a hundred) leaves nothing pending and tests less: say so.
   if (at % 100 == 0) WARN("the signal landed on a step the series sampled (" << at << ")");
