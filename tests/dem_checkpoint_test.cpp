@@ -224,7 +224,8 @@ TEST_CASE("checkpoint: a run killed mid-way keeps its rows and resumes from its 
   REQUIRE(at % 500 == 0);
 
   // Resumed to a fixed end, it matches a run that was never killed.
-  resume_and_whole(dir, scene, out, ckpt, at, " --set output.checkpoint_interval=5e-3 --set output.series_interval=1e-4");
+  resume_and_whole(dir, scene, out, ckpt, at,
+                   " --set output.checkpoint_interval=5e-3 --set output.series_interval=1e-4");
   CHECK(read_file(out / "final_state.csv") == read_file(dir.path / "whole" / "final_state.csv"));
   CHECK(read_file(out / "series.csv") == read_file(dir.path / "whole" / "series.csv"));
 }
