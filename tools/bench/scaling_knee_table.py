@@ -39,9 +39,11 @@ def main(log, bandwidth):
     b = json.load(open(bandwidth))
     per_grain = {v[1] for v in memory.values()}
     print()
+    big = f"{b['dram_2GB_GBps']:.0f} GB/s for 2 GB, " if "dram_2GB_GBps" in b else ""
+    where = f", {b['cpu']}" if "cpu" in b else ""
     print(f"Arrays {'/'.join(map(str, sorted(per_grain)))} bytes per grain (`grainflow check`); one core's copy bandwidth "
-          f"(read + written, numpy, {b['date']}): {b['dram_256MB_GBps']:.0f} GB/s from memory (256 MB), "
-          f"{b['llc_8MB_GBps']:.0f} GB/s within the L3 (8 MB), {b['l2_256kB_GBps']:.0f} GB/s within the L2 (256 kB).")
+          f"(read + written, numpy, {b['date']}{where}): {big}{b['dram_256MB_GBps']:.0f} GB/s for 256 MB, "
+          f"{b['llc_8MB_GBps']:.0f} GB/s for 8 MB, {b['l2_256kB_GBps']:.0f} GB/s for 256 kB.")
 
 
 if __name__ == "__main__":
