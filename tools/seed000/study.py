@@ -99,11 +99,23 @@ def run_case(name, scene, omega, out, binary, threads, budget_s, size):
 
 def keep_committed_rows(rows):
     """docs/seed000/seed_drum_table.json (the README's table) with this report's rows for the cases
-    that ran here, and the committed rows kept for cases whose runs this checkout does not hold."""
+    that ran here, and the committed rows kept for cases whose runs this checkout does not hold. A
+    case run again from the start keeps its committed row while the rerun is short of it, with the
+    rerun's angle noted (`rerun_angle`)."""
     docs = REPO / "docs" / "seed000" / "seed_drum_table.json"
     committed = {r["case"]: r for r in json.loads(docs.read_text())} if docs.is_file() else {}
-    merged = [r if r["ran"] or r["case"] not in committed else committed[r["case"]] for r in rows]
-    docs.write_text(json.dumps(merged, indent=1))
+
+    def pick(r):
+        old = committed.get(r["case"])
+        if old is None or not old["ran"]:
+            return r
+        if not r["ran"]:
+            return old
+        if r["angle"] >= old["angle"] - 1e-9:
+            return r
+        return {key: value for key, value in old.items() if key != "rerun_angle"} | {"rerun_angle": r["angle"]}
+
+    docs.write_text(json.dumps([pick(r) for r in rows], indent=1))
 
 
 def report(out):

@@ -19,6 +19,10 @@ def main(path):
         print(f"| {r['fill']} | {r['omega']:.2f} | {r['seed']} | {r['ours']} (contrast {r['contrast']:.2f}) | "
               f"{r['angle']:.2f} of 30 | {r['segregation_index']:.3f} | {r['wall_seconds'] / 3600:.2f} h | "
               f"{r['particle_steps_per_second']:.3g} ({','.join(map(str, r['threads']))}) |")
+    for r in rows:
+        if r.get("rerun_angle") is not None:
+            print(f"\nThe {r['omega']:.2f} rad/s case runs again from the start, "
+                  f"at {r['rerun_angle']:.2f} rad so far; its row is the first run's until the rerun passes it.")
     waiting = [r["seed"] for r in rows if not r["ran"]]
     if waiting:
         print(f"\nNot started yet: {len(waiting)} of the {len(rows)} cases.")
