@@ -22,15 +22,6 @@
 
 namespace gf {
 
-// The drivers of a law that acts before touching (ReachingLaw): the kernels below with the reach,
-// kept apart so that the laws acting in contact only compile to exactly the code they had.
-template <class Law>
-bool wall_forces_reaching_scalar(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
-                                 double t_contact, double overlap_limit);
-template <class Law>
-bool wall_forces_reaching(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
-                          double t_contact, double overlap_limit);
-
 namespace {
 
 void prepare(Grains& g, Walls& walls, WallHistory& h, double t_contact) {
@@ -49,12 +40,28 @@ struct CoeffColumns {
   }
 };
 
+// The constant holding a law's reach beyond touching (any, unread, for a law in contact only).
+template <class Law>
+constexpr std::size_t reach_column() {
+  if constexpr (ReachingLaw<Law>) return Law::kReach;
+  else return 0;
+}
+
+// The contact's geometry: the point between the surfaces for a law in contact only, the wall's
+// closest point for one acting before touching (the particle may be apart).
+template <class Law, class T>
+[[gnu::always_inline]] inline SphereContact<T> wall_contact_geometry(const V3<T>& p, const V3<T>& n, const T& gap,
+                                                                      const T& ri, const V3<T>& vi, const V3<T>& wi,
+                                                                      const V3<T>& wall_w, const V3<T>& wall_o) {
+  if constexpr (ReachingLaw<Law>) return sphere_wall_surface(p, n, gap, ri, vi, wi, wall_w, wall_o);
+  else return sphere_wall(p, n, gap, ri, vi, wi, wall_w, wall_o);
+}
+
 }  // namespace
 
 template <class Law>
 bool compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
                                 double t_contact, double overlap_limit) {
-  if constexpr (ReachingLaw<Law>) return wall_forces_reaching_scalar<Law>(g, walls, h, table, dt, t_contact, overlap_limit);
   prepare(g, walls, h, t_contact);
   const std::size_t nw = walls.list.size();
   constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
@@ -69,7 +76,10 @@ bool compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
         double* hs = h.springs[w][i].s;
         Vec3d n;
         const double gap = wall_gap(wall, p, n);
-        if (gap >= ri) {
+        // A law acting before touching interacts within r + its reach for the row's species.
+        double interacting = ri;
+        if constexpr (ReachingLaw<Law>) interacting += table.wall(static_cast<std::size_t>(g.species.type[i]))[Law::kReach];
+        if (gap >= interacting) {
           for (std::size_t c = 0; c < H; ++c) hs[c] = 0.0;
           h.active[w][i] = 0;
           continue;
@@ -78,8 +88,8 @@ bool compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
         worst = std::max(worst, (ri - gap) - lim2 * ri);
         const Vec3d wi = g.spin ? Vec3d{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : Vec3d{0.0, 0.0, 0.0};
         const double om = walls.rotation_enabled ? wall.omega : 0.0;
-        const SphereContact<double> sc = sphere_wall(p, n, gap, ri, Vec3d{g.vel.x[i], g.vel.y[i], g.vel.z[i]}, wi,
-                                                     om * wall.rot_axis, wall.rot_point);
+        const SphereContact<double> sc = wall_contact_geometry<Law>(p, n, gap, ri, Vec3d{g.vel.x[i], g.vel.y[i], g.vel.z[i]},
+                                                                    wi, Vec3d(om * wall.rot_axis), wall.rot_point);
         const double* k = table.wall(static_cast<std::size_t>(g.species.type[i]));
         std::array<double, K> c;
         std::copy(k, k + K, c.begin());
@@ -135,31 +145,17 @@ template <class V, class B>
   return B(wall.radius) - rho;
 }
 
-// Lanes of the batch of rows at i within reach of `wall` (gap < r), without the square root and
-// division of the normal: for the cylinder, gap < r is rho^2 > (R - r)^2 where R > r.
-[[gnu::always_inline]] inline std::uint32_t reach_bits(const Wall& wall, const Grains& g, std::size_t i) {
-  using B = BatchD;
-  const B px = B::load_aligned(&g.pos.x[i]), py = B::load_aligned(&g.pos.y[i]), pz = B::load_aligned(&g.pos.z[i]);
-  const B r = B::load_aligned(&g.radius.r[i]);
-  if (wall.kind == Wall::Kind::Plane) {
-    const B gap = (px - B(wall.cur_point.x)) * B(wall.cur_normal.x) + (py - B(wall.cur_point.y)) * B(wall.cur_normal.y) +
-                  (pz - B(wall.cur_point.z)) * B(wall.cur_normal.z);
-    return lane_bits(gap < r);
-  }
-  const B qx = px - B(wall.cur_center.x), qy = py - B(wall.cur_center.y), qz = pz - B(wall.cur_center.z);
-  const B along = qx * B(wall.cur_axis.x) + qy * B(wall.cur_axis.y) + qz * B(wall.cur_axis.z);
-  const B rx = qx - along * B(wall.cur_axis.x), ry = qy - along * B(wall.cur_axis.y),
-          rz = qz - along * B(wall.cur_axis.z);
-  const B inner = B(wall.radius) - r;
-  return lane_bits(rx * rx + ry * ry + rz * rz > inner * inner || inner <= B(0.0));
-}
-
-// The same for a law acting before touching: within r + the law's reach of the row's species.
+// Lanes of the batch of rows at i within reach of `wall` (gap < r, and for a law acting before
+// touching gap < r + the law's reach for the row's species, from the column `wall_reach` by type),
+// without the square root and division of the normal: for the cylinder, gap < r is
+// rho^2 > (R - r)^2 where R > r.
+template <class Law>
 [[gnu::always_inline]] inline std::uint32_t reach_bits(const Wall& wall, const Grains& g, std::size_t i,
                                                        const double* wall_reach) {
   using B = BatchD;
   const B px = B::load_aligned(&g.pos.x[i]), py = B::load_aligned(&g.pos.y[i]), pz = B::load_aligned(&g.pos.z[i]);
-  const B r = B::load_aligned(&g.radius.r[i]) + gather32(wall_reach, &g.species.type[i]);
+  B r = B::load_aligned(&g.radius.r[i]);
+  if constexpr (ReachingLaw<Law>) r = r + gather32(wall_reach, &g.species.type[i]);
   if (wall.kind == Wall::Kind::Plane) {
     const B gap = (px - B(wall.cur_point.x)) * B(wall.cur_normal.x) + (py - B(wall.cur_point.y)) * B(wall.cur_normal.y) +
                   (pz - B(wall.cur_point.z)) * B(wall.cur_normal.z);
@@ -209,7 +205,6 @@ template <class V, class B>
 template <class Law>
 bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
                          double t_contact, double overlap_limit) {
-  if constexpr (ReachingLaw<Law>) return wall_forces_reaching<Law>(g, walls, h, table, dt, t_contact, overlap_limit);
   prepare(g, walls, h, t_contact);
   const double lim2 = 2.0 * overlap_limit;
   using B = BatchD;
@@ -247,7 +242,7 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         Column<std::uint8_t>& act = h.active[w];
         std::size_t m = 0;
         for (std::size_t i = r0; i < r1; i += L) {
-          const std::uint32_t take = reach_bits(wall, g, i) | nonzero_bits(&act[i]);
+          const std::uint32_t take = reach_bits<Law>(wall, g, i, cc.col[reach_column<Law>()]) | nonzero_bits(&act[i]);
           m = append_rows(rows, m, i, take & ((1u << std::min(L, r1 - i)) - 1u));
         }
         if (m == 0) continue;
@@ -277,7 +272,17 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
           const B ri = gather32(g.radius.r.data(), idx);
           V n;
           const B gap = wall_gap_batch<V, B>(wall, p, n);
-          const auto touching = gap < ri;
+          // Interacting lanes: gap < r, or r + the law's reach for the lane's species.
+          const auto touching = [&] {
+            if constexpr (ReachingLaw<Law>) {
+              alignas(64) double reach[L];
+              for (std::size_t l = 0; l < L; ++l)
+                reach[l] = cc.col[reach_column<Law>()][g.species.type[static_cast<std::size_t>(idx[l])]];
+              return gap < ri + B::load_aligned(reach);
+            } else {
+              return gap < ri;
+            }
+          }();
           // The stability check: an overlap ri - gap past lim2 ri (the limit is of the diameter).
           over |= lane_bits(gap < ri - B(lim2) * ri);
           alignas(64) std::int32_t ty[L];
@@ -288,189 +293,7 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
                                 gather32(g.omega.z.data(), idx)}
                             : V{B(0.0), B(0.0), B(0.0)};
           const V vi{gather32(g.vel.x.data(), idx), gather32(g.vel.y.data(), idx), gather32(g.vel.z.data(), idx)};
-          const SphereContact<B> sc = sphere_wall(p, n, gap, ri, vi, wi, wall_w, wall_o);
-          alignas(64) std::int32_t at[L];
-          for (std::size_t l = 0; l < L; ++l) at[l] = idx[l] * 8;
-          std::array<B, H> s;
-          for (std::size_t k = 0; k < H; ++k) s[k] = gather32(hbase + k, at);
-          const ContactForce<B> res = Law::evaluate(touching, sc.g, c, B(dt), s);
-          const V t = sc.li * cross(n, res.force_t) + res.torque_i;
-          // Lanes back to their rows (rows are distinct within one wall's list).
-          constexpr std::size_t F = H + 6;
-          alignas(64) double out[F][L];
-          B vals[F];
-          for (std::size_t k = 0; k < H; ++k) vals[k] = s[k];
-          const B sums[6] = {res.force.x, res.force.y, res.force.z, t.x, t.y, t.z};
-          for (std::size_t k = 0; k < 6; ++k) vals[H + k] = sums[k];
-          const std::uint32_t now = lane_bits(touching);
-          for (std::size_t f = 0; f < F; ++f) vals[f].store_aligned(out[f]);
-          const std::size_t valid = std::min(L, m - q);
-          for (std::size_t l = 0; l < valid; ++l) {
-            const auto i = static_cast<std::size_t>(idx[l]);
-            for (std::size_t k = 0; k < H; ++k) hs[i].s[k] = out[k][l];
-            g.wall_force.x[i] += out[H][l];
-            g.wall_force.y[i] += out[H + 1][l];
-            g.wall_force.z[i] += out[H + 2][l];
-            act[i] = static_cast<std::uint8_t>((now >> l) & 1u);
-            if (!spin) continue;
-            g.wall_torque.x[i] += out[H + 3][l];
-            g.wall_torque.y[i] += out[H + 4][l];
-            g.wall_torque.z[i] += out[H + 5][l];
-          }
-        }
-      }
-      block_over[blk] = over != 0;
-    });
-  };
-  if (g.spin)
-    run_blocks(std::true_type{});
-  else
-    run_blocks(std::false_type{});
-  return std::any_of(block_over.begin(), block_over.end(), [](std::uint8_t b) { return b != 0; });
-}
-
-// The kernels of a law that acts before touching: as above, with the reach beyond r and the contact
-// point on the wall.
-template <class Law>
-bool wall_forces_reaching_scalar(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
-                                 double t_contact, double overlap_limit) {
-  prepare(g, walls, h, t_contact);
-  const std::size_t nw = walls.list.size();
-  constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
-  const double lim2 = 2.0 * overlap_limit;
-  auto rows = [&](const tbb::blocked_range<std::size_t>& r, double worst) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const Vec3d p{g.pos.x[i], g.pos.y[i], g.pos.z[i]};
-      const double ri = g.radius.r[i];
-      Vec3d f{0, 0, 0}, t{0, 0, 0};
-      for (std::size_t w = 0; w < nw; ++w) {
-        const Wall& wall = walls.list[w];
-        double* hs = h.springs[w][i].s;
-        Vec3d n;
-        const double gap = wall_gap(wall, p, n);
-        if (gap >= ri + table.wall(static_cast<std::size_t>(g.species.type[i]))[Law::kReach]) {
-          for (std::size_t c = 0; c < H; ++c) hs[c] = 0.0;
-          h.active[w][i] = 0;
-          continue;
-        }
-        h.active[w][i] = 1;
-        worst = std::max(worst, (ri - gap) - lim2 * ri);
-        const Vec3d wi = g.spin ? Vec3d{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : Vec3d{0.0, 0.0, 0.0};
-        const double om = walls.rotation_enabled ? wall.omega : 0.0;
-        // The contact point is the wall's closest point (the particle may be apart).
-        const SphereContact<double> sc = sphere_wall_surface(p, n, gap, ri, Vec3d{g.vel.x[i], g.vel.y[i], g.vel.z[i]},
-                                                             wi, om * wall.rot_axis, wall.rot_point);
-        const double* k = table.wall(static_cast<std::size_t>(g.species.type[i]));
-        std::array<double, K> c;
-        std::copy(k, k + K, c.begin());
-        std::array<double, H> s;
-        std::copy(hs, hs + H, s.begin());
-        const ContactForce<double> res = Law::evaluate(true, sc.g, c, dt, s);
-        std::copy(s.begin(), s.end(), hs);
-        f = f + res.force;
-        t = t + sc.li * cross(n, res.force_t) + res.torque_i;
-      }
-      g.wall_force.x[i] = f.x;
-      g.wall_force.y[i] = f.y;
-      g.wall_force.z[i] = f.z;
-      if (!g.spin) continue;
-      g.wall_torque.x[i] = t.x;
-      g.wall_torque.y[i] = t.y;
-      g.wall_torque.z[i] = t.z;
-    }
-    return worst;
-  };
-  return tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024),
-                              -std::numeric_limits<double>::infinity(), rows,
-                              [](double a, double b) { return std::max(a, b); }) > 0.0;
-}
-
-template <class Law>
-bool wall_forces_reaching(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
-                          double t_contact, double overlap_limit) {
-  prepare(g, walls, h, t_contact);
-  const double lim2 = 2.0 * overlap_limit;
-  using B = BatchD;
-  using V = V3<B>;
-  constexpr std::size_t L = kLanes;
-  static_assert(kWallBlock % L == 0);
-  const std::size_t nw = walls.list.size();
-  constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
-  static_assert(H <= sizeof(WallSprings::s) / sizeof(double), "a wall contact's history fits one record");
-  const CoeffColumns cc(table);
-  // With few species each constant sits in a register, looked up by type with a permute.
-  const bool in_register = table.types() <= RegisterTable::capacity;
-  RegisterTable reg[K];
-  if (in_register)
-    for (std::size_t q = 0; q < K; ++q) reg[q] = RegisterTable(cc.col[q], table.types());
-  const std::size_t nown = g.n_owned;
-  const std::size_t nblocks = (nown + kWallBlock - 1) / kWallBlock;
-  // Per block: some contact past the overlap limit (checked in the law pass, on values at hand).
-  std::vector<std::uint8_t> block_over(nblocks, 0);
-  // The blocks, compiled for grains with and without spin columns (no branch per batch).
-  auto run_blocks = [&](auto spin_tag) {
-    constexpr bool spin = decltype(spin_tag)::value;
-    tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
-      const std::size_t r0 = blk * kWallBlock, r1 = std::min(nown, r0 + kWallBlock);
-      std::uint32_t over = 0;
-      for (ColumnD* c : {&g.wall_force.x, &g.wall_force.y, &g.wall_force.z})
-        std::fill(c->begin() + r0, c->begin() + r1, 0.0);
-      if (spin)
-        for (ColumnD* c : {&g.wall_torque.x, &g.wall_torque.y, &g.wall_torque.z})
-          std::fill(c->begin() + r0, c->begin() + r1, 0.0);
-      // Packed rows of one wall, padded to a whole batch with the last one.
-      alignas(64) std::int32_t rows[kWallBlock + kAhead + L];
-      for (std::size_t w = 0; w < nw; ++w) {
-        const Wall& wall = walls.list[w];
-        Column<std::uint8_t>& act = h.active[w];
-        std::size_t m = 0;
-        for (std::size_t i = r0; i < r1; i += L) {
-          const std::uint32_t take = reach_bits(wall, g, i, cc.col[Law::kReach]) | nonzero_bits(&act[i]);
-          m = append_rows(rows, m, i, take & ((1u << std::min(L, r1 - i)) - 1u));
-        }
-        if (m == 0) continue;
-        for (std::size_t l = m; l < m + kAhead + L; ++l) rows[l] = rows[m - 1];
-        WallSprings* hs = h.springs[w].data();
-        // A spring k of row i is double 8 i + k from the column's start.
-        const double* hbase = hs[0].s;
-        const double om = walls.rotation_enabled ? wall.omega : 0.0;
-        const V wall_w{B(om * wall.rot_axis.x), B(om * wall.rot_axis.y), B(om * wall.rot_axis.z)};
-        const V wall_o{B(wall.rot_point.x), B(wall.rot_point.y), B(wall.rot_point.z)};
-        for (std::size_t q = 0; q < m; q += L) {
-          const std::int32_t* idx = &rows[q];
-          // The springs and velocities of the packed rows are read nowhere else this step, so they
-          // come from far in the cache hierarchy: ask for those of a later batch now.
-          for (std::size_t l = 0; l < L; ++l) {
-            const auto a = static_cast<std::size_t>(rows[q + kAhead + l]);
-            __builtin_prefetch(&hs[a]);
-            __builtin_prefetch(&g.vel.x[a]);
-            __builtin_prefetch(&g.vel.y[a]);
-            __builtin_prefetch(&g.vel.z[a]);
-            if (!spin) continue;
-            __builtin_prefetch(&g.omega.x[a]);
-            __builtin_prefetch(&g.omega.y[a]);
-            __builtin_prefetch(&g.omega.z[a]);
-          }
-          const V p{gather32(g.pos.x.data(), idx), gather32(g.pos.y.data(), idx), gather32(g.pos.z.data(), idx)};
-          const B ri = gather32(g.radius.r.data(), idx);
-          V n;
-          const B gap = wall_gap_batch<V, B>(wall, p, n);
-          // Interacting lanes: gap < r + the law's reach for the lane's species.
-          alignas(64) double reach[L];
-          for (std::size_t l = 0; l < L; ++l) reach[l] = cc.col[Law::kReach][g.species.type[static_cast<std::size_t>(idx[l])]];
-          const auto touching = gap < ri + B::load_aligned(reach);
-          // The stability check: an overlap ri - gap past lim2 ri (the limit is of the diameter).
-          over |= lane_bits(gap < ri - B(lim2) * ri);
-          alignas(64) std::int32_t ty[L];
-          for (std::size_t l = 0; l < L; ++l) ty[l] = g.species.type[static_cast<std::size_t>(idx[l])];
-          std::array<B, K> c;
-          for (std::size_t k = 0; k < K; ++k) c[k] = in_register ? reg[k].lookup(ty) : gather32(cc.col[k], ty);
-          const V wi = spin ? V{gather32(g.omega.x.data(), idx), gather32(g.omega.y.data(), idx),
-                                gather32(g.omega.z.data(), idx)}
-                            : V{B(0.0), B(0.0), B(0.0)};
-          const V vi{gather32(g.vel.x.data(), idx), gather32(g.vel.y.data(), idx), gather32(g.vel.z.data(), idx)};
-          // The contact point is the wall's closest point (the particle may be apart).
-          const SphereContact<B> sc = sphere_wall_surface(p, n, gap, ri, vi, wi, wall_w, wall_o);
+          const SphereContact<B> sc = wall_contact_geometry<Law>(p, n, gap, ri, vi, wi, wall_w, wall_o);
           alignas(64) std::int32_t at[L];
           for (std::size_t l = 0; l < L; ++l) at[l] = idx[l] * 8;
           std::array<B, H> s;
