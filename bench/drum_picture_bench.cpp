@@ -6,7 +6,6 @@
 #include <filesystem>
 
 #include "bench/settled_drum.hpp"
-#include "systems/integrate/integrate.hpp"
 #include "systems/output/drum_picture.hpp"
 
 namespace {
@@ -20,19 +19,13 @@ struct Setup {
 bool setup(benchmark::State& state, Setup& s) {
   gf::DemSimulation* sim = gf::bench::settled_drum_or_skip(state);
   if (!sim) return false;
-  gf::World& w = sim->world();
-  const gf::Grains& g = w.grains;
-  const gf::Walls& walls = w.resources.get<gf::Walls>();
-  const gf::Gravity& gr = w.resources.get<gf::Gravity>();
-  const auto drum = gf::find_drum(walls);
-  if (!drum) {
-    state.SkipWithError("the settled drum scene has no drum wall");
-    return false;
-  }
+  const auto section = gf::bench::settled_drum_section(state, *sim);
+  if (!section) return false;
+  const gf::Grains& g = sim->world().grains;
   const std::size_t n = g.n_owned;
   s.grains = {{g.pos.x.data(), n},    {g.pos.y.data(), n},        {g.pos.z.data(), n},
               {g.radius.r.data(), n}, {g.species.type.data(), n}, {}};
-  s.section = gf::drum_section(walls.list[*drum], {gr.x, gr.y, gr.z});
+  s.section = *section;
   std::vector<double> d;
   for (const auto& sp : sim->scene().species) d.push_back(sp.diameter);
   s.options.palette = gf::species_palette(d);

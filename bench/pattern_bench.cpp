@@ -4,23 +4,15 @@
 
 #include "bench/settled_drum.hpp"
 #include "systems/analysis/pattern.hpp"
-#include "systems/integrate/integrate.hpp"
 
 namespace {
 
 void BM_ClassifyPattern(benchmark::State& state) {
   gf::DemSimulation* sim = gf::bench::settled_drum_or_skip(state);
   if (!sim) return;
-  gf::World& w = sim->world();
-  const gf::Grains& g = w.grains;
-  const gf::Walls& walls = w.resources.get<gf::Walls>();
-  const gf::Gravity& gr = w.resources.get<gf::Gravity>();
-  const auto drum = gf::find_drum(walls);
-  if (!drum) {
-    state.SkipWithError("the settled drum scene has no drum wall");
-    return;
-  }
-  const gf::DrumSection section = gf::drum_section(walls.list[*drum], {gr.x, gr.y, gr.z});
+  const auto section = gf::bench::settled_drum_section(state, *sim);
+  if (!section) return;
+  const gf::Grains& g = sim->world().grains;
   const std::size_t n = g.n_owned;
   const gf::PatternGrains pg{{g.pos.x.data(), n},
                              {g.pos.y.data(), n},
@@ -29,7 +21,7 @@ void BM_ClassifyPattern(benchmark::State& state) {
                              {g.species.type.data(), n}};
   gf::PatternSettings settings;
   settings.large_type = sim->scene().segregation_type;
-  for (auto _ : state) benchmark::DoNotOptimize(gf::classify_pattern(pg, section, settings));
+  for (auto _ : state) benchmark::DoNotOptimize(gf::classify_pattern(pg, *section, settings));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
 }
 BENCHMARK(BM_ClassifyPattern)->Unit(benchmark::kMillisecond);

@@ -5,9 +5,12 @@
 
 #include <cstdint>
 #include <exception>
+#include <optional>
 
 #include <benchmark/benchmark.h>
 
+#include "systems/analysis/drum_section.hpp"
+#include "systems/integrate/integrate.hpp"
 #include "systems/setup/dem_simulation.hpp"
 
 namespace gf::bench {
@@ -33,6 +36,18 @@ inline DemSimulation* settled_drum_or_skip(benchmark::State& state) {
     state.SkipWithError(e.what());
     return nullptr;
   }
+}
+
+// The drum's cross-section in the lab frame, or none with the benchmark marked as failed.
+inline std::optional<DrumSection> settled_drum_section(benchmark::State& state, DemSimulation& sim) {
+  const Walls& walls = sim.world().resources.get<Walls>();
+  const Gravity& gr = sim.world().resources.get<Gravity>();
+  const auto drum = find_drum(walls);
+  if (!drum) {
+    state.SkipWithError("the settled drum scene has no drum wall");
+    return std::nullopt;
+  }
+  return drum_section(walls.list[*drum], {gr.x, gr.y, gr.z});
 }
 
 }  // namespace gf::bench

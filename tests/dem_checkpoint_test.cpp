@@ -164,6 +164,10 @@ TEST_CASE("checkpoint: a run in two pieces writes the same files as one run", "[
   auto b = run_cli(dir, scene_args(scene, two, "--steps 500 --set output.checkpoint_interval=4e-3"));
   REQUIRE(b.code == 0);
   REQUIRE(fs::exists(two / "checkpoints" / "checkpoint.gfc"));
+  // A third folder as a run of a build that wrote no surface.csv left it.
+  const fs::path three = dir.path / "three";
+  fs::copy(two, three, fs::copy_options::recursive);
+  fs::remove(three / "surface.csv");
   auto c = run_cli(dir, scene_args(scene, two,
                                    "--steps 1300 --set output.checkpoint_interval=4e-3 --resume " +
                                        quote((two / "checkpoints" / "checkpoint.gfc").string())));
@@ -172,6 +176,23 @@ TEST_CASE("checkpoint: a run in two pieces writes the same files as one run", "[
   CHECK(read_file(one / "final_state.csv") == read_file(two / "final_state.csv"));
   CHECK(read_file(one / "series.csv") == read_file(two / "series.csv"));
   CHECK(read_lines(one / "series.csv").size() == 1 + 14);  // header, t = 0 .. 13 ms, and the end is on the grid
+  // The free surface's rows are the series' rows, resumed the same way.
+  CHECK(read_file(one / "surface.csv") == read_file(two / "surface.csv"));
+  CHECK(read_lines(one / "surface.csv").size() == 1 + 14);
+  // Without a surface.csv to continue, the resumed run starts one with the rows after its checkpoint.
+  const fs::path ckpt3 = three / "checkpoints" / "checkpoint.gfc";
+  const double t_ckpt = gf::CheckpointReader(ckpt3).value<double>("clock.t");
+  auto d = run_cli(dir, scene_args(scene, three,
+                                   "--steps 1300 --set output.checkpoint_interval=4e-3 --resume " +
+                                       quote(ckpt3.string())));
+  INFO(d.err);
+  REQUIRE(d.code == 0);
+  const auto all = read_lines(one / "surface.csv"), later = read_lines(three / "surface.csv");
+  std::vector<std::string> expected{all[0]};
+  for (std::size_t r = 1; r < all.size(); ++r)
+    if (std::stod(all[r].substr(0, all[r].find(','))) > t_ckpt) expected.push_back(all[r]);
+  CHECK(expected.size() > 2);
+  CHECK(later == expected);
   CHECK(read_file(one / "frames.pvd") == read_file(two / "frames.pvd"));
   for (const auto& f : fs::directory_iterator(one / "frames"))
     CHECK(read_file(f.path()) == read_file(two / "frames" / f.path().filename()));
@@ -228,6 +249,8 @@ TEST_CASE("checkpoint: a run killed mid-way keeps its rows and resumes from its 
                    " --set output.checkpoint_interval=5e-3 --set output.series_interval=1e-4");
   CHECK(read_file(out / "final_state.csv") == read_file(dir.path / "whole" / "final_state.csv"));
   CHECK(read_file(out / "series.csv") == read_file(dir.path / "whole" / "series.csv"));
+  // The rows the killed run wrote past its checkpoint are dropped by their time.
+  CHECK(read_file(out / "surface.csv") == read_file(dir.path / "whole" / "surface.csv"));
 }
 
 TEST_CASE("checkpoint: a run stopped by SIGINT between outputs resumes to the uninterrupted run's bits",

@@ -108,6 +108,31 @@ TEST_CASE("SeriesCsv truncates an old file and validates its columns", "[output]
   CHECK_THROWS_AS(gf::SeriesCsv(file, {""}), std::invalid_argument);
 }
 
+TEST_CASE("SeriesCsv resumed by time keeps the rows up to that time", "[output]") {
+  TempDir tmp("csv_test");
+  const fs::path file = tmp.path / "s.csv";
+  // Rows at 0, 0.1, 0.2, 0.30000000000000004 (0.1 + 0.2, written as the shortest round trip),
+  // then a row cut short by a kill.
+  std::ofstream(file) << "t,x\n0,1\n0.1,2\n0.2,3\n0.30000000000000004,4\n0.4,";
+  {
+    gf::SeriesCsv csv = gf::SeriesCsv::resume_through(file, {"t", "x"}, 0.2);
+    csv.append(std::vector<double>{0.25, 5.0});
+  }
+  CHECK(read_lines(file) == std::vector<std::string>{"t,x", "0,1", "0.1,2", "0.2,3", "0.25,5"});
+  // The time compares exactly: 0.3 is below the row written at 0.1 + 0.2.
+  std::ofstream(file) << "t,x\n0.1,2\n0.30000000000000004,4\n";
+  { gf::SeriesCsv csv = gf::SeriesCsv::resume_through(file, {"t", "x"}, 0.3); }
+  CHECK(read_lines(file) == std::vector<std::string>{"t,x", "0.1,2"});
+  // A missing file (a run that wrote none) starts with its header.
+  fs::remove(file);
+  { gf::SeriesCsv csv = gf::SeriesCsv::resume_through(file, {"t", "x"}, 1.0); }
+  CHECK(read_lines(file) == std::vector<std::string>{"t,x"});
+  // Other columns are refused, and the file is left as it was.
+  std::ofstream(file) << "t,y\n0,1\n";
+  CHECK_THROWS_AS(gf::SeriesCsv::resume_through(file, {"t", "x"}, 1.0), std::runtime_error);
+  CHECK(read_lines(file) == std::vector<std::string>{"t,y", "0,1"});
+}
+
 TEST_CASE("SeriesCsv names the file it cannot open", "[output]") {
   TempDir tmp("csv_test");
   const fs::path file = tmp.path / "missing_folder" / "s.csv";

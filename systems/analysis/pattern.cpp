@@ -8,39 +8,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "systems/analysis/line_fit.hpp"
+#include "systems/analysis/free_surface.hpp"
 
 namespace gf {
 
 namespace {
 
 constexpr int kRadialBins = 256;
-
-// The least-squares line v = level + u tan(angle) through the bed's top; NaN (both) with fewer than 3 columns.
-struct SurfaceLine {
-  double angle = std::numeric_limits<double>::quiet_NaN();
-  double level = std::numeric_limits<double>::quiet_NaN();
-};
-SurfaceLine surface_line(const std::vector<std::array<double, 3>>& tops, const std::vector<int>& counts, double u0,
-                         double width) {
-  int lo = -1, hi = -1;
-  for (int c = 0; c < static_cast<int>(tops.size()); ++c)
-    if (counts[c] >= 3) {
-      if (lo < 0) lo = c;
-      hi = c;
-    }
-  if (lo < 0) return {};
-  const double span = (hi - lo + 1) * width, a = u0 + lo * width + 0.2 * span, b = u0 + (hi + 1) * width - 0.2 * span;
-  LineFit fit;
-  for (int c = lo; c <= hi; ++c) {
-    const double uc = u0 + (c + 0.5) * width;
-    if (counts[c] < 3 || uc - 0.5 * width < a || uc + 0.5 * width > b) continue;
-    fit.add(uc, tops[c][2]);
-  }
-  const double slope = fit.slope();
-  if (fit.points() < 3 || std::isnan(slope)) return {};
-  return {std::atan(slope), fit.intercept()};
-}
 
 }  // namespace
 
@@ -54,14 +28,11 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
 
   Pattern out;
   const double R = drum.radius;
-  // Pass 1: volumes (r^3; the 4/3 pi cancels in every ratio), radial histogram, column tops.
-  double r_max = 0;
-  for (std::size_t i = 0; i < n; ++i) r_max = std::max(r_max, g.r[i]);
-  // Two large diameters, but at least ten columns across a drum that is small for its grains.
-  const double col_w = std::max(std::min(4.0 * r_max, R / 10.0), R / 50.0);
-  const int n_cols = static_cast<int>(std::ceil(2.0 * R / col_w));
-  std::vector<std::array<double, 3>> tops(n_cols, {-INFINITY, -INFINITY, -INFINITY});
-  std::vector<int> col_count(n_cols, 0);
+  // The free surface (its own pass), then volumes (r^3; the 4/3 pi cancels in every ratio) and the
+  // radial histogram.
+  const FreeSurface top = free_surface({g.x, g.y, g.z, g.r, {}, {}, {}}, drum);
+  out.surface_angle = top.angle;
+  out.surface_level = top.level;
   std::array<double, kRadialBins> radial{};
   double v_all = 0, v_large = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -73,22 +44,7 @@ Pattern classify_pattern(const PatternGrains& g, const DrumSection& drum, const 
     // corrupt state) must land in the last bin, not overflow the int.
     const int rb = static_cast<int>(std::min<double>(kRadialBins - 1, std::sqrt(u * u + v * v) / R * kRadialBins));
     radial[rb] += vol;
-    const double column = std::floor((u + R) / col_w);
-    if (!(column >= 0 && column < n_cols)) continue;
-    const int c = static_cast<int>(column);
-    auto& t = tops[c];
-    const double top = v + g.r[i];
-    ++col_count[c];
-    if (top > t[0])
-      t = {top, t[0], t[1]};
-    else if (top > t[1])
-      t = {t[0], top, t[1]};
-    else if (top > t[2])
-      t[2] = top;
   }
-  const SurfaceLine top = surface_line(tops, col_count, -R, col_w);
-  out.surface_angle = top.angle;
-  out.surface_level = top.level;
   if (!(v_large > 0) || !(v_large < v_all)) return out;
   const double p = v_large / v_all;
   out.large_fraction = p;

@@ -23,11 +23,8 @@
 //   "slight undulation"), and a large-rich band: mean s > h and > 3 standard errors of the mean
 //   over the arc's independent smoothing windows      -> moon
 //   anything else (a mixed bed, weak or irregular structure) -> undecided
-// The free-surface angle is a least-squares line through the top of the bed: in vertical columns
-// two large diameters wide (narrower if that leaves fewer than ten across the drum), the
-// third-highest grain top (v + r; so one or two grains in flight do not lift it), over the middle
-// 60 % of the bed's width (the ends curve up the wall); the line's level is reported with its angle.
-// Cost: two passes over the rows and an atan2 per band grain; no state between calls.
+// The free-surface angle and level are free_surface()'s (free_surface.hpp).
+// Cost: three passes over the rows and an atan2 per band grain; no state between calls.
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,7 @@
 #include "systems/output/dem_observers.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -33,6 +34,11 @@ std::vector<std::string> series_columns(const SeriesSettings& s) {
   return c;
 }
 
+std::vector<std::string> surface_columns() {
+  return {"time", "angle", "surface_angle", "surface_level", "surface_bulge", "surface_span", "surface_speed",
+          "surface_grains"};
+}
+
 SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::path& out) {
   SeriesSettings ss;
   if (s.output.series_interval > 0) ss.csv = out / "series.csv";
@@ -56,6 +62,8 @@ SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
     csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, std::move(columns), *s_.resume_rows));
   else
     csv_ = std::make_unique<SeriesCsv>(*s_.csv, std::move(columns));
+  if (s_.pattern && !s_.resume_rows)
+    surface_csv_ = std::make_unique<SeriesCsv>(s_.csv->parent_path() / "surface.csv", surface_columns());
 }
 
 void SeriesOutput::save(CheckpointWriter& out) const {
@@ -65,6 +73,15 @@ void SeriesOutput::save(CheckpointWriter& out) const {
 void SeriesOutput::restore(const CheckpointReader& in) {
   next_ = in.value<double>("series_output.next");
   rows_ = in.value<std::uint64_t>("series_output.rows");
+  if (!s_.csv || !s_.pattern) return;
+  // Its rows are those of series.csv, so it keeps the rows up to the checkpoint's clock: the row at
+  // that time too when it was written before the checkpoint (the next one is then an interval on).
+  // A run that wrote no surface.csv (an older build) starts one here.
+  const double t = s_.resume_time;
+  if (!std::isfinite(t)) throw std::logic_error("series: resuming surface.csv without the checkpoint's time");
+  const double last = next_ > t + 0.5 * s_.interval ? t : std::nextafter(t, -INFINITY);
+  surface_csv_ = std::make_unique<SeriesCsv>(
+      SeriesCsv::resume_through(s_.csv->parent_path() / "surface.csv", surface_columns(), last));
 }
 
 bool SeriesOutput::samples(const World&, const StepContext& now) const { return sample_due(now.t, next_, now.dt); }
@@ -130,6 +147,8 @@ void SeriesOutput::sample_pattern(World& world, SeriesRow& row) const {
   row.petals = p.petals;
   row.pattern_contrast = p.contrast;
   row.surface_angle = p.surface_angle;
+  row.surface = free_surface({pg.x, pg.y, pg.z, pg.r, {g.vel.x.data(), n}, {g.vel.y.data(), n}, {g.vel.z.data(), n}},
+                             section);
   row.radial_segregation = radial_segregation(g, s_.segregation_type, section).index;
   row.depth_segregation =
       depth_segregation(g, s_.segregation_type, section, p.surface_angle, p.surface_level).index;
@@ -168,6 +187,11 @@ void SeriesOutput::write(const SeriesRow& row) {
       v[k++] = x;
   csv_->append(std::span<const double>(v.data(), k));
   ++rows_;
+  if (!surface_csv_) return;
+  const FreeSurface& f = row.surface;
+  const std::array<double, 8> w{row.time, row.angle, f.angle,  f.level,
+                                f.bulge,  f.span,    f.speed,  static_cast<double>(f.layer_grains)};
+  surface_csv_->append(w);
 }
 
 FrameOutput::FrameOutput(std::filesystem::path dir, double interval, FrameFields fields, std::string key)

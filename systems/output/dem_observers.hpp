@@ -14,6 +14,7 @@
 #include "engine/checkpoint_file.hpp"
 #include "engine/run_loop.hpp"
 #include "engine/system.hpp"
+#include "systems/analysis/free_surface.hpp"
 #include "systems/analysis/metrics.hpp"
 #include "systems/analysis/mixing.hpp"
 #include "systems/analysis/pattern.hpp"
@@ -40,6 +41,7 @@ struct SeriesRow {
   int pattern = -1, petals = 0;
   double pattern_contrast = std::numeric_limits<double>::quiet_NaN();
   double surface_angle = std::numeric_limits<double>::quiet_NaN();
+  FreeSurface surface;  // the free surface's level, bulge and speed (free_surface.hpp), with the pattern
   // Binary mixtures (has_mixing): Lacey's index of the larger species over cubic cells of edge
   // lacey_cell (m) holding lacey_cell_grains grains on average (mixing.hpp); with a drum also the
   // radial and depth segregation indices of the larger species in the drum's cross-section.
@@ -64,6 +66,8 @@ struct SeriesSettings {
   double segregation_cell = 0;
   std::optional<std::size_t> resume_rows;  // continue an existing csv, keeping this many rows
   bool pattern = false;  // classify the drum pattern and the radial segregation at each row (needs a drum wall)
+                         // and write the free surface's rows to surface.csv beside the csv
+  double resume_time = std::numeric_limits<double>::quiet_NaN();  // s, the checkpoint's clock when resuming
   PatternSettings pattern_settings;
   double mixing_cell = 0;      // m; > 0: Lacey's index of segregation_type over cells of this edge
   int mixing_min_grains = 10;  // cells with fewer grains are left out of it
@@ -76,6 +80,9 @@ double rotation_angle(const Walls& walls, double t, const MeshWalls* meshes = nu
 
 // The columns of series.csv for these settings, in order.
 std::vector<std::string> series_columns(const SeriesSettings& s);
+
+// The columns of surface.csv (scenes with the pattern columns).
+std::vector<std::string> surface_columns();
 
 // The settings `grainflow run` gives its SeriesOutput for a scene (the csv under out, if any).
 SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::path& out);
@@ -104,6 +111,7 @@ class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
   bool mixing() const { return s_.mixing_cell > 0; }
   SeriesSettings s_;
   std::unique_ptr<SeriesCsv> csv_;
+  std::unique_ptr<SeriesCsv> surface_csv_;  // surface.csv; opened by restore() when resuming
   double next_ = 0;
   std::size_t rows_ = 0;  // written to the csv by this run and the runs it continues
 };

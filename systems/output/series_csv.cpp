@@ -3,6 +3,8 @@
 #include <cerrno>
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <fstream>
 #include <system_error>
@@ -42,10 +44,15 @@ SeriesCsv::SeriesCsv(std::filesystem::path file, std::vector<std::string> column
 }
 
 SeriesCsv SeriesCsv::resume(std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows) {
-  return SeriesCsv(Resume{}, std::move(file), std::move(columns), keep_rows);
+  return SeriesCsv(Resume{}, std::move(file), std::move(columns), keep_rows, INFINITY);
 }
 
-SeriesCsv::SeriesCsv(Resume, std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows)
+SeriesCsv SeriesCsv::resume_through(std::filesystem::path file, std::vector<std::string> columns, double last_time) {
+  return SeriesCsv(Resume{}, std::move(file), std::move(columns), SIZE_MAX, last_time);
+}
+
+SeriesCsv::SeriesCsv(Resume, std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows,
+                     double last_time)
     : file_(std::move(file)), columns_(std::move(columns)) {
   check_columns();
   std::string kept = header();
@@ -59,6 +66,11 @@ SeriesCsv::SeriesCsv(Resume, std::filesystem::path file, std::vector<std::string
                                "into a new folder");
     // A row cut short by a kill (no line end) is dropped too: the resumed run writes it again.
     for (std::size_t r = 0; r < keep_rows && std::getline(in, line) && !in.eof(); ++r) {
+      // The time column parsed as written (shortest round trip): a later row, or one that does
+      // not parse, ends what is kept.
+      double t = NAN;
+      if (last_time < INFINITY) std::from_chars(line.data(), line.data() + line.size(), t);
+      if (last_time < INFINITY && !(t <= last_time)) break;
       kept += line;
       kept += '\n';
     }

@@ -26,6 +26,10 @@ class SeriesCsv {
   // (the rows cannot be made up); one whose header names other columns is a std::runtime_error.
   static SeriesCsv resume(std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows);
 
+  // The same, keeping the rows whose first column (the time) is at most `last_time`: for a series
+  // whose row count the checkpoint does not record. A missing file is started with its header.
+  static SeriesCsv resume_through(std::filesystem::path file, std::vector<std::string> columns, double last_time);
+
   // Writes one row in the columns' order, in the shortest form that reads back as the same
   // double, then flushes. std::invalid_argument if values.size() != columns().size(). A failed
   // write (full disk) throws WriteError after cutting the file back to its last complete row.
@@ -36,7 +40,8 @@ class SeriesCsv {
 
  private:
   struct Resume {};
-  SeriesCsv(Resume, std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows);
+  SeriesCsv(Resume, std::filesystem::path file, std::vector<std::string> columns, std::size_t keep_rows,
+            double last_time);
   void check_columns() const;
   std::string header() const;
   struct Closer {

@@ -39,6 +39,8 @@ nlohmann::json final_row_json(const SeriesRow& row) {
     j["petals"] = row.petals;
     j["pattern_contrast"] = row.pattern_contrast;
     j["surface_angle"] = number_or_null(row.surface_angle);  // no surface to fit: null
+    j["surface_bulge"] = number_or_null(row.surface.bulge);
+    j["surface_speed"] = number_or_null(row.surface.speed);
     j["radial_segregation"] = number_or_null(row.radial_segregation);
     j["depth_segregation"] = number_or_null(row.depth_segregation);
   }

@@ -185,7 +185,10 @@ int run_dem_command(const CliOptions& opt) {
   Schedule observe;
   world.resources.emplace<SeriesRow>();
   SeriesSettings ss = scene_series_settings(s, out);
-  if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");
+  if (ckpt) {
+    ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");
+    ss.resume_time = world.clock.t;
+  }
   SeriesOutput& series = observe.emplace<SeriesOutput>(ss);
   FrameOutput* frames = nullptr;
   if (s.output.frame_interval > 0) frames = &observe.emplace<FrameOutput>(out, s.output.frame_interval, s.output.fields);

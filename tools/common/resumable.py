@@ -36,7 +36,7 @@ def pieces(folder):
     return [json.loads(line) for line in path.read_text().splitlines() if line.strip()] if path.is_file() else []
 
 
-ARCHIVED = ("series.csv", "summary.json", "pieces.jsonl", "end_snapshot.json", "log.txt")
+ARCHIVED = ("series.csv", "surface.csv", "summary.json", "pieces.jsonl", "end_snapshot.json", "log.txt")
 
 
 def archive(folder, dest, finished, pictures=(), extra=()):

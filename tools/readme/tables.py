@@ -115,11 +115,18 @@ def pulsation_table(path="docs/seed000/pulsation_w0.50/pulsation.json"):
     s = json.loads((ROOT / path).read_text())
     rows = ["| signal | window (rad) | dominant period (s) | period (rad of rotation) | prominence | mean | std |",
             "|---|---|---|---|---|---|---|"]
-    for key, label, unit in (("surface_angle", "free-surface angle", "°"), ("ke_translational", "kinetic energy", " J")):
+    for key, label, unit in (("surface_angle", "free-surface angle", "°"), ("ke_translational", "kinetic energy", " J"),
+                             ("surface_speed", "surface speed", " m/s"), ("surface_bulge", "surface bulge", " mm")):
+        if key not in s:
+            continue
         v = s[key]
-        rows.append(f"| {label} | {s['from_rad']:.1f} to {s['to_rad']:.2f} | {v['period_s']:.2f} | {v['period_rad']:.2f} | "
+        lo, hi = v.get("from_rad", s["from_rad"]), v.get("to_rad", s["to_rad"])
+        rows.append(f"| {label} | {lo:.1f} to {hi:.2f} | {v['period_s']:.2f} | {v['period_rad']:.2f} | "
                     f"{v['prominence']:.1f} | {v['mean']:.4g}{unit} | {v['std']:.3g}{unit} |")
-    return "\n".join(rows) + "\n"
+    out = "\n".join(rows) + "\n"
+    if "speed_bulge_correlation" in s:
+        out += f"\nCorrelation of the surface speed with the bulge: {s['speed_bulge_correlation']:+.2f}.\n"
+    return out
 
 
 def seed002_cost(path="docs/seed002/cost/cost.json"):

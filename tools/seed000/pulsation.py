@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """The flow's pulsation in a drum run: the dominant period of the free-surface angle and of the
-kinetic energy (a proxy for the surface speed: nearly all of a rolling bed's kinetic energy is in its
-flowing layer) over a window of rotation, from series.csv.
+kinetic energy (nearly all of a rolling bed's kinetic energy is in its flowing layer) over a window
+of rotation, from series.csv; and, where the run wrote surface.csv (builds from the free surface's
+speed and bulge on; a run resumed by such a build has it from its resume on), those of the surface
+speed and of the surface's bulge (convex > 0, concave < 0), with their correlation.
 
     /usr/bin/python3 tools/seed000/pulsation.py runs/seed000/half_w0.50 [--from 10] [--to 30] [--out DIR]
 
@@ -22,6 +24,18 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "common"))
 from resumable import load_series  # noqa: E402
+
+
+def load_surface(folder, lo, hi):
+    """surface.csv's rows between lo and hi rad (None when it has fewer than 16 there)."""
+    path = folder / "surface.csv"
+    if not path.is_file():
+        return None
+    d = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True))
+    if d.size == 0:
+        return None
+    d = d[(d["angle"] >= lo) & (d["angle"] <= hi) & np.isfinite(d["surface_speed"]) & np.isfinite(d["surface_bulge"])]
+    return d if len(d) >= 16 else None
 
 
 def dominant_period(t, y):
@@ -69,14 +83,23 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(2, 2, figsize=(10, 5.5))
-    for row, (col, label, scale) in enumerate((("surface_angle", "free-surface angle (deg)", 180 / math.pi),
-                                                ("ke_translational", "kinetic energy (J)", 1.0))):
-        y = w[col] * scale
-        period, prominence, f, power = dominant_period(w["time"], y)
+    signals = [(w, "surface_angle", "free-surface angle (deg)", 180 / math.pi),
+               (w, "ke_translational", "kinetic energy (J)", 1.0)]
+    surf = load_surface(a.run, a.lo, a.hi)
+    if surf is not None:
+        signals += [(surf, "surface_speed", "surface speed (m/s)", 1.0),
+                    (surf, "surface_bulge", "surface bulge (mm; convex > 0)", 1e3)]
+        speed, bulge = surf["surface_speed"], surf["surface_bulge"]
+        result["surface_window_rad"] = [float(surf["angle"][0]), float(surf["angle"][-1])]
+        result["speed_bulge_correlation"] = float(np.corrcoef(speed, bulge)[0, 1])
+    fig, axes = plt.subplots(len(signals), 2, figsize=(10, 2.75 * len(signals)))
+    for row, (d, col, label, scale) in enumerate(signals):
+        y = d[col] * scale
+        period, prominence, f, power = dominant_period(d["time"], y)
         result[col] = {"period_s": period, "period_rad": None if period is None else period * omega,
-                       "prominence": prominence, "mean": float(np.mean(y)), "std": float(np.std(y))}
-        axes[row][0].plot(w["angle"], y, lw=0.6)
+                       "prominence": prominence, "mean": float(np.mean(y)), "std": float(np.std(y)),
+                       "from_rad": float(d["angle"][0]), "to_rad": float(d["angle"][-1])}
+        axes[row][0].plot(d["angle"], y, lw=0.6)
         axes[row][0].set_xlabel("drum rotation (rad)")
         axes[row][0].set_ylabel(label)
         axes[row][1].semilogy(f[1:], power[1:], lw=0.6)

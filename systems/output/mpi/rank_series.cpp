@@ -139,6 +139,9 @@ void RankSeries::sample_whole(const Grains& all, World& w, SeriesRow& row) const
   row.petals = p.petals;
   row.pattern_contrast = p.contrast;
   row.surface_angle = p.surface_angle;
+  row.surface = free_surface({pg.x, pg.y, pg.z, pg.r, {all.vel.x.data(), n}, {all.vel.y.data(), n},
+                              {all.vel.z.data(), n}},
+                             section);
   row.radial_segregation = radial_segregation(all, s_.segregation_type, section).index;
   row.depth_segregation = depth_segregation(all, s_.segregation_type, section, p.surface_angle, p.surface_level).index;
 }
