@@ -208,6 +208,29 @@ TEST_CASE("checkpoint: a run in two pieces writes the same files as one run", "[
   CHECK(read_file(one / "checkpoints" / "checkpoint.gfc") == read_file(two / "checkpoints" / "checkpoint.gfc"));
 }
 
+TEST_CASE("checkpoint: a piece ending off the series' grid, and a resume that takes no step, write no row twice",
+          "[checkpoint][cli]") {
+  TempDir dir("ckpt_offgrid");
+  const fs::path scene = dir.write("drum.toml", kDrum);
+  const fs::path one = dir.path / "one", two = dir.path / "two";
+  const fs::path ckpt = two / "checkpoints" / "checkpoint.gfc";
+  REQUIRE(run_cli(dir, scene_args(scene, one, "--steps 1300")).code == 0);
+  // 550 steps is half-way between series rows (every 100 steps): the piece's final row at 5.5 ms
+  // is dropped from both files when the next piece resumes.
+  REQUIRE(run_cli(dir, scene_args(scene, two, "--steps 550")).code == 0);
+  auto b = run_cli(dir, scene_args(scene, two, "--steps 1300 --resume " + quote(ckpt.string())));
+  INFO(b.err);
+  REQUIRE(b.code == 0);
+  CHECK(read_file(one / "series.csv") == read_file(two / "series.csv"));
+  CHECK(read_file(one / "surface.csv") == read_file(two / "surface.csv"));
+  // Resumed at its end (on the grid) with nothing left to run, the run adds no row.
+  auto c = run_cli(dir, scene_args(scene, two, "--steps 1300 --resume " + quote(ckpt.string())));
+  INFO(c.err);
+  REQUIRE(c.code == 0);
+  CHECK(read_file(one / "series.csv") == read_file(two / "series.csv"));
+  CHECK(read_file(one / "surface.csv") == read_file(two / "surface.csv"));
+}
+
 TEST_CASE("checkpoint: a run killed mid-way keeps its rows and resumes from its last checkpoint",
           "[checkpoint][cli]") {
   TempDir dir("ckpt_kill");

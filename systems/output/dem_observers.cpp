@@ -74,14 +74,21 @@ void SeriesOutput::restore(const CheckpointReader& in) {
   next_ = in.value<double>("series_output.next");
   rows_ = in.value<std::uint64_t>("series_output.rows");
   if (!s_.csv || !s_.pattern) return;
-  // Its rows are those of series.csv, so it keeps the rows up to the checkpoint's clock: the row at
-  // that time too when it was written before the checkpoint (the next one is then an interval on).
+  // Its rows are those of series.csv kept by the checkpoint: those before its clock, and the row at
+  // its clock when that was a sampled step (a final row off the grid is dropped, as series.csv's is).
   // A run that wrote no surface.csv (an older build) starts one here.
   const double t = s_.resume_time;
   if (!std::isfinite(t)) throw std::logic_error("series: resuming surface.csv without the checkpoint's time");
-  const double last = next_ > t + 0.5 * s_.interval ? t : std::nextafter(t, -INFINITY);
+  const double last = sampled_at(t, in.value<double>("clock.dt")) ? t : std::nextafter(t, -INFINITY);
   surface_csv_ = std::make_unique<SeriesCsv>(
       SeriesCsv::resume_through(s_.csv->parent_path() / "surface.csv", surface_columns(), last));
+}
+
+// The grid time sampled last is next_ - interval; the step at t sampled it when it is the first
+// step at or past it.
+bool SeriesOutput::sampled_at(double t, double dt) const {
+  const double g = next_ - s_.interval;
+  return sample_due(t, g, dt) && !sample_due(t - dt, g, dt);
 }
 
 bool SeriesOutput::samples(const World&, const StepContext& now) const { return sample_due(now.t, next_, now.dt); }
@@ -96,6 +103,8 @@ void SeriesOutput::run(World& world, const StepContext& now) {
 void SeriesOutput::finish(World& world) {
   const SeriesRow& row = world.resources.get<SeriesRow>();
   if (row.valid && row.time == world.clock.t) return;
+  // A resumed run that took no step: the checkpoint's sampled row is already the last one kept.
+  if (!row.valid && world.clock.t == s_.resume_time && sampled_at(world.clock.t, world.clock.dt)) return;
   sample(world, world.clock.t);
 }
 

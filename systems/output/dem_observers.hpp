@@ -109,6 +109,7 @@ class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
   static void sample_flow(World& world, SeriesRow& row);
   void write(const SeriesRow& row);
   bool mixing() const { return s_.mixing_cell > 0; }
+  bool sampled_at(double t, double dt) const;  // the row at time t was written (t the clock of a step)
   SeriesSettings s_;
   std::unique_ptr<SeriesCsv> csv_;
   std::unique_ptr<SeriesCsv> surface_csv_;  // surface.csv; opened by restore() when resuming
