@@ -123,6 +123,10 @@ TEST_CASE("a round small core inside a large shell is a moon", "[pattern]") {
   const gf::Pattern p = classify(bed);
   CHECK(p.kind == PatternKind::Moon);
   CHECK(p.petals == 0);
+  // The core reaches 0.68 R about a point 0.06 R from the axis: the rings at 0.8 and 0.9 R lie in
+  // the large shell, where the composition does not alternate.
+  CHECK(p.ring_lobes[2] == 0);
+  CHECK(p.ring_lobes[3] == 0);
   // The band lies in the large shell: near-perfect segregation there (>= 0.8 of full contrast;
   // grains of the core's rim reach in by a grain radius at most).
   CHECK(p.contrast > 0.8);
@@ -144,6 +148,8 @@ TEST_CASE("petal patterns give their exact petal count", "[pattern]") {
     const gf::Pattern p = classify(bed);
     CHECK(p.kind == PatternKind::Petals);
     CHECK(p.petals == n);
+    // The lobes run from the core (0.45 R) to the rim: every ring crosses all of them.
+    for (std::size_t k = 0; k < gf::kRingRadii.size(); ++k) CHECK(p.ring_lobes[k] == n);
     // Lobes and wedges are pure: contrast well above the mixed floor (< 0.15, see below) and
     // above the decision threshold; smoothing over 3 degrees rounds the edges, so not 1.
     CHECK(p.contrast > 0.6);
@@ -167,6 +173,31 @@ TEST_CASE("noisy petals (15-20 % of labels flipped) keep their exact count", "[p
     }
 }
 
+namespace {
+// Short petals: as petals(), but the lobes stop at `reach` of the radius, large grains beyond.
+std::function<bool(double, double)> short_petals(const Surface& s, int n, double reach) {
+  const auto lobes = petals(s, n);
+  return [=](double u, double v) { return std::hypot(u, v) > reach * kR || lobes(u, v); };
+}
+}  // namespace
+
+TEST_CASE("lobes that stop short of the rim count at the radii they reach, and are not petals", "[pattern]") {
+  const Surface s;
+  for (int n : {3, 5}) {
+    INFO("lobes built: " << n << ", reaching 0.76 R");
+    const Bed bed = make_bed(s, short_petals(s, n, 0.76), 400 + n);
+    const gf::Pattern p = classify(bed);
+    // Rings at 0.6 and 0.7 R (0.55 to 0.75 R) cross every lobe; those at 0.8 and 0.9 R lie beyond
+    // them, in large grains only. The rim band lies there too: a moon with spikes, not petals.
+    CHECK(p.ring_lobes[0] == n);
+    CHECK(p.ring_lobes[1] == n);
+    CHECK(p.ring_lobes[2] == 0);
+    CHECK(p.ring_lobes[3] == 0);
+    CHECK(p.kind == PatternKind::Moon);
+    CHECK(p.petals == 0);
+  }
+}
+
 TEST_CASE("a random well-mixed bed is neither petals nor a moon", "[pattern]") {
   const Surface s;
   for (std::uint64_t seed : {21u, 22u, 23u, 24u, 25u, 26u}) {
@@ -175,6 +206,7 @@ TEST_CASE("a random well-mixed bed is neither petals nor a moon", "[pattern]") {
     INFO("seed " << seed << ": contrast " << p.contrast << ", noise " << p.noise);
     CHECK(p.kind == PatternKind::Undecided);
     CHECK(p.petals == 0);
+    for (std::size_t k = 0; k < gf::kRingRadii.size(); ++k) CHECK(p.ring_lobes[k] == 0);
     // Poisson noise of ~30 large grains per smoothing window gives mean |s| of 0.08-0.10 over these
     // seeds; 0.15 is 1.5 times the largest and still below the decision threshold 0.2.
     CHECK(p.contrast < 0.15);

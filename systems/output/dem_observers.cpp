@@ -155,6 +155,7 @@ void SeriesOutput::sample_pattern(World& world, SeriesRow& row) const {
   row.pattern = static_cast<int>(p.kind);
   row.petals = p.petals;
   row.pattern_contrast = p.contrast;
+  row.ring_lobes = p.ring_lobes;
   row.surface_angle = p.surface_angle;
   row.surface = free_surface({pg.x, pg.y, pg.z, pg.r, {g.vel.x.data(), n}, {g.vel.y.data(), n}, {g.vel.z.data(), n}},
                              section);

@@ -3,6 +3,7 @@
 // stability_report.hpp.)
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -42,6 +43,7 @@ struct SeriesRow {
   double pattern_contrast = std::numeric_limits<double>::quiet_NaN();
   double surface_angle = std::numeric_limits<double>::quiet_NaN();
   FreeSurface surface;  // the free surface's level, bulge and speed (free_surface.hpp), with the pattern
+  std::array<int, kRingRadii.size()> ring_lobes{};  // Pattern::ring_lobes
   // Binary mixtures (has_mixing): Lacey's index of the larger species over cubic cells of edge
   // lacey_cell (m) holding lacey_cell_grains grains on average (mixing.hpp); with a drum also the
   // radial and depth segregation indices of the larger species in the drum's cross-section.

@@ -41,6 +41,8 @@ nlohmann::json final_row_json(const SeriesRow& row) {
     j["surface_angle"] = number_or_null(row.surface_angle);  // no surface to fit: null
     j["surface_bulge"] = number_or_null(row.surface.bulge);
     j["surface_speed"] = number_or_null(row.surface.speed);
+    j["ring_radii"] = kRingRadii;      // of the drum radius
+    j["ring_lobes"] = row.ring_lobes;  // lobes crossing each ring, -1 undefined
     j["radial_segregation"] = number_or_null(row.radial_segregation);
     j["depth_segregation"] = number_or_null(row.depth_segregation);
   }

@@ -121,8 +121,11 @@ def pulsation_table(path="docs/seed000/pulsation_w0.50/pulsation.json"):
             continue
         v = s[key]
         lo, hi = v.get("from_rad", s["from_rad"]), v.get("to_rad", s["to_rad"])
-        rows.append(f"| {label} | {lo:.1f} to {hi:.2f} | {v['period_s']:.2f} | {v['period_rad']:.2f} | "
-                    f"{v['prominence']:.1f} | {v['mean']:.4g}{unit} | {v['std']:.3g}{unit} |")
+        if v["period_s"] is None:  # the window is too short for three periods of any candidate
+            period = "— (window too short) | — | —"
+        else:
+            period = f"{v['period_s']:.2f} | {v['period_rad']:.2f} | {v['prominence']:.1f}"
+        rows.append(f"| {label} | {lo:.1f} to {hi:.2f} | {period} | {v['mean']:.4g}{unit} | {v['std']:.3g}{unit} |")
     out = "\n".join(rows) + "\n"
     if "speed_bulge_correlation" in s:
         out += f"\nCorrelation of the surface speed with the bulge: {s['speed_bulge_correlation']:+.2f}.\n"

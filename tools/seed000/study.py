@@ -131,7 +131,10 @@ def report(out):
         # Main stage plus settling (the quarter fill settles its cut surface first).
         wall = sum((p["wall_seconds"] or 0) + p.get("settle_wall_seconds", 0.0) for p in ps)
         steps = sum(p["steps"] or 0 for p in ps)
-        grains = json.loads((folder / "summary.json").read_text())["grains"]
+        summary = json.loads((folder / "summary.json").read_text())
+        grains = summary["grains"]
+        # Lobes crossing the rings at 0.6-0.9 R, from the last state (builds that count them).
+        ring_lobes = summary.get("final", {}).get("ring_lobes")
         kind = KINDS.get(int(last["pattern"]), "?")
         ours = f"{int(last['petals'])} petals" if kind == "petals" else kind
         rows.append({
@@ -141,6 +144,7 @@ def report(out):
             "wall_seconds": wall, "steps": steps, "grains": grains,
             "particle_steps_per_second": steps * grains / sum(p["wall_seconds"] or 0 for p in ps),
             "threads": sorted({p["threads"] for p in ps}),
+            "ring_lobes": ring_lobes, "ring_radii": summary.get("final", {}).get("ring_radii"),
         })
     (out / "table.json").write_text(json.dumps(rows, indent=1))
     if out == REPO / "runs" / "seed000":

@@ -16,7 +16,11 @@ def main(path):
     for r in rows:
         if not r["ran"]:
             continue
-        print(f"| {r['fill']} | {r['omega']:.2f} | {r['seed']} | {r['ours']} (contrast {r['contrast']:.2f}) | "
+        lobes = ""
+        if r.get("ring_lobes"):
+            radii = "/".join(f"{x:g}" for x in r["ring_radii"])
+            lobes = f"; lobes crossing {radii} R: {'/'.join(str(n) for n in r['ring_lobes'])}"
+        print(f"| {r['fill']} | {r['omega']:.2f} | {r['seed']} | {r['ours']} (contrast {r['contrast']:.2f}{lobes}) | "
               f"{r['angle']:.2f} of 30 | {r['segregation_index']:.3f} | {r['wall_seconds'] / 3600:.2f} h | "
               f"{r['particle_steps_per_second']:.3g} ({','.join(map(str, r['threads']))}) |")
     for r in rows:

@@ -138,6 +138,7 @@ void RankSeries::sample_whole(const Grains& all, World& w, SeriesRow& row) const
   row.pattern = static_cast<int>(p.kind);
   row.petals = p.petals;
   row.pattern_contrast = p.contrast;
+  row.ring_lobes = p.ring_lobes;
   row.surface_angle = p.surface_angle;
   row.surface = free_surface({pg.x, pg.y, pg.z, pg.r, {all.vel.x.data(), n}, {all.vel.y.data(), n},
                               {all.vel.z.data(), n}},
