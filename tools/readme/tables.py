@@ -220,6 +220,8 @@ TABLES = {
                                                  "docs/liggghts/comparison_flowing_grainflow.log"),
     "pulsation": pulsation_table,
     "pulsation_w0.25": lambda: pulsation_table("docs/seed000/pulsation_w0.25/pulsation.json"),
+    "pulsation_surface_w0.25": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.25/pulsation.json"),
+    "pulsation_surface_w0.50": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50/pulsation.json"),
     "mixer": lambda: script("tools/seed004/mixer_report.py", "table", "docs/seed004/mixer.json"),
     "mixer_compartments": lambda: script("tools/seed004/compartments.py", "table", "docs/seed004/compartments.json"),
     "seed002_cost": seed002_cost,
