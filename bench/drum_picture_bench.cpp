@@ -17,17 +17,15 @@ struct Setup {
 };
 
 bool setup(benchmark::State& state, Setup& s) {
-  gf::DemSimulation* sim = gf::bench::settled_drum_or_skip(state);
-  if (!sim) return false;
-  const auto section = gf::bench::settled_drum_section(state, *sim);
-  if (!section) return false;
-  const gf::Grains& g = sim->world().grains;
+  const auto drum = gf::bench::settled_drum_with_section(state);
+  if (!drum) return false;
+  const gf::Grains& g = drum->sim->world().grains;
   const std::size_t n = g.n_owned;
   s.grains = {{g.pos.x.data(), n},    {g.pos.y.data(), n},        {g.pos.z.data(), n},
               {g.radius.r.data(), n}, {g.species.type.data(), n}, {}};
-  s.section = *section;
+  s.section = drum->section;
   std::vector<double> d;
-  for (const auto& sp : sim->scene().species) d.push_back(sp.diameter);
+  for (const auto& sp : drum->sim->scene().species) d.push_back(sp.diameter);
   s.options.palette = gf::species_palette(d);
   s.options.size = static_cast<int>(state.range(0));
   return true;

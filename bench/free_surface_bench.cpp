@@ -8,15 +8,13 @@
 namespace {
 
 void BM_FreeSurface(benchmark::State& state) {
-  gf::DemSimulation* sim = gf::bench::settled_drum_or_skip(state);
-  if (!sim) return;
-  const auto section = gf::bench::settled_drum_section(state, *sim);
-  if (!section) return;
-  const gf::Grains& g = sim->world().grains;
+  const auto drum = gf::bench::settled_drum_with_section(state);
+  if (!drum) return;
+  const gf::Grains& g = drum->sim->world().grains;
   const std::size_t n = g.n_owned;
   const gf::SurfaceGrains sg{{g.pos.x.data(), n}, {g.pos.y.data(), n}, {g.pos.z.data(), n}, {g.radius.r.data(), n},
                              {g.vel.x.data(), n}, {g.vel.y.data(), n}, {g.vel.z.data(), n}};
-  for (auto _ : state) benchmark::DoNotOptimize(gf::free_surface(sg, *section));
+  for (auto _ : state) benchmark::DoNotOptimize(gf::free_surface(sg, drum->section));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
 }
 BENCHMARK(BM_FreeSurface)->Unit(benchmark::kMillisecond);

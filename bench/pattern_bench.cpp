@@ -8,11 +8,9 @@
 namespace {
 
 void BM_ClassifyPattern(benchmark::State& state) {
-  gf::DemSimulation* sim = gf::bench::settled_drum_or_skip(state);
-  if (!sim) return;
-  const auto section = gf::bench::settled_drum_section(state, *sim);
-  if (!section) return;
-  const gf::Grains& g = sim->world().grains;
+  const auto drum = gf::bench::settled_drum_with_section(state);
+  if (!drum) return;
+  const gf::Grains& g = drum->sim->world().grains;
   const std::size_t n = g.n_owned;
   const gf::PatternGrains pg{{g.pos.x.data(), n},
                              {g.pos.y.data(), n},
@@ -20,8 +18,8 @@ void BM_ClassifyPattern(benchmark::State& state) {
                              {g.radius.r.data(), n},
                              {g.species.type.data(), n}};
   gf::PatternSettings settings;
-  settings.large_type = sim->scene().segregation_type;
-  for (auto _ : state) benchmark::DoNotOptimize(gf::classify_pattern(pg, *section, settings));
+  settings.large_type = drum->sim->scene().segregation_type;
+  for (auto _ : state) benchmark::DoNotOptimize(gf::classify_pattern(pg, drum->section, settings));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
 }
 BENCHMARK(BM_ClassifyPattern)->Unit(benchmark::kMillisecond);

@@ -50,4 +50,18 @@ inline std::optional<DrumSection> settled_drum_section(benchmark::State& state, 
   return drum_section(walls.list[*drum], {gr.x, gr.y, gr.z});
 }
 
+// The drum and its cross-section, or none with the benchmark marked as failed: the set-up of the
+// benchmarks of the drum analyses.
+struct SettledDrum {
+  DemSimulation* sim;
+  DrumSection section;
+};
+inline std::optional<SettledDrum> settled_drum_with_section(benchmark::State& state) {
+  DemSimulation* sim = settled_drum_or_skip(state);
+  if (!sim) return std::nullopt;
+  const auto section = settled_drum_section(state, *sim);
+  if (!section) return std::nullopt;
+  return SettledDrum{sim, *section};
+}
+
 }  // namespace gf::bench
