@@ -23,24 +23,23 @@ COLUMNS = ("from_rad", "to_rad", "rows", "moon", "petals", "undecided", "mean_pe
 
 
 def calls(series, start, width):
-    """One dict per bin of `width` rad from `start` to the last row."""
+    """One dict per bin of `width` rad from `start` that holds rows (as many bins as rows at most)."""
     angle = series["angle"]
     pattern = series["pattern"].astype(int)
+    rows = np.flatnonzero(np.isfinite(angle) & (angle >= start))
+    index = np.floor((angle[rows] - start) / width)
+    order = np.argsort(index, kind="stable")
+    bins, counts = np.unique(index, return_counts=True)
     out = []
-    lo = start
-    while lo <= angle.max():
-        hi = lo + width
-        sel = (angle >= lo) & (angle < hi)
-        if sel.any():
-            p = pattern[sel]
-            petal_rows = sel & (pattern == 1)
-            out.append({
-                "from_rad": round(lo, 6), "to_rad": round(hi, 6), "rows": int(sel.sum()),
-                "moon": int((p == 0).sum()), "petals": int((p == 1).sum()), "undecided": int((p == -1).sum()),
-                "mean_petal_count": float(series["petals"][petal_rows].mean()) if petal_rows.any() else math.nan,
-                "median_contrast": float(np.median(series["pattern_contrast"][sel])),
-            })
-        lo = hi
+    for k, members in zip(bins, np.split(rows[order], np.cumsum(counts)[:-1])):
+        p = pattern[members]
+        petal_counts = series["petals"][members][p == 1]
+        out.append({
+            "from_rad": round(start + k * width, 6), "to_rad": round(start + (k + 1) * width, 6), "rows": len(members),
+            "moon": int((p == 0).sum()), "petals": int((p == 1).sum()), "undecided": int((p == -1).sum()),
+            "mean_petal_count": float(petal_counts.mean()) if len(petal_counts) else math.nan,
+            "median_contrast": float(np.median(series["pattern_contrast"][members])),
+        })
     return out
 
 
@@ -51,8 +50,8 @@ def main():
     ap.add_argument("--bin", type=float, default=0.25, help="bin width (rad)")
     ap.add_argument("--out", type=Path, help="CSV to write")
     a = ap.parse_args()
-    if not a.bin > 0:
-        sys.exit("pattern_calls.py: --bin must be positive (rad), e.g. --bin 0.25")
+    if not (math.isfinite(a.bin) and a.bin > 0 and math.isfinite(a.start)):
+        sys.exit("pattern_calls.py: --bin must be a positive number of rad and --from a finite angle, e.g. --from 16 --bin 0.25")
     series = load_series(a.run)
     if series is None:
         sys.exit(f"pattern_calls.py: {a.run}/series.csv is missing or empty: give a drum run's folder")
