@@ -205,6 +205,7 @@ TABLES = {
                                         "docs/bench/memory_bandwidth_xeon.json"),
     "scaling_windows_xeon": lambda: script("tools/bench/scaling_windows_table.py", "docs/bench/scaling_xeon.log",
                                           "docs/bench/scaling_knee_xeon.log", "docs/bench/scaling_small_xeon.log"),
+    "scaling_l2_xeon": lambda: script("tools/bench/scaling_windows_table.py", "docs/bench/scaling_l2_xeon.log"),
     "system_benchmarks": lambda: script("tools/bench/system_table.py"),
     "liggghts": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison.log"),
     "liggghts_flowing": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison_flowing.log"),
