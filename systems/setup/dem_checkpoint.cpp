@@ -8,6 +8,7 @@
 #include "engine/clock_checkpoint.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/integrate/integrate.hpp"
+#include "systems/setup/list_sections.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -16,27 +17,6 @@ namespace {
 
 std::string g(std::size_t k) { return "grains.column." + std::to_string(k); }
 std::string x(std::size_t k) { return "grains.attached." + std::to_string(k); }
-
-// The neighbour list and springs, under fixed names, for both directions.
-template <class Io, class List, class History, class State>
-void list_sections(Io& io, List& list, History& h, State& bp) {
-  io.vector("neighbors.offsets", list.offsets);
-  io.vector("neighbors.i", list.i);
-  io.vector("neighbors.j", list.j);
-  io.column("neighbors.i_lane", list.i_lane);
-  io.column("neighbors.j_lane", list.j_lane);
-  io.column("neighbors.type_pair", list.type_pair);
-  io.vector("neighbors.key", list.key);
-  // The contact history by its component's and fields' names: a checkpoint of a scene with another
-  // law lacks them (restore_dem_state names both laws first).
-  const std::string c = "history." + h.component;
-  io.column(c + ".pair", h.pair);
-  for (std::size_t q = 0; q < h.width; ++q) io.column(c + "." + h.fields[q], h.value[q]);
-  io.column(c + ".slot", h.slot);
-  io.column("broadphase.ref_x", bp.ref_x);
-  io.column("broadphase.ref_y", bp.ref_y);
-  io.column("broadphase.ref_z", bp.ref_z);
-}
 
 // A checkpoint is raw arrays of the same build, sealed by a checksum; one corrupted and sealed again
 // must still not index past an array. These checks cover every value used as an index or a count.
@@ -159,7 +139,7 @@ void save_dem_rows(CheckpointWriter& out, World& world, const DemScene& scene) {
   out.value("broadphase.checks", bp.checks);
   out.value("broadphase.kept", bp.cover.kept);
   out.value("walls.rotation_enabled", world.resources.get<Walls>().rotation_enabled);
-  list_sections(out, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp);
+  list_sections(out, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, "");
   const PeriodicImages& im = world.resources.get<PeriodicImages>();
   if (im.box.any()) {
     out.vector("periodic.owner", im.owner);
@@ -230,7 +210,7 @@ void restore_dem_rows(const CheckpointReader& in, World& world, const DemScene& 
   Walls& walls = world.resources.get<Walls>();
   walls.rotation_enabled = in.value<bool>("walls.rotation_enabled");
   walls.place(world.clock.t);
-  list_sections(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp);
+  list_sections(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, "");
   restore_images(in, world.resources.get<PeriodicImages>(), gr);
   if (scene.flow.any())
     restore_flow_state(in, world.resources.get<FlowState>(), scene.flow);

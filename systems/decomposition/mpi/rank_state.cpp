@@ -15,6 +15,7 @@
 #include "systems/decomposition/mpi/rank_simulation.hpp"
 #include "systems/decomposition/row_bytes.hpp"
 #include "systems/flow/flow_systems.hpp"
+#include "systems/setup/list_sections.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -24,25 +25,6 @@ namespace {
 const char* kSameRun = "resume with the scene (and --set overrides) of the run that wrote the checkpoint, on as many ranks";
 
 std::string column_name(std::size_t k) { return "rank.grains.column." + std::to_string(k); }
-
-// The neighbour list, the springs and the skin's reference positions, for both directions.
-template <class Io, class List, class History, class State>
-void list_sections(Io& io, List& list, History& h, State& bp) {
-  io.vector("rank.neighbors.offsets", list.offsets);
-  io.vector("rank.neighbors.i", list.i);
-  io.vector("rank.neighbors.j", list.j);
-  io.column("rank.neighbors.i_lane", list.i_lane);
-  io.column("rank.neighbors.j_lane", list.j_lane);
-  io.column("rank.neighbors.type_pair", list.type_pair);
-  io.vector("rank.neighbors.key", list.key);
-  const std::string c = "rank.history." + h.component;
-  io.column(c + ".pair", h.pair);
-  for (std::size_t q = 0; q < h.width; ++q) io.column(c + "." + h.fields[q], h.value[q]);
-  io.column(c + ".slot", h.slot);
-  io.column("rank.broadphase.ref_x", bp.ref_x);
-  io.column("rank.broadphase.ref_y", bp.ref_y);
-  io.column("rank.broadphase.ref_z", bp.ref_z);
-}
 
 // The ghost rows' owners: per rank, the owned rows sent there (flattened with their counts), and
 // where the rows received from it lie.
@@ -216,7 +198,7 @@ void RankSimulation::save(CheckpointWriter& out) {
   out.value("rank.broadphase.checks", bp.checks);
   out.value("rank.broadphase.kept", bp.cover.kept);
   out.value("rank.walls.rotation_enabled", w.resources.get<Walls>().rotation_enabled);
-  list_sections(out, w.resources.get<NeighborList>(), w.resources.get<PairHistory>(), bp);
+  list_sections(out, w.resources.get<NeighborList>(), w.resources.get<PairHistory>(), bp, "rank.");
   save_ghosts(out, ghosts_);
   out.value("rank.listed", listed_);
   out.value("rank.primed", primed_);
@@ -247,7 +229,7 @@ void RankSimulation::restore(const CheckpointReader& in) {
   bp.cover.kept = in.value<std::int64_t>("rank.broadphase.kept");
   NeighborList& list = w.resources.get<NeighborList>();
   PairHistory& history = w.resources.get<PairHistory>();
-  list_sections(in, list, history, bp);
+  list_sections(in, list, history, bp, "rank.");
   check_list(in, list, history, bp, g);
   restore_ghosts(in, ghosts_, g, static_cast<std::size_t>(mpi_->size()));
   set_boxes(std::move(rcb));
@@ -297,7 +279,7 @@ void RankSimulation::take_part(const CheckpointReader& in, std::int64_t step, Po
   for (std::size_t k = 0; k < cols.size(); ++k)
     in.copy_raw(column_name(k), static_cast<std::byte*>(cols[k].data) + base * cols[k].elem_size, cols[k].elem_size, n);
   // The part's springs, by its rows' ids, each to the rank that evaluates its pair under this run's boxes.
-  list_sections(in, parts.list, parts.history, parts.broadphase);
+  list_sections(in, parts.list, parts.history, parts.broadphase, "rank.");
   const NeighborList& list = parts.list;
   require(in, list.i.size() == list.j.size() && all_below(list.i, n_owned) && all_below(list.j, n) &&
                   all_below(parts.history.pair, list.i.size()),
