@@ -44,8 +44,15 @@ SCENE_DURATION = 2.0  # s, the scene's run.duration
 SEED_ORDER = [["O"], ["T"], ["Z"], ["K"], ["A", "C"]]
 
 
+# Scene overrides for every letter (--set KEY=VALUE, as grainflow's own), e.g. another friction.
+OVERRIDES = []
+
+
 def letter_set(letter):
-    return ["--set", 'shape.0.letter="%s"' % letter]
+    sets = ["--set", 'shape.0.letter="%s"' % letter]
+    for o in OVERRIDES:
+        sets += ["--set", o]
+    return sets
 
 
 def shape_mass(binary, letter):
@@ -265,6 +272,7 @@ def collect(runs, docs, binary):
                 "fraction_margin_quarter_H and fraction_margin_H with margins of H / 4 and H (null where the bed "
                 "is shallower than two margins); whole_bed_fraction counts the full width from the floor to the "
                 "free surface",
+        "overrides": list(OVERRIDES),
         "settled_when": "kinetic energy below 1e-4 of sum(m g H) over the last 0.1 s",
         "wall_s": "wall seconds of a letter's grainflow runs, one thread each, with up to three letters at once on "
                   "a two-core machine shared with other work: what the runs took here, not a benchmark",
@@ -294,7 +302,11 @@ def main():
     ap.add_argument("--letters", default="".join(LETTERS))
     ap.add_argument("--max-duration", type=float, default=6.0, help="s: an unsettled run stops being extended here")
     ap.add_argument("--collect-only", action="store_true")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a scene override for every letter (repeatable), e.g. contact.friction=0.1; "
+                         "give such a variant its own --runs and --docs")
     a = ap.parse_args()
+    OVERRIDES.extend(a.set)
     letters = [c for c in a.letters if c in LETTERS]
 
     def log(msg):
