@@ -150,6 +150,41 @@ def time_split_table(path="docs/bench/drum_time_split.json"):
     return "\n".join(rows) + "\n"
 
 
+def packing_friction_table(base="docs/seed002/packing/packing.json", variant="docs/seed002/packing/mu0.1/packing.json"):
+    """The letters' packing at the scenes' friction (0.3) beside a variant's (its overrides named)."""
+    b = json.loads((ROOT / base).read_text())
+    v = json.loads((ROOT / variant).read_text())
+    sets = dict(o.split("=", 1) for o in v.get("overrides", []))
+    if set(sets) == {"contact.friction", "contact.wall.friction"} and len(set(sets.values())) == 1:
+        mu = "friction " + sets["contact.friction"]
+    else:
+        mu = ", ".join(f"{k.replace('contact.', '')} {x}" for k, x in sets.items()) or "the scene's"
+    vb = {r["letter"]: r for r in v["shapes"]}
+
+    def f(r, k):
+        return "—" if r is None or r.get(k) is None else f"{r[k]:.3f}"
+    rows = [f"| shape | interior, friction 0.3 | interior, {mu} | change | whole bed, 0.3 | whole bed, {mu} | "
+            f"bed depth (m), 0.3 | bed depth (m), {mu} | {mu}: settled at (s) |",
+            "|---|---|---|---|---|---|---|---|---|"]
+    for r in b["shapes"]:
+        w = vb.get(r["letter"])
+        change = "—" if w is None else f"{w['packing_fraction'] - r['packing_fraction']:+.3f}"
+        rows.append(f"| {r['letter']} | {f(r, 'packing_fraction')} | {f(w, 'packing_fraction')} | {change} | "
+                    f"{f(r, 'whole_bed_fraction')} | {f(w, 'whole_bed_fraction')} | {r['bed_depth_m']:.2f} | "
+                    f"{'—' if w is None else format(w['bed_depth_m'], '.2f')} | "
+                    f"{'—' if w is None else format(w['simulated_s'], '.1f') + ('' if w['settled'] else ' (not settled)')} |")
+    for name, doc in (("friction 0.3", b), (mu, v)):
+        o = doc.get("ordering")
+        if o:
+            rows.append("")
+            rows.append(f"Order at {name} (interior): {o['measured']}; {o['pairs_as_seed']} of {o['pairs']} pairs "
+                        "as the seed's.")
+    if v.get("missing"):
+        rows.append("")
+        rows.append(f"Not yet run at {mu}: " + ", ".join(v["missing"]) + ".")
+    return "\n".join(rows) + "\n"
+
+
 def packing_table(path="docs/seed002/packing/packing.json"):
     s = json.loads((ROOT / path).read_text())
 
@@ -264,6 +299,7 @@ TABLES = {
     "liquid_solve_rounds_float": lambda: script("tools/liquid/step_rounds.py", "table",
                                                 "docs/liquid/solve_rounds_float.csv", "--per", "solve"),
     "packing": packing_table,
+    "packing_friction": packing_friction_table,
     "averaged_liquid": averaged_liquid_table,
     "amg_probe": amg_probe_table,
     "seed002_outlet": lambda: script("tools/seed002/arch_or_heap.py", "--table", "docs/seed002/outlet/outlet.json"),
