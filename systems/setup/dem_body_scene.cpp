@@ -15,6 +15,7 @@
 #include "systems/setup/repose_scene.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/bodies/body_integrate.hpp"
+#include "systems/bodies/shape_files.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
 #include "systems/contact/laws.hpp"
 #include "systems/fill/random_fill.hpp"
