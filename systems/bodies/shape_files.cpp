@@ -11,7 +11,6 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -19,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "engine/read_file.hpp"
+#include "engine/scene.hpp"
 #include "engine/user_text.hpp"
 
 namespace gf {
@@ -26,17 +26,6 @@ namespace gf {
 namespace {
 
 using Eigen::Vector3d;
-
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
-}  // namespace
-
-namespace {
 
 // Where a file's problem lies: a line (text) or a triangle (binary STL).
 struct Source {
@@ -176,7 +165,7 @@ ShapeSpec finish(std::vector<RawPart> parts, double radius, const Source& src) {
 
 void check_radius(double radius, const Source& src) {
   if (!std::isfinite(radius) || radius < 0.0)
-    src.fail(0, "the dilation radius " + num(radius) + " is not finite and >= 0", "give a radius of 0 or more (m)");
+    src.fail(0, "the dilation radius " + short_number(radius) + " is not finite and >= 0", "give a radius of 0 or more (m)");
 }
 
 std::string read_whole(const std::filesystem::path& file, const Source& src) {
