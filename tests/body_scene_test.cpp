@@ -218,6 +218,8 @@ TEST_CASE("a body contact overlapping past run.max_overlap stops the run naming 
   }
   CHECK_THAT(message, Catch::Contains("overlaps by") && Catch::Contains("limit of 0.0002 m") &&
                           Catch::Contains("run.max_overlap"));
+  // It names the contact: the one cube's one member, on the floor.
+  CHECK_THAT(message, Catch::Contains("member 0 of body 0 against a wall"));
   CHECK(stops.world().clock.t < 0.1);  // at the landing, about 0.064 s after the release
   gf::DemSimulation runs = gf::DemSimulation::from_text(kScene);
   CHECK_NOTHROW(runs.advance(runs.scene().main_steps()));

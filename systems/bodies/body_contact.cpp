@@ -277,10 +277,20 @@ void zero_loads(Bodies& b) {
     std::fill(c->begin(), c->end(), 0.0);
 }
 
+// A new largest overlap, between members a and b (b = -1: a against a wall).
+void note_worst(BodyContactReport& report, OverlapSite& site, const Bodies& bodies, const Members& members,
+                double delta, std::int64_t a, std::int64_t b) {
+  report.max_overlap = delta;
+  const std::uint32_t body = members.body.row[static_cast<std::size_t>(a)];
+  site.member[0] = a, site.member[1] = b;
+  site.body[0] = body, site.body[1] = b < 0 ? -1 : members.body.row[static_cast<std::size_t>(b)];
+  site.centre[0] = bodies.pos.x[body], site.centre[1] = bodies.pos.y[body], site.centre[2] = bodies.pos.z[body];
+}
+
 // The pairs' sums in list order (so the result does not depend on the thread count) and the
 // history of the touching pairs, packed in list order.
 void sum_pairs(Bodies& bodies, const Members& members, const std::vector<Outcome>& out, BodyContactState& s,
-               BodyContactReport& report) {
+               BodyContactReport& report, OverlapSite& site) {
   PairHistory next;
   next.component = s.history.component, next.fields = s.history.fields;
   next.exchange_sign = s.history.exchange_sign, next.width = s.history.width;
@@ -296,7 +306,7 @@ void sum_pairs(Bodies& bodies, const Members& members, const std::vector<Outcome
     ++e;
     add_to_body(bodies, members.body.row[s.list.a[k]], o.force, o.torque_a);
     add_to_body(bodies, members.body.row[s.list.b[k]], -o.force, o.torque_b);
-    report.max_overlap = std::max(report.max_overlap, o.delta);
+    if (o.delta > report.max_overlap) note_worst(report, site, bodies, members, o.delta, s.list.a[k], s.list.b[k]);
     report.fixed_contacts += !bodies.moving(members.body.row[s.list.b[k]]);
   }
   next.map_slots(out.size());
@@ -305,11 +315,11 @@ void sum_pairs(Bodies& bodies, const Members& members, const std::vector<Outcome
 }
 
 void sum_walls(Bodies& bodies, const Members& members, const std::vector<Outcome>& out, const BodyContactState& s,
-               BodyContactReport& report) {
+               BodyContactReport& report, OverlapSite& site) {
   for (std::size_t m = 0; m < out.size(); ++m) {
     if (!out[m].touching) continue;
     add_to_body(bodies, members.body.row[m], out[m].force, out[m].torque_a);
-    report.max_overlap = std::max(report.max_overlap, out[m].delta);
+    if (out[m].delta > report.max_overlap) note_worst(report, site, bodies, members, out[m].delta, static_cast<std::int64_t>(m), -1);
   }
   for (std::uint8_t t : s.walls.touching) report.wall_contacts += t;
 }
@@ -395,18 +405,32 @@ BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, 
                          "they must run one build of grainflow_mpi on machines that round alike; run on one kind of "
                          "node, or on one process");
   zero_loads(bodies);
-  sum_pairs(bodies, members, pairs, state, report);
-  sum_walls(bodies, members, walls, state, report);
+  OverlapSite site;
+  sum_pairs(bodies, members, pairs, state, report, site);
+  sum_walls(bodies, members, walls, state, report, site);
+  state.worst = site;
   state.last = report;
   return report;
 }
 
 void check_body_overlap(const BodyContactState& state, const StepContext& step) {
   if (!(state.last.max_overlap > state.overlap_limit)) return;
-  char what[256];
-  std::snprintf(what, sizeof what, "step %lld (%s): a member contact overlaps by %.4g m, past the limit of %.4g m",
-                static_cast<long long>(step.step), std::string(step.stage).c_str(), state.last.max_overlap,
-                state.overlap_limit);
+  const BodyContactReport& r = state.last;
+  const OverlapSite& w = state.worst;
+  char where[160];
+  if (w.member[1] >= 0)
+    std::snprintf(where, sizeof where, "member %lld of body %lld against member %lld of body %lld",
+                  static_cast<long long>(w.member[0]), static_cast<long long>(w.body[0]),
+                  static_cast<long long>(w.member[1]), static_cast<long long>(w.body[1]));
+  else
+    std::snprintf(where, sizeof where, "member %lld of body %lld against a wall", static_cast<long long>(w.member[0]),
+                  static_cast<long long>(w.body[0]));
+  char what[512];
+  std::snprintf(what, sizeof what,
+                "step %lld (%s): a member contact overlaps by %.4g m, past the limit of %.4g m (%s; the first body's "
+                "centre at %.4g %.4g %.4g m)",
+                static_cast<long long>(step.step), std::string(step.stage).c_str(), r.max_overlap, state.overlap_limit,
+                where, w.centre[0], w.centre[1], w.centre[2]);
   throw StabilityError(std::string(what) +
                        " (run.max_overlap of the thinnest shape's smallest dimension): the contacts are too soft for "
                        "the loads or the step too long; raise kn, lower run.dt, or raise run.max_overlap");

@@ -129,6 +129,14 @@ struct BodyContactReport {
   bool rebuilt = false;           // the member-pair list was rebuilt first
 };
 
+// Where the last evaluation's largest overlap is, for the stop's message: the two members and their
+// bodies (rows), the second -1 for a member against a wall; the first body's centre (m). Not part
+// of the report (which checkpoints hold as it is): recomputed by every evaluation.
+struct OverlapSite {
+  std::int64_t member[2] = {-1, -1}, body[2] = {-1, -1};
+  double centre[3] = {0, 0, 0};
+};
+
 // Everything the contacts of bodies keep from step to step.
 struct BodyContactState {
   double skin = 0;            // m, the Verlet skin of the member-pair list
@@ -143,6 +151,7 @@ struct BodyContactState {
   // body's springs are dropped and a fixed body's pairs take the wall's constants.
   std::vector<std::uint8_t> motion;
   BodyContactReport last;     // the last evaluation's counts, for the outputs
+  OverlapSite worst;          // where last.max_overlap is
   // m: an overlap beyond it stops the run (BodyContact throws StabilityError); a scene sets it to
   // run.max_overlap times its thinnest moving shape's smallest outer dimension.
   double overlap_limit = std::numeric_limits<double>::infinity();
