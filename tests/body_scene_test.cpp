@@ -5,6 +5,7 @@
 // they cannot meet yet are refused naming the key.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "engine/scene.hpp"
 #include "systems/bodies/bodies.hpp"
 #include "systems/bodies/body_contact.hpp"
+#include "systems/bodies/body_shapes.hpp"
 #include "systems/setup/dem_simulation.hpp"
 #include "tests/test_support.hpp"
 
@@ -223,4 +225,22 @@ TEST_CASE("a body contact overlapping past run.max_overlap stops the run naming 
   CHECK(stops.world().clock.t < 0.1);  // at the landing, about 0.064 s after the release
   gf::DemSimulation runs = gf::DemSimulation::from_text(kScene);
   CHECK_NOTHROW(runs.advance(runs.scene().main_steps()));
+}
+
+TEST_CASE("the step check's rim mass is the effective mass at a cube's corner") {
+  // A cube's inertia is isotropic, I0 about any axis, so at a corner r from the centre the largest
+  // (r x n)^T I^-1 (r x n) is |r|^2 / I0 (n across r), and the corner meets 1 / (1/m + |r|^2 / I0):
+  // m / 5.5 for a sharp cube. The voxel moments of the rounded cube are equal by symmetry to
+  // round-off, so 1e-9 of the mass.
+  gf::DemSimulation sim = gf::DemSimulation::from_text(kScene);
+  const gf::BodyShape& cube = sim.scene().bodies->shapes.at(0);
+  double corner = 0;
+  for (const gf::DilatedPolyhedron& m : gf::shape_members(cube.shape))
+    for (const Eigen::Vector3d& v : m.vertices) corner = std::max(corner, (v - cube.props.centre).norm());
+  const double i0 = cube.props.moments.mean(), m = cube.props.mass;
+  CHECK(cube.props.moments.maxCoeff() - cube.props.moments.minCoeff() < 1e-9 * i0);
+  CHECK(gf::rim_mass(cube) == Approx(1.0 / (1.0 / m + corner * corner / i0)).epsilon(1e-9));
+  // The step check's rim terms are then shorter than its own by up to sqrt(m / rim mass).
+  CHECK(sim.scene().bodies->rim.period <= sim.scene().bodies->critical.period);
+  CHECK(sim.scene().bodies->rim.period >= sim.scene().bodies->critical.period * std::sqrt(gf::rim_mass(cube) / m) * (1 - 1e-12));
 }

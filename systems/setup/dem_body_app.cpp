@@ -30,6 +30,17 @@ namespace gf {
 
 namespace {
 
+// Empty unless dt passes dt_safety of the rim contacts' period (BodiesSpec::rim): then what that
+// risks and the step that keeps to it.
+std::string rim_warning(const DemScene& s) {
+  const CriticalStep& rim = s.bodies->rim;
+  if (!(s.dt > s.dt_safety * rim.period)) return "";
+  return "dt is " + short_number(s.dt / rim.period) + " of the period of a contact at a body's rim (" + rim.term +
+         "; limit " + short_number(s.dt_safety) + "): flat grains pressed at several rim points at once, such as "
+         "plates stacked face to face, can rock unstably (bodies jumping from step to step, kinetic-energy bursts in "
+         "a settled bed); to be safe give run.dt = " + short_number(s.dt_safety * rim.period) + " or less";
+}
+
 std::size_t threads_in_use() {
   return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
 }
@@ -186,6 +197,9 @@ int check_body_command(const CliOptions& opt, const DemScene& s) {
   std::printf("critical step: smallest time-step term %.4g s (%s); dt = %.4g s = %.3f of it (limit %.3f)%s\n",
               s.critical.period, s.critical.term.c_str(), s.dt, s.dt / s.critical.period, s.dt_safety,
               s.allow_unstable_dt && s.dt > s.dt_safety * s.critical.period ? " OVERRIDDEN" : "");
+  std::printf("rim contacts: smallest time-step term %.4g s (%s, each body's rim mass); dt = %.3f of it%s\n",
+              s.bodies->rim.period, s.bodies->rim.term.c_str(), s.dt / s.bodies->rim.period,
+              rim_warning(s).empty() ? "" : (" -- " + rim_warning(s)).c_str());
   std::printf("steps: %lld settling + %lld main (%.4g s simulated)\n", static_cast<long long>(s.settle_steps()),
               static_cast<long long>(s.main_steps()), s.duration);
   const BodyContactState& st = sim.world().resources.get<BodyContactState>();
@@ -241,6 +255,7 @@ void start_body_run(BodyRun& run, const CliOptions& opt, const DemScene& s, cons
                s.dt / s.critical.period, threads_in_use(),
                hooks.ranks > 1 ? (" on each of " + std::to_string(hooks.ranks) + " ranks").c_str() : "",
                run.out.string().c_str());
+  if (!rim_warning(s).empty()) std::fprintf(stderr, "grainflow: warning: %s\n", rim_warning(s).c_str());
   nlohmann::json& summary = run.summary;
   summary["scene"] = s.file.string();
   summary["overrides"] = opt.overrides;
@@ -253,6 +268,8 @@ void start_body_run(BodyRun& run, const CliOptions& opt, const DemScene& s, cons
   summary["dt"] = s.dt;
   summary["critical_period"] = s.critical.period;
   summary["critical_term"] = s.critical.term;
+  summary["rim_critical_period"] = s.bodies->rim.period;
+  summary["rim_critical_term"] = s.bodies->rim.term;
   summary["status"] = "running";
   if (run.ckpt) {
     summary["resumed_from"] = {{"checkpoint", run.ckpt->file().string()}, {"step", world.clock.step}, {"time", world.clock.t}};

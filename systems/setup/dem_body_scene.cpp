@@ -9,6 +9,8 @@
 #include <sstream>
 #include <type_traits>
 
+#include <Eigen/Eigenvalues>
+
 #include "engine/read_file.hpp"
 #include "systems/analysis/metrics.hpp"
 #include "systems/setup/body_sphere_fill.hpp"
@@ -343,9 +345,10 @@ void read_placements(const DemScene& s, const SceneNode& t, std::size_t index, B
   }
 }
 
+// The body as the step check sees it: its own mass, or (rim) the mass a contact at its rim meets.
 template <class L>
-ContactBody<typename L::Material> shape_body(const BodyShape& sh, const typename L::Material& m) {
-  return {sh.props.mass, sh.props.moments.minCoeff(), sh.shape.radius, m, false};
+ContactBody<typename L::Material> shape_body(const BodyShape& sh, const typename L::Material& m, bool rim = false) {
+  return {rim ? rim_mass(sh) : sh.props.mass, sh.props.moments.minCoeff(), sh.shape.radius, m, false};
 }
 
 // One material for every body (BodyContactModel): read from each shape, which must agree.
@@ -370,24 +373,42 @@ void read_model(const SceneNode& root, const std::vector<SceneNode>& nodes, Bodi
   model.pair = L::read_params(ct, nullptr, false);
   const auto wall = ct.maybe_table("wall");
   model.wall = wall ? L::read_params(*wall, &model.pair, true) : model.pair;
-  b.critical = {std::numeric_limits<double>::infinity(), ""};
   ContactBody<typename L::Material> plane;
   plane.wall = true;
-  auto consider = [&](const std::vector<StepTerm>& terms, const std::string& who) {
-    for (const StepTerm& t : terms)
-      if (t.time < b.critical.period) b.critical = {t.time, t.term + ", " + who};
-  };
-  for (const BodyShape& a : b.shapes) {
-    for (const BodyShape& c : b.shapes)
-      consider(L::critical_terms(shape_body<L>(a, model.material), shape_body<L>(c, model.material), model.pair),
-               a.name + "-" + c.name);
-    consider(L::critical_terms(shape_body<L>(a, model.material), plane, model.wall), a.name + "-wall");
+  for (const bool rim : {false, true}) {
+    CriticalStep& into = rim ? b.rim : b.critical;
+    into = {std::numeric_limits<double>::infinity(), ""};
+    auto consider = [&](const std::vector<StepTerm>& terms, const std::string& who) {
+      for (const StepTerm& t : terms)
+        if (t.time < into.period) into = {t.time, t.term + ", " + who};
+    };
+    for (const BodyShape& a : b.shapes) {
+      for (const BodyShape& c : b.shapes)
+        consider(L::critical_terms(shape_body<L>(a, model.material, rim), shape_body<L>(c, model.material, rim),
+                                   model.pair),
+                 a.name + "-" + c.name);
+      consider(L::critical_terms(shape_body<L>(a, model.material, rim), plane, model.wall), a.name + "-wall");
+    }
   }
   b.install_model = [model](World& w) { w.resources.emplace<BodyContactModel<L>>(model); };
   b.schedule_contacts = [](Schedule& step) { step.emplace<BodyContact<L>>(); };
 }
 
 }  // namespace
+
+double rim_mass(const BodyShape& sh) {
+  const Eigen::Matrix3d inverse = sh.props.inertia.inverse();
+  double worst = 0;  // the largest (r x n)^T I^-1 (r x n) over the vertices r and the unit n
+  for (const DilatedPolyhedron& member : shape_members(sh.shape))
+    for (const Eigen::Vector3d& v : member.vertices) {
+      const Eigen::Vector3d r = v - sh.props.centre;
+      Eigen::Matrix3d cross;  // cross * n = r x n
+      cross << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+      const Eigen::Matrix3d m = cross.transpose() * inverse * cross;
+      worst = std::max(worst, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues().maxCoeff());
+    }
+  return 1.0 / (1.0 / sh.props.mass + worst);
+}
 
 bool scene_has_bodies(const SceneNode& root) { return !root.tables("bodies").empty(); }
 

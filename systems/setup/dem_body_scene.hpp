@@ -106,9 +106,20 @@ struct BodiesSpec {
   std::vector<BodyPlacement> placed;
   BodyOutputSpec output;
   CriticalStep critical{0.0, ""};
+  // The same terms with each shape's rim mass (rim_mass) for its body mass: the period of a grain
+  // rocked by a contact at its rim, shorter than `critical` for any shape but a sphere. A step above
+  // dt_safety of it is a warning, not refused: one such contact is still resolved, but a flat grain
+  // pressed at several rim points at once (plates stacked face to face) can rock unstably.
+  CriticalStep rim{0.0, ""};
   std::function<void(World&)> install_model;  // emplaces BodyContactModel<L> of the scene's law
   std::function<void(Schedule&)> schedule_contacts;  // BodyContact<L>
 };
+
+// The smallest mass a contact at the shape's rim meets. A force along n at r from the centre of mass
+// moves that point as a free mass 1 / (1/m + (r x n)^T I^-1 (r x n)) would; the smallest over the
+// cores' vertices and every n (a cube's corner: m / 5.5; a flat letter's corner: about m / 6). A
+// sphere's is its mass.
+double rim_mass(const BodyShape& shape);
 
 // Whether the scene has [[bodies]] tables.
 bool scene_has_bodies(const SceneNode& root);
