@@ -150,21 +150,34 @@ def time_split_table(path="docs/bench/drum_time_split.json"):
     return "\n".join(rows) + "\n"
 
 
-def packing_friction_table(base="docs/seed002/packing/packing.json", variant="docs/seed002/packing/mu0.1/packing.json"):
-    """The letters' packing at the scenes' friction (0.3) beside a variant's (its overrides named)."""
+# Overrides that only move a stop limit, not a force: named under a variant's table, not in its header.
+LIMIT_KEYS = {"run.max_overlap": "the overlap stop limit (of the thinnest dimension)"}
+
+
+def variant_label(sets):
+    """A packing variant's physical overrides in words, e.g. "friction 0.1" or "stroke 0.04 m"."""
+    sets = {k: x for k, x in sets.items() if k not in LIMIT_KEYS}
+    if set(sets) == {"contact.friction", "contact.wall.friction"} and len(set(sets.values())) == 1:
+        return "friction " + sets["contact.friction"]
+    if set(sets) == {"shape.0.stroke"}:
+        return f"stroke {sets['shape.0.stroke']} m"
+    return ", ".join(f"{k.replace('contact.', '')} {x}" for k, x in sets.items()) or "the scene's"
+
+
+def packing_friction_table(base="docs/seed002/packing/packing.json", variant="docs/seed002/packing/mu0.1/packing.json",
+                           base_label="friction 0.3", short_label="0.3"):
+    """The letters' packing in the scene as it is (friction 0.3, strokes 0.03 m) beside a variant's (its
+    overrides named)."""
     b = json.loads((ROOT / base).read_text())
     v = json.loads((ROOT / variant).read_text())
     sets = dict(o.split("=", 1) for o in v.get("overrides", []))
-    if set(sets) == {"contact.friction", "contact.wall.friction"} and len(set(sets.values())) == 1:
-        mu = "friction " + sets["contact.friction"]
-    else:
-        mu = ", ".join(f"{k.replace('contact.', '')} {x}" for k, x in sets.items()) or "the scene's"
+    mu = variant_label(sets)
     vb = {r["letter"]: r for r in v["shapes"]}
 
     def f(r, k):
         return "—" if r is None or r.get(k) is None else f"{r[k]:.3f}"
-    rows = [f"| shape | interior, friction 0.3 | interior, {mu} | change | whole bed, 0.3 | whole bed, {mu} | "
-            f"bed depth (m), 0.3 | bed depth (m), {mu} | {mu}: settled at (s) |",
+    rows = [f"| shape | interior, {base_label} | interior, {mu} | change | whole bed, {short_label} | whole bed, {mu} | "
+            f"bed depth (m), {short_label} | bed depth (m), {mu} | {mu}: settled at (s) |",
             "|---|---|---|---|---|---|---|---|---|"]
     for r in b["shapes"]:
         w = vb.get(r["letter"])
@@ -173,7 +186,7 @@ def packing_friction_table(base="docs/seed002/packing/packing.json", variant="do
                     f"{f(r, 'whole_bed_fraction')} | {f(w, 'whole_bed_fraction')} | {r['bed_depth_m']:.2f} | "
                     f"{'—' if w is None else format(w['bed_depth_m'], '.2f')} | "
                     f"{'—' if w is None else format(w['simulated_s'], '.1f') + ('' if w['settled'] else ' (not settled)')} |")
-    for name, doc in (("friction 0.3", b), (mu, v)):
+    for name, doc in ((base_label, b), (mu, v)):
         o = doc.get("ordering")
         if o:
             rows.append("")
@@ -182,6 +195,30 @@ def packing_friction_table(base="docs/seed002/packing/packing.json", variant="do
     if v.get("missing"):
         rows.append("")
         rows.append(f"Not yet run at {mu}: " + ", ".join(v["missing"]) + ".")
+    limits = [f"{LIMIT_KEYS[k]} raised to {x}" for k, x in sets.items() if k in LIMIT_KEYS]
+    if limits:
+        rows.append("")
+        rows.append(f"At {mu}, " + "; ".join(limits) + ": a limit at which a run stops, no force changes.")
+    return "\n".join(rows) + "\n"
+
+
+def packing_stroke_table(base="docs/seed002/packing/packing.json",
+                         variants=("docs/seed002/packing/stroke40/packing.json",
+                                   "docs/seed002/packing/stroke40_dt5/packing.json")):
+    """The letters poured with 0.04 m strokes beside the scene's 0.03 m, each with the step it ran at."""
+    b = {r["letter"]: r for r in json.loads((ROOT / base).read_text())["shapes"]}
+    rows = ["| shape | interior, stroke 0.03 m | interior, stroke 0.04 m | change | whole bed, 0.03 m | whole bed, 0.04 m | "
+            "0.04 m: dt (s) | 0.04 m: settled at (s) | results |",
+            "|---|---|---|---|---|---|---|---|---|"]
+    for path in variants:
+        v = json.loads((ROOT / path).read_text())
+        sets = dict(o.split("=", 1) for o in v.get("overrides", []))
+        for r in v["shapes"]:
+            o = b[r["letter"]]
+            rows.append(f"| {r['letter']} | {o['packing_fraction']:.3f} | {r['packing_fraction']:.3f} | "
+                        f"{r['packing_fraction'] - o['packing_fraction']:+.3f} | {o['whole_bed_fraction']:.3f} | "
+                        f"{r['whole_bed_fraction']:.3f} | {sets.get('run.dt', '1e-4')} | {r['simulated_s']:.1f}"
+                        f"{'' if r['settled'] else ' (not settled)'} | `{pathlib.PurePath(path).parent.name}/` |")
     return "\n".join(rows) + "\n"
 
 
@@ -258,6 +295,7 @@ TABLES = {
     "pulsation_w0.25": lambda: pulsation_table("docs/seed000/pulsation_w0.25/pulsation.json"),
     "pulsation_surface_w0.25": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.25/pulsation.json"),
     "pulsation_surface_w0.50": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50/pulsation.json"),
+    "pulsation_surface_w0.50_from20": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50_from20/pulsation.json"),
     "mixer": lambda: script("tools/seed004/mixer_report.py", "table", "docs/seed004/mixer.json"),
     "mixer_compartments": lambda: script("tools/seed004/compartments.py", "table", "docs/seed004/compartments.json"),
     "seed002_cost": seed002_cost,
@@ -300,6 +338,7 @@ TABLES = {
                                                 "docs/liquid/solve_rounds_float.csv", "--per", "solve"),
     "packing": packing_table,
     "packing_friction": packing_friction_table,
+    "packing_stroke": packing_stroke_table,
     "averaged_liquid": averaged_liquid_table,
     "amg_probe": amg_probe_table,
     "seed002_outlet": lambda: script("tools/seed002/arch_or_heap.py", "--table", "docs/seed002/outlet/outlet.json"),
