@@ -15,7 +15,8 @@ Writes docs/seed002/packing/packing.json and packing.csv (per letter: the fracti
 interior, the whole bed's fraction, the interior region, bed depth, grains, simulated time, wall
 time, final kinetic energy), profile_<letter>.csv (the run's packing.csv: the fraction per 5 mm
 layer), packing_profiles.png (those profiles, smoothed over 0.05 m), and each run's last side view,
-cropped to the bed, as <letter>.png. The fraction is the grainflow run's own (summary.json "packing":
+cropped to the bed, as <letter>.png. A letter whose run folder is missing (runs/ is not kept between
+checkouts) keeps its row, picture and profile from the packing.json already under --docs. The fraction is the grainflow run's own (summary.json "packing":
 voxels of 5 mm in the bed's interior, half a letter height inside the walls, above the floor and
 below the free surface, and also with margins of a quarter and a whole letter height;
 systems/analysis/packing.hpp). The measured order is compared with the seed's:
@@ -216,10 +217,15 @@ def order_check(fractions):
 def collect(runs, docs, binary):
     os.makedirs(docs, exist_ok=True)
     rows = []
+    committed = {r["letter"]: r for r in (load_json(os.path.join(docs, "packing.json")) or {}).get("shapes", [])}
     for letter in LETTERS:
         run_dir = os.path.join(runs, letter)
         summary = load_json(os.path.join(run_dir, "summary.json"))
         if not summary or "packing" not in summary:
+            # A letter collected before whose run folder this checkout does not hold (runs/ is not
+            # kept): its committed row, picture and profile stay.
+            if letter in committed and not os.path.isdir(run_dir):
+                rows.append(committed[letter])
             continue
         p = summary["packing"]
         if not p.get("valid"):
