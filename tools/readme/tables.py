@@ -132,6 +132,17 @@ def pulsation_table(path="docs/seed000/pulsation_w0.50/pulsation.json"):
     return out
 
 
+def petal_arms_table(cases=(("w0.25", "0.25 rad/s at 30 rad"), ("w0.50", "0.5 rad/s at 30 rad (rerun)"),
+                             ("settled_mixed", "the mixed start (shared settled state)"),
+                             ("flowing_1.5s", "LIGGGHTS at 1.5 s (shared flowing state)"))):
+    """Arms of small grains crossing rings inside the bed (tools/seed000/petal_arms.py)."""
+    docs = {k: json.loads((ROOT / f"docs/seed000/petal_arms/{k}/petal_arms.json").read_text()) for k, _ in cases}
+    rows = ["| ring | " + " | ".join(label for _, label in cases) + " |", "|---" * (len(cases) + 1) + "|"]
+    for i, ring in enumerate(docs[cases[0][0]]["rings"]):
+        rows.append(f"| {ring['r_over_R']:.1f} R | " + " | ".join(str(docs[k]["rings"][i]["arms"]) for k, _ in cases) + " |")
+    return "\n".join(rows) + "\n"
+
+
 def seed002_cost(path="docs/seed002/cost/cost.json"):
     """Seed 002's cost chart: discharge times and cost per particle model (tools/seed002/cost_chart.py)."""
     return script("tools/seed002/cost_chart.py", "table", path)
@@ -210,6 +221,7 @@ def packing_stroke_table(base="docs/seed002/packing/packing.json",
     rows = ["| shape | interior, stroke 0.03 m | interior, stroke 0.04 m | change | whole bed, 0.03 m | whole bed, 0.04 m | "
             "0.04 m: dt (s) | 0.04 m: settled at (s) | results |",
             "|---|---|---|---|---|---|---|---|---|"]
+    wide = {}
     for path in variants:
         v = json.loads((ROOT / path).read_text())
         sets = dict(o.split("=", 1) for o in v.get("overrides", []))
@@ -219,6 +231,14 @@ def packing_stroke_table(base="docs/seed002/packing/packing.json",
                         f"{r['packing_fraction'] - o['packing_fraction']:+.3f} | {o['whole_bed_fraction']:.3f} | "
                         f"{r['whole_bed_fraction']:.3f} | {sets.get('run.dt', '1e-4')} | {r['simulated_s']:.1f}"
                         f"{'' if r['settled'] else ' (not settled)'} | `{pathlib.PurePath(path).parent.name}/` |")
+            wide[r["letter"]] = r["packing_fraction"]
+    if len(wide) > 2:
+        sys.path.insert(0, str(ROOT / "tools" / "seed002"))
+        from packing import order_check
+        o = order_check(wide)
+        rows.append("")
+        rows.append(f"Order at 0.04 m strokes (interior fractions): {o['measured']}; the seed's {o['seed']}: "
+                    f"{o['pairs_as_seed']} of {o['pairs']} pairs of shapes in the seed's order.")
     return "\n".join(rows) + "\n"
 
 
@@ -296,6 +316,8 @@ TABLES = {
     "pulsation_surface_w0.25": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.25/pulsation.json"),
     "pulsation_surface_w0.50": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50/pulsation.json"),
     "pulsation_surface_w0.50_from20": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50_from20/pulsation.json"),
+    "petal_arms": petal_arms_table,
+    "pulsation_surface_w0.25_from20": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.25_from20/pulsation.json"),
     "mixer": lambda: script("tools/seed004/mixer_report.py", "table", "docs/seed004/mixer.json"),
     "mixer_compartments": lambda: script("tools/seed004/compartments.py", "table", "docs/seed004/compartments.json"),
     "seed002_cost": seed002_cost,

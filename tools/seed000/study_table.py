@@ -6,13 +6,28 @@
 """
 import json
 import sys
+from pathlib import Path
+
+ARMS = Path(__file__).resolve().parents[2] / "docs" / "seed000" / "petal_arms"
+
+
+def arms(case, angle):
+    """Most small-grain arms crossing a ring inside the bed, from petal_arms.py on the final state
+    (docs/seed000/petal_arms/<w...>/), for a case that reached 30 rad."""
+    f = ARMS / case.split("_", 1)[-1] / "petal_arms.json"
+    if angle < 30 - 1e-9 or not f.is_file():
+        return "—"
+    rings = json.loads(f.read_text())["rings"]
+    best = max(r["arms"] for r in rings)
+    at = "/".join(f"{r['r_over_R']:.1f}" for r in rings if r["arms"] == best)
+    return f"{best} (at {at} R)"
 
 
 def main(path):
     rows = json.load(open(path))
     print("| fill | ω (rad/s) | seed at 30 rad | ours (classifier) at the angle reached | rotation reached (rad) | "
-          "segregation index | wall time | particle-steps/s (threads) |")
-    print("|---|---|---|---|---|---|---|---|")
+          "arms inside the bed (most at a ring) | segregation index | wall time | particle-steps/s (threads) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         if not r["ran"]:
             continue
@@ -21,7 +36,7 @@ def main(path):
             radii = "/".join(f"{x:g}" for x in r["ring_radii"])
             lobes = f"; lobes crossing {radii} R: {'/'.join(str(n) for n in r['ring_lobes'])}"
         print(f"| {r['fill']} | {r['omega']:.2f} | {r['seed']} | {r['ours']} (contrast {r['contrast']:.2f}{lobes}) | "
-              f"{r['angle']:.2f} of 30 | {r['segregation_index']:.3f} | {r['wall_seconds'] / 3600:.2f} h | "
+              f"{r['angle']:.2f} of 30 | {arms(r['case'], r['angle'])} | {r['segregation_index']:.3f} | {r['wall_seconds'] / 3600:.2f} h | "
               f"{r['particle_steps_per_second']:.3g} ({','.join(map(str, r['threads']))}) |")
     for r in rows:
         if r.get("rerun_angle") is not None:
