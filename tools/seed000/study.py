@@ -25,7 +25,7 @@ checkout) is restored from there first, so the study goes on in any checkout
 
 `report` writes docs/seed000/seed_drum_table.json for the full size (the README's table: its rows
 for the cases run here, the committed rows kept for the others) and, for each case archived with its
-final state, docs/seed000/petal_arms/<w...>/ (tools/seed000/petal_arms.py), <out>/table.md (seed outcome, ours at the angle reached, rotation reached, wall
+final state, docs/seed000/petal_arms/<case>/ (tools/seed000/petal_arms.py), <out>/table.md (seed outcome, ours at the angle reached, rotation reached, wall
 time, particle-steps/s), <out>/table.json, the figure sheet <out>/sheet.png (every case at the
 angles they reached), the formation sequence <out>/formation.png (0.5 rad/s at 2, 10, 18, 30 rad,
 or as far as it got) and the free-surface angle against rotation <out>/surface_angle.png.
@@ -155,7 +155,7 @@ def report(out):
             state = ARCHIVE / r["case"] / "final_state.csv"
             if r["ran"] and r["angle"] >= END_ANGLE - 1e-9 and state.is_file():
                 subprocess.run([sys.executable, str(REPO / "tools/seed000/petal_arms.py"), str(state.relative_to(REPO)),
-                                "--out", str(REPO / "docs/seed000/petal_arms" / r["case"].split("_", 1)[-1])],
+                                "--out", str(REPO / "docs/seed000/petal_arms" / r["case"])],
                                cwd=REPO, stdout=subprocess.DEVNULL, check=True)
     lines = ["| fill | ω (rad/s) | seed at 30 rad | ours (classifier) | rotation reached (rad) | segregation index | "
              "wall time | particle-steps/s (threads) |", "|---|---|---|---|---|---|---|---|"]

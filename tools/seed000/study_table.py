@@ -13,8 +13,8 @@ ARMS = Path(__file__).resolve().parents[2] / "docs" / "seed000" / "petal_arms"
 
 def arms(case, angle):
     """Most small-grain arms crossing a ring inside the bed, from petal_arms.py on the final state
-    (docs/seed000/petal_arms/<w...>/), for a case that reached 30 rad."""
-    f = ARMS / case.split("_", 1)[-1] / "petal_arms.json"
+    (docs/seed000/petal_arms/<case>/), for a case that reached 30 rad."""
+    f = ARMS / case / "petal_arms.json"
     if angle < 30 - 1e-9 or not f.is_file():
         return "—"
     rings = json.loads(f.read_text())["rings"]
