@@ -305,6 +305,8 @@ TABLES = {
                                             "docs/liggghts/comparison_flowing_xeon.log"),
     "liggghts_flowing_xeon_before": lambda: script("tools/liggghts/comparison_table.py",
                                                    "docs/liggghts/comparison_flowing_xeon_before.log"),
+    "liggghts_flowing_epyc_deferred": lambda: script("tools/liggghts/comparison_table.py",
+                                                     "docs/liggghts/comparison_flowing_epyc_deferred.log"),
     "liggghts_flowing_skin": lambda: script("tools/liggghts/comparison_table.py",
                                             "docs/liggghts/comparison_flowing_skin0.3mm.log"),
     "liggghts_flowing_mpi": lambda: script("tools/liggghts/comparison_table.py",
