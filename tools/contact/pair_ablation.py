@@ -12,6 +12,7 @@ one variant, whose pair_contact_bench is then timed against the unchanged one:
   nosums        the slab sums skipped
   runsum        the owner's sums carried in registers (branch-free select) into a second record
                 per row; the partner sides as before
+  runsum_scalar the same written with a plain conditional (which the compiler turned into a branch)
 Each variant but base computes wrong forces: for timing only.
 
   git worktree add /tmp/ablate HEAD
@@ -51,7 +52,7 @@ elif v=='lawtwice':
 elif v=='nosums':
     rep("""    sums.run(a, b, n, rows, c0, c1, st, acc.data(), spill);""","""    if (std::getenv("GF_SUMS")) sums.run(a, b, n, rows, c0, c1, st, acc.data(), spill);""")
     s=s.replace("#include <cstring>","#include <cstring>\n#include <cstdlib>")
-elif v=='runsum':
+elif v in ('runsum', 'runsum_scalar'):
     rep("""    std::fill(acc, acc + (b - a) * kAcc, 0.0);
     for (std::size_t c = c0; c < c1; ++c) {
       const std::size_t q = c - c0;
@@ -100,6 +101,33 @@ elif v=='runsum':
     thread_local std::vector<std::uint8_t> has_own;
     if (has_own.size() < rows) has_own.resize(rows);""")
     rep("""    sums.run(a, b, n, rows, c0, c1, st, acc.data(), spill);""","""    sums.run(a, b, n, rows, c0, c1, st, acc.data(), acc.data() + rows * SlabSums::kAcc, has_own.data(), spill);""")
+    if v == 'runsum_scalar':
+        rep("""      const std::int64_t same = -static_cast<std::int64_t>(i == prev);
+      prev = i;
+      const M4 m4 = {same, same, same, same};
+      const M2 m2 = {same, same};
+      V4 base0;
+      V2 base1;
+      std::memcpy(&base0, ai, sizeof base0);
+      std::memcpy(&base1, ai + 4, sizeof base1);
+      const V4 add0 = {fx[c], fy[c], fz[c], tix[q]};
+      const V2 add1 = {tiy[q], tiz[q]};
+      run0 = (m4 != 0 ? run0 : base0) + add0;
+      run1 = (m2 != 0 ? run1 : base1) + add1;
+      std::memcpy(oi, &run0, sizeof run0);
+      std::memcpy(oi + 4, &run1, sizeof run1);""", """      const bool same = i == prev;
+      prev = i;
+      const double add[6] = {fx[c], fy[c], fz[c], tix[q], tiy[q], tiz[q]};
+      for (std::size_t k = 0; k < 6; ++k) {
+        run[k] = (same ? run[k] : ai[k]) + add[k];
+        oi[k] = run[k];
+      }""")
+        rep("""    using V4 = double __attribute__((vector_size(32)));
+    using M4 = std::int64_t __attribute__((vector_size(32)));
+    using V2 = double __attribute__((vector_size(16)));
+    using M2 = std::int64_t __attribute__((vector_size(16)));
+    V4 run0 = {0, 0, 0, 0};
+    V2 run1 = {0, 0};""", """    double run[6] = {0, 0, 0, 0, 0, 0};""")
 elif v!='base':
     raise SystemExit(f'pair_ablation: unknown variant {v}')
 open(p,'w').write(s)

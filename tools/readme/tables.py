@@ -144,6 +144,25 @@ def petal_arms_table(cases=(("half_w0.25", "0.25 rad/s at 30 rad"), ("half_w0.50
     return "\n".join(rows) + "\n"
 
 
+def pair_ablation_table(path="docs/contact/pair_ablation.csv"):
+    """The pair kernel's parts by ablation (tools/contact/pair_ablation.py): per group of alternated
+    rounds, each variant's median of the rounds' medians against the unchanged kernel's."""
+    import csv
+    import statistics
+    groups = {}
+    for r in csv.DictReader((ROOT / path).open()):
+        group = r["round"].rstrip("0123456789") or "a"
+        groups.setdefault(group, {}).setdefault(r["variant"], []).append(float(r["median_ms"]))
+    rows = ["| variant | rounds | median (ms) | range (ms) | against the unchanged kernel in its rounds |", "|---|---|---|---|---|"]
+    for g in groups.values():
+        base = statistics.median(g["base"])
+        for v, x in g.items():
+            m = statistics.median(x)
+            change = "" if v == "base" else f"{m - base:+.2f} ms (×{m / base:.2f})"
+            rows.append(f"| `{v}` | {len(x)} | {m:.2f} | {min(x):.2f}–{max(x):.2f} | {change} |")
+    return "\n".join(rows) + "\n"
+
+
 def seed002_cost(path="docs/seed002/cost/cost.json"):
     """Seed 002's cost chart: discharge times and cost per particle model (tools/seed002/cost_chart.py)."""
     return script("tools/seed002/cost_chart.py", "table", path)
@@ -320,6 +339,7 @@ TABLES = {
     "pulsation_surface_w0.50": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50/pulsation.json"),
     "pulsation_surface_w0.50_from20": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50_from20/pulsation.json"),
     "petal_arms": petal_arms_table,
+    "pair_ablation": pair_ablation_table,
     "pulsation_surface_w0.25_from20": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.25_from20/pulsation.json"),
     "mixer": lambda: script("tools/seed004/mixer_report.py", "table", "docs/seed004/mixer.json"),
     "mixer_compartments": lambda: script("tools/seed004/compartments.py", "table", "docs/seed004/compartments.json"),
