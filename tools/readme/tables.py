@@ -339,6 +339,8 @@ TABLES = {
     "pulsation_surface_w0.50": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50/pulsation.json"),
     "pulsation_surface_w0.50_from20": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50_from20/pulsation.json"),
     "petal_arms": petal_arms_table,
+    "letter_convexity": lambda: script("tools/seed002/letter_convexity.py", "--table",
+                                       "docs/seed002/packing/letter_convexity.json"),
     "pair_ablation": pair_ablation_table,
     "pulsation_surface_w0.25_from20": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.25_from20/pulsation.json"),
     "mixer": lambda: script("tools/seed004/mixer_report.py", "table", "docs/seed004/mixer.json"),
