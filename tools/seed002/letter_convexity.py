@@ -27,8 +27,6 @@ import math
 import sys
 from pathlib import Path
 
-import numpy as np
-
 LETTERS = "OTZKAC"
 CELL = 2e-4  # m
 
@@ -96,6 +94,7 @@ def polygon_area(poly):
 
 def inside(poly, X, Y):
     """Points of the grid inside a convex counter-clockwise polygon."""
+    import numpy as np  # here, so that printing a table needs no NumPy
     m = np.ones_like(X, dtype=bool)
     for k in range(len(poly)):
         (x0, y0), (x1, y1) = poly[k], poly[(k + 1) % len(poly)]
@@ -104,6 +103,7 @@ def inside(poly, X, Y):
 
 
 def measure(letter, L, H, s):
+    import numpy as np
     quads = layout(letter, L, H, s)
     xs = np.arange(-L / 2, L / 2, CELL) + CELL / 2
     ys = np.arange(-H / 2, H / 2, CELL) + CELL / 2
