@@ -16,7 +16,7 @@ packing fractions:
 
 Areas are counted on a grid of 0.2 mm cells (about 0.3 % of the smallest face), hulls exactly.
 
-  /usr/bin/python3 tools/seed002/letter_convexity.py --strokes 0.03 0.04 \\
+  /usr/bin/python3 tools/seed002/letter_convexity.py --strokes 0.015 0.03 0.04 \\
       --packing 0.03=docs/seed002/packing/packing.json 0.04=docs/seed002/packing/stroke40_dt5/packing.json \\
       --out docs/seed002/packing/letter_convexity.json
   /usr/bin/python3 tools/seed002/letter_convexity.py --table docs/seed002/packing/letter_convexity.json
