@@ -301,6 +301,8 @@ TABLES = {
                                                  "list changes"),
     "bench_deferred_kick": lambda: script("tools/contact/bench_table.py", "docs/contact/bench_deferred_kick.csv",
                                           "two passes", "deferred closing kick"),
+    "bench_wall_nosprings": lambda: script("tools/contact/bench_table.py", "docs/contact/bench_wall_nosprings.csv",
+                                           "unchanged", "no wall springs"),
     "bench_hertz": lambda: script("tools/contact/bench_table.py", "docs/contact/bench_hertz.csv", "Hertz-Mindlin",
                                   "--pooled"),
     "fuzz": fuzz_table,
