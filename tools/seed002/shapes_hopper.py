@@ -6,6 +6,10 @@ from scenes/hopper_seed002_shapes.toml, each run in resumable pieces (tools/comm
     /usr/bin/python3 tools/seed002/shapes_hopper.py report     # docs/seed002/shapes/shapes.json, remaining.png
     /usr/bin/python3 tools/seed002/shapes_hopper.py table      # the README table from shapes.json
 
+The case hollow_block_long discharges the hollow block, the one shape that drains through the 12 s,
+for up to 40 s, and stops earlier once no grain has left for 2 s (the heap the seed measures is then
+left behind); it is a row of its own in the table.
+
 Working runs under runs/seed002_shapes/NAME; after each piece a run's results (and, unfinished, its
 checkpoint) are archived under docs/seed002/shapes/NAME, from which a new checkout resumes.
 
@@ -34,14 +38,40 @@ def resumable():
 SCENE = REPO / "scenes" / "hopper_seed002_shapes.toml"
 SHAPES = ["hollow_block", "tetrapod", "twisted_i", "twisted_king"]  # the seed's order, simplest first
 DURATION = 12.0  # s after the orifice opens, the scene's run.duration
+# Longer discharges: case -> (shape, duration in s after the orifice opens).
+LONG = {"hollow_block_long": ("hollow_block", 40.0)}
+CASES = SHAPES + list(LONG)
+STOPPED = 2.0  # s without a grain leaving: a long discharge has stopped
 
 
-def done(series):
-    return float(series[-1]["time"]) >= DURATION - 1e-9
+def shape_of(case):
+    return LONG[case][0] if case in LONG else case
 
 
-def overrides(shape):
-    return [f'shape.0.path="data/shapes/{shape}.obj"', "output.checkpoint_interval=1.0"]
+def duration_of(case):
+    return LONG[case][1] if case in LONG else DURATION
+
+
+def stopped(series):
+    """No grain left over the last STOPPED s of the series (only after the 12 s every shape runs)."""
+    t, f = [float(x) for x in series["time"]], [float(x) for x in series["remaining_fraction"]]
+    if t[-1] < DURATION + STOPPED:
+        return False
+    before = [fk for tk, fk in zip(t, f) if tk <= t[-1] - STOPPED]
+    return bool(before) and before[-1] == f[-1]
+
+
+def done_for(case):
+    def done(series):
+        return float(series["time"][-1]) >= duration_of(case) - 1e-9 or (case in LONG and stopped(series))
+    return done
+
+
+def overrides(case):
+    o = [f'shape.0.path="data/shapes/{shape_of(case)}.obj"', "output.checkpoint_interval=1.0"]
+    if case in LONG:
+        o.append(f"run.duration={duration_of(case)}")
+    return o
 
 
 def crossing(t, f, level):
@@ -51,10 +81,10 @@ def crossing(t, f, level):
     return None
 
 
-def measure(folder):
+def measure(folder, case):
     r = resumable()
     s = r.load_series(folder)
-    if s is None or not done(s):
+    if s is None or not done_for(case)(s):
         return None
     summary = json.loads((folder / "summary.json").read_text())
     t, f = list(s["time"]), list(s["remaining_fraction"])
@@ -68,7 +98,7 @@ def measure(folder):
             if a is not None:
                 angles.append(a)
     rate = 0.4 * grains / (t5 - t9) if t9 is not None and t5 is not None else None
-    return {"grains": grains, "t_0.9": t9, "t_0.5": t5, "rate_grains_per_s": rate,
+    return {"grains": grains, "end_s": t[-1], "t_0.9": t9, "t_0.5": t5, "rate_grains_per_s": rate,
             "rate_kg_per_s": rate * mass if rate is not None and mass else None, "grain_mass": mass,
             "left_at_end": f[-1], "repose": summary.get("repose", {}),
             "repose_mean_deg": sum(angles) / len(angles) if angles else None,
@@ -86,10 +116,10 @@ def report(out, docs):
     r = resumable()
     rows = {}
     fig, ax = plt.subplots(figsize=(6.5, 4))
-    for shape in SHAPES:
+    for shape in CASES:
         folder = out / shape
         r.restore(folder, docs / shape)
-        m = measure(folder)
+        m = measure(folder, shape)
         s = r.load_series(folder)
         if m is None:
             if s is not None:  # running: how far it got, drawn dashed
@@ -106,9 +136,9 @@ def report(out, docs):
         ax.legend(fontsize=8)
         fig.tight_layout()
         fig.savefig(docs / "remaining.png", dpi=110)
-    (docs / "shapes.json").write_text(json.dumps({"shapes": rows, "of": SHAPES}, indent=1))
+    (docs / "shapes.json").write_text(json.dumps({"shapes": rows, "of": CASES}, indent=1))
     done = sum(1 for v in rows.values() if "in_progress" not in v)
-    print(f"shapes hopper: {done} of {len(SHAPES)} shapes finished, {len(rows) - done} running")
+    print(f"shapes hopper: {done} of {len(CASES)} cases finished, {len(rows) - done} running")
 
 
 def fmt(v, spec):
@@ -117,21 +147,22 @@ def fmt(v, spec):
 
 def table(path):
     doc = json.loads(Path(path).read_text())
-    lines = ["| shape | grains | t(0.9) (s) | t(0.5) (s) | rate 0.9→0.5 (grains/s) | rate (t/s) | left at 12 s | "
-             "angle of repose (°, mean of the flanks with a slope) | range (°; flanks with a slope, of 4) | "
+    lines = ["| shape | grains | t(0.9) (s) | t(0.5) (s) | rate 0.9→0.5 (grains/s) | rate (t/s) | left at the end | "
+             "end (s) | angle of repose (°, mean of the flanks with a slope) | range (°; flanks with a slope, of 4) | "
              "wall time (h, one thread) |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
-    for shape in doc["of"]:
-        r = doc["shapes"].get(shape)
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for case in doc["of"]:
+        r = doc["shapes"].get(case)
+        name = shape_of(case).replace("_", " ") + (f" (up to {duration_of(case):g} s)" if case in LONG else "")
         if r is None or "in_progress" in r:
-            state = "not run yet" if r is None else f"running: {r['in_progress']:.2f} s of {DURATION:g}"
-            lines.append(f"| {shape.replace('_', ' ')} | {state} | | | | | | | | |")
+            state = "not run yet" if r is None else f"running: {r['in_progress']:.2f} s of {duration_of(case):g}"
+            lines.append(f"| {name} | {state} | | | | | | | | | |")
             continue
         rng = r["repose_range_deg"]
-        lines.append(f"| {shape.replace('_', ' ')} | {r['grains']} | {fmt(r['t_0.9'], '.2f')} | {fmt(r['t_0.5'], '.2f')} | "
+        lines.append(f"| {name} | {r['grains']} | {fmt(r['t_0.9'], '.2f')} | {fmt(r['t_0.5'], '.2f')} | "
                      f"{fmt(r['rate_grains_per_s'], '.0f')} | "
                      f"{fmt(None if r['rate_kg_per_s'] is None else r['rate_kg_per_s'] / 1000, '.0f')} | "
-                     f"{r['left_at_end']:.3f} | {fmt(r['repose_mean_deg'], '.1f')} | "
+                     f"{r['left_at_end']:.3f} | {r.get('end_s', DURATION):.1f} | {fmt(r['repose_mean_deg'], '.1f')} | "
                      f"{'—' if rng is None else f'{rng[0]:.1f}–{rng[1]:.1f}'} ({r.get('repose_flanks', '?')} of 4) | "
                      f"{r['wall_seconds'] / 3600:.2f} |")
     print("\n".join(lines))
@@ -146,11 +177,11 @@ def main():
     ap.add_argument("--binary", type=Path, default=REPO / "build" / "grainflow")
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--budget-minutes", type=float, default=30.0)
-    ap.add_argument("--shapes", nargs="*", default=SHAPES)
+    ap.add_argument("--shapes", nargs="*", default=SHAPES, help=f"cases to run: {' '.join(CASES)}")
     a = ap.parse_args()
-    unknown = set(a.shapes) - set(SHAPES)
+    unknown = set(a.shapes) - set(CASES)
     if unknown:
-        sys.exit(f"shapes_hopper: unknown shape(s) {sorted(unknown)}; shapes are {SHAPES}")
+        sys.exit(f"shapes_hopper: unknown case(s) {sorted(unknown)}; cases are {CASES}")
     if a.command == "table":
         table(a.path)
         return
@@ -160,9 +191,10 @@ def main():
     if not a.binary.is_file():
         sys.exit(f"shapes_hopper: {a.binary} not found: build grainflow first (README)")
     r = resumable()
-    for shape in [s for s in SHAPES if s in a.shapes]:
+    for shape in [s for s in CASES if s in a.shapes]:
         folder = a.out / shape
         r.restore(folder, a.docs / shape)
+        done = done_for(shape)
         r.run_piece(shape, a.binary, SCENE, folder, overrides(shape), a.threads, 60 * a.budget_minutes, done)
         s = r.load_series(folder)
         finished = s is not None and done(s)
