@@ -276,6 +276,16 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
     CHECK(e.size() < 1000);
     CHECK_THAT(e, Contains("command line (--set run.qqq") && Contains("Fix:"));
   }
+  SECTION("output intervals shorter than the time step") {
+    // A checkpoint interval below run.dt once wrote a checkpoint every step, and with
+    // checkpoint_keep_all a file per step without bound; the series and frames were refused already.
+    const fs::path f = dir.write("intervals.toml", kScene);
+    for (const char* key : {"series_interval", "frame_interval", "checkpoint_interval"})
+      CHECK_THAT(scene_error(f, {std::string("output.") + key + "=1e-9"}),
+                 Contains(std::string("key 'output.") + key + "'") && Contains("shorter than the time step") &&
+                     Contains("Fix:"));
+    CHECK(scene_error(f, {"output.checkpoint_interval=0"}, true).empty());
+  }
   SECTION("a value given on the command line is located there") {
     const fs::path f = dir.write("ok.toml", kScene);
     CHECK_THAT(scene_error(f, {"run.skin=-1"}),

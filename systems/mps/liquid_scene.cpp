@@ -208,20 +208,7 @@ LiquidScene load_liquid_scene(const SceneDoc& doc, bool check_unused_keys) {
                    ", or set allow_unstable_dt = true to run anyway");
   }
 
-  if (auto out = root.maybe_table("output")) {
-    s.output.series_interval = out->get_double("series_interval", 0.0, Range::non_negative());
-    s.output.frame_interval = out->get_double("frame_interval", 0.0, Range::non_negative());
-    s.output.checkpoint_interval = out->get_double("checkpoint_interval", 0.0, Range::non_negative());
-    s.output.checkpoint_keep_all = out->get_bool("checkpoint_keep_all", false);
-    s.output.checkpoint_at_end = out->get_bool("checkpoint_at_end", true);
-    if (s.output.series_interval > 0 && s.output.series_interval < s.dt)
-      out->fail("series_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no series");
-    if (s.output.frame_interval > 0 && s.output.frame_interval < s.dt)
-      out->fail("frame_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no frames");
-    if (s.output.checkpoint_interval > 0 && s.output.checkpoint_interval < s.dt)
-      out->fail("checkpoint_interval", "shorter than the time step",
-                "use a multiple of run.dt, or 0 for a checkpoint only at the end");
-  }
+  if (auto out = root.maybe_table("output")) read_output_times(*out, s.dt, s.output);
   if (check_unused_keys) doc.check_all_used();
   return s;
 }

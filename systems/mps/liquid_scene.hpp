@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "engine/output_times.hpp"
 #include "engine/scene.hpp"
 #include "systems/mps/boundaries.hpp"
 #include "systems/mps/flow_drive.hpp"
@@ -15,13 +16,7 @@
 
 namespace gf {
 
-struct LiquidOutput {
-  double series_interval = 0;  // s, 0: none
-  double frame_interval = 0;   // s, 0: none
-  double checkpoint_interval = 0;  // s, 0: none during the run
-  bool checkpoint_keep_all = false;
-  bool checkpoint_at_end = true;   // also when the run is interrupted
-};
+struct LiquidOutput : OutputTimes {};
 
 struct LiquidScene {
   std::filesystem::path file;

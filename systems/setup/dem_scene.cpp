@@ -485,18 +485,10 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
   if (auto settle = root.maybe_table("settle")) check_step_count(*settle, "time", s.settle_time, s.dt);
 
   if (auto out = root.maybe_table("output")) {
-    s.output.series_interval = out->get_double("series_interval", 0.0, Range::non_negative());
-    s.output.frame_interval = out->get_double("frame_interval", 0.0, Range::non_negative());
+    read_output_times(*out, s.dt, s.output);
     s.output.fields.velocity = out->get_bool("frame_velocity", true);
     s.output.fields.angular_velocity = out->get_bool("frame_angular_velocity", true);
     s.output.fields.force = out->get_bool("frame_force", false);
-    s.output.checkpoint_interval = out->get_double("checkpoint_interval", 0.0, Range::non_negative());
-    s.output.checkpoint_keep_all = out->get_bool("checkpoint_keep_all", false);
-    s.output.checkpoint_at_end = out->get_bool("checkpoint_at_end", true);
-    if (s.output.series_interval > 0 && s.output.series_interval < s.dt)
-      out->fail("series_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no series");
-    if (s.output.frame_interval > 0 && s.output.frame_interval < s.dt)
-      out->fail("frame_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no frames");
     if (!with_bodies) read_pictures(s, *out);  // a body scene's pictures: read_bodies
   }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/output_times.hpp"
 #include "engine/scene.hpp"
 #include "engine/schedule.hpp"
 #include "engine/world.hpp"
@@ -50,13 +51,8 @@ struct FillSpec {
   std::vector<std::pair<std::int32_t, std::int32_t>> type_map;  // csv type -> species index
 };
 
-struct OutputSpec {
-  double series_interval = 0;  // s, 0 = no series
-  double frame_interval = 0;   // s, 0 = no frames
+struct OutputSpec : OutputTimes {
   FrameFields fields;
-  double checkpoint_interval = 0;  // s, 0 = none during the run
-  bool checkpoint_keep_all = false;
-  bool checkpoint_at_end = true;   // also when the run is interrupted
   // Drum pictures at these rotation angles (rad of the first rotating wall), and every
   // picture_interval (rad, 0 = none); sorted, without duplicates.
   std::vector<double> picture_angles;
