@@ -34,7 +34,9 @@ def main(path):
         lobes = ""
         if r.get("ring_lobes"):
             radii = "/".join(f"{x:g}" for x in r["ring_radii"])
-            lobes = f"; lobes crossing {radii} R: {'/'.join(str(n) for n in r['ring_lobes'])}"
+            # -1: a ring with too little bed or too few large grains to count (systems/analysis/pattern.hpp)
+            counts = "/".join(str(n) if n >= 0 else "—" for n in r["ring_lobes"])
+            lobes = f"; lobes crossing {radii} R: {counts}"
         print(f"| {r['fill']} | {r['omega']:.2f} | {r['seed']} | {r['ours']} (contrast {r['contrast']:.2f}{lobes}) | "
               f"{r['angle']:.2f} of 30 | {arms(r['case'], r['angle'])} | {r['segregation_index']:.3f} | {r['wall_seconds'] / 3600:.2f} h | "
               f"{r['particle_steps_per_second']:.3g} ({','.join(map(str, r['threads']))}) |")
