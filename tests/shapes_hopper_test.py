@@ -36,6 +36,8 @@ check("long case at its duration", long_(series(sh.duration_of("hollow_block_lon
 check("long case overrides its duration", "run.duration=40.0" in sh.overrides("hollow_block_long"), True)
 check("long case runs the hollow block", 'shape.0.path="data/shapes/hollow_block.obj"' in sh.overrides("hollow_block_long"), True)
 check("12 s case keeps the scene's duration", any(o.startswith("run.duration") for o in sh.overrides("tetrapod")), False)
+check("long case is stopped by the stall test while it runs", sh.stop_for("hollow_block_long") is sh.stopped, True)
+check("12 s case has no stop test", sh.stop_for("tetrapod"), None)
 if failures:
     print("\n".join(failures))
     sys.exit(1)

@@ -8,7 +8,8 @@ from scenes/hopper_seed002_shapes.toml, each run in resumable pieces (tools/comm
 
 The case hollow_block_long discharges the hollow block, the one shape that drains through the 12 s,
 for up to 40 s, and stops earlier once no grain has left for 2 s (the heap the seed measures is then
-left behind); it is a row of its own in the table.
+left behind): its series is read while a piece runs, and the piece is stopped with its checkpoint
+once that holds; it is a row of its own in the table.
 
 Working runs under runs/seed002_shapes/NAME; after each piece a run's results (and, unfinished, its
 checkpoint) are archived under docs/seed002/shapes/NAME, from which a new checkout resumes.
@@ -27,6 +28,7 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tools" / "common"))
+sys.path.insert(0, str(REPO / "tools" / "seed002"))
 
 
 def resumable():
@@ -42,6 +44,7 @@ DURATION = 12.0  # s after the orifice opens, the scene's run.duration
 LONG = {"hollow_block_long": ("hollow_block", 40.0)}
 CASES = SHAPES + list(LONG)
 STOPPED = 2.0  # s without a grain leaving: a long discharge has stopped
+ORIFICE = 8.0  # m, the side of the scene's square orifice
 
 
 def shape_of(case):
@@ -65,6 +68,12 @@ def done_for(case):
     def done(series):
         return float(series["time"][-1]) >= duration_of(case) - 1e-9 or (case in LONG and stopped(series))
     return done
+
+
+def stop_for(case):
+    """The test that ends a long case's piece while it runs (it has stopped draining); None for
+    the 12 s cases, which the scene's duration ends."""
+    return stopped if case in LONG else None
 
 
 def overrides(case):
@@ -195,11 +204,30 @@ def main():
         folder = a.out / shape
         r.restore(folder, a.docs / shape)
         done = done_for(shape)
-        r.run_piece(shape, a.binary, SCENE, folder, overrides(shape), a.threads, 60 * a.budget_minutes, done)
+        r.run_piece(shape, a.binary, SCENE, folder, overrides(shape), a.threads, 60 * a.budget_minutes, done,
+                    stop=stop_for(shape))
         s = r.load_series(folder)
         finished = s is not None and done(s)
         pics = sorted((folder / "pictures").glob("time_*.png")) if (folder / "pictures").is_dir() else []
         r.archive(folder, a.docs / shape, finished, [p.name for p in pics])
+        if finished and shape in LONG:
+            keep_what_is_left(folder, a.docs / shape)
+
+
+def keep_what_is_left(folder, dest):
+    """A finished long discharge's last body frame, archived as dest/last_frame.csv, and what it
+    leaves in the hopper (tools/seed002/left_in_hopper.py) as dest/left_in_hopper.json."""
+    import csv
+    import shutil
+
+    from left_in_hopper import left_in_hopper
+
+    with open(folder / "frames" / "frames.csv", newline="") as f:
+        last = list(csv.DictReader(f))[-1]["file"]
+    shutil.copy2(folder / "frames" / last, dest / "last_frame.csv")
+    with open(dest / "last_frame.csv", newline="") as f:
+        left = left_in_hopper(list(csv.DictReader(f)), ORIFICE)
+    (dest / "left_in_hopper.json").write_text(json.dumps({"frame": f"{dest.name}/last_frame.csv"} | left, indent=1) + "\n")
 
 
 if __name__ == "__main__":
