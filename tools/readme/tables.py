@@ -133,7 +133,7 @@ def pulsation_table(path="docs/seed000/pulsation_w0.50/pulsation.json"):
 
 
 def petal_arms_table(cases=(("half_w0.25", "0.25 rad/s at 30 rad"), ("half_w0.50", "0.5 rad/s at 30 rad (rerun)"),
-                             ("half_w2.00", "2 rad/s at 30 rad"),
+                             ("half_w1.00", "1 rad/s at 30 rad"), ("half_w2.00", "2 rad/s at 30 rad"),
                              ("settled_mixed", "the mixed start (shared settled state)"),
                              ("flowing_1.5s", "LIGGGHTS at 1.5 s (shared flowing state)"))):
     """Arms of small grains crossing rings inside the bed (tools/seed000/petal_arms.py)."""

@@ -19,9 +19,10 @@ seed's angles.
 
 After each piece of a full-size case its results (series, summary, pieces, log, the pictures at
 the seed's angles, and at the end the final state) are archived under docs/seed000/study/<case>,
-with the checkpoint while the case is unfinished; a case whose working folder is missing (a new
-checkout) is restored from there first, so the study goes on in any checkout
-(tools/common/resumable.py).
+with the checkpoint (gzip-compressed, checkpoints/checkpoint.gfc.gz) while the case is unfinished;
+a case whose working folder is missing (a new checkout) is restored from there first, so the study
+goes on in any checkout (tools/common/resumable.py). Commit the archived checkpoint when a working
+session ends rather than after every piece: every committed version stays in the history.
 
 `report` writes docs/seed000/seed_drum_table.json for the full size (the README's table: its rows
 for the cases run here, the committed rows kept for the others) and, for each case archived with its
