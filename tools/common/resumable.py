@@ -15,7 +15,7 @@ case's results (and, while it is unfinished, its last checkpoint, gzip-compresse
 folder under docs/, and `restore` rebuilds a missing run folder from that copy, so a study continues
 on another machine where it stopped and its report never depends on runs/ alone. Commit an
 archived checkpoint once, when a working session ends, not after every piece: each committed
-version of it stays in the history (13 to 30 MB for the seed-000 drum).
+version of it stays in the history.
 """
 import gzip
 import json
@@ -49,7 +49,7 @@ def pieces(folder):
 
 
 CHECKPOINT = "checkpoint.gfc"
-PACKED = CHECKPOINT + ".gz"  # how an archive keeps it: about 0.43 of the size for the seed-000 drum
+PACKED = CHECKPOINT + ".gz"  # how an archive keeps it
 ARCHIVED = ("series.csv", "surface.csv", "summary.json", "pieces.jsonl", "end_snapshot.json", "log.txt")
 
 

@@ -21,8 +21,10 @@ fraction left at the end, and the angle of repose of the crater left about the o
 summary.json's `repose` (across x and across z, two flanks each), their mean and range.
 """
 import argparse
+import csv
 import json
 import math
+import shutil
 import sys
 from pathlib import Path
 
@@ -217,9 +219,6 @@ def main():
 def keep_what_is_left(folder, dest):
     """A finished long discharge's last body frame, archived as dest/last_frame.csv, and what it
     leaves in the hopper (tools/seed002/left_in_hopper.py) as dest/left_in_hopper.json."""
-    import csv
-    import shutil
-
     from left_in_hopper import left_in_hopper
 
     with open(folder / "frames" / "frames.csv", newline="") as f:
