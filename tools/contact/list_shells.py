@@ -8,35 +8,20 @@ says how many those are.
 """
 import json
 import sys
-from collections import defaultdict
 
 import numpy as np
+
+from state_pairs import gaps, read_state
 
 SKINS = [0.0, 0.05e-3, 0.075e-3, 0.1e-3, 0.15e-3]  # m; the drum's skin is 0.15 mm
 
 
 def main(path):
-    d = np.genfromtxt(path, delimiter=",", names=True)
-    p = np.stack([d["x"], d["y"], d["z"]], 1)
-    r = d["diameter"] / 2
-    cell = 2 * r.max() + max(SKINS)  # every pair within reach lies in neighbouring cells
-    cells = defaultdict(list)
-    for i, k in enumerate(map(tuple, np.floor(p / cell).astype(np.int64))):
-        cells[k].append(i)
-    cells = {k: np.array(v) for k, v in cells.items()}
+    p, r = read_state(path)
     count = np.zeros(len(SKINS), dtype=np.int64)
-    for k, a in cells.items():
-        for dx in (-1, 0, 1):
-            for dy in (-1, 0, 1):
-                for dz in (-1, 0, 1):
-                    b = cells.get((k[0] + dx, k[1] + dy, k[2] + dz))
-                    if b is None:
-                        continue
-                    dist = np.linalg.norm(p[a][:, None, :] - p[b][None, :, :], axis=2)
-                    gap = dist - (r[a][:, None] + r[b][None, :])
-                    once = a[:, None] < b[None, :]
-                    for s, skin in enumerate(SKINS):
-                        count[s] += int(np.sum(once & (gap < skin)))
+    for gap in gaps(p, r, max(SKINS)):
+        for s, skin in enumerate(SKINS):
+            count[s] += int(np.sum(gap < skin))
     out = {"state": path, "grains": len(r),
            "shells": [{"skin_m": s, "pairs": int(c), "per_touching_pair": float(c / count[0])}
                       for s, c in zip(SKINS, count)]}
