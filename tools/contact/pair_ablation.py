@@ -13,6 +13,10 @@ one variant, whose pair_contact_bench is then timed against the unchanged one:
   runsum        the owner's sums carried in registers (branch-free select) into a second record
                 per row; the partner sides as before
   runsum_scalar the same written with a plain conditional (which the compiler turned into a branch)
+  noprefilter   after the first 20 evaluations, each batch's touching flags taken from the last
+                evaluation's (the same positions in the benchmark) instead of the overlap test: the
+                cost of the test's gathers and arithmetic, which a cheaper test (in float, or over
+                cluster-pair tiles) could save at most
 Each variant but base computes wrong forces: for timing only.
 
   git worktree add /tmp/ablate HEAD
@@ -128,6 +132,24 @@ elif v in ('runsum', 'runsum_scalar'):
     using M2 = std::int64_t __attribute__((vector_size(16)));
     V4 run0 = {0, 0, 0, 0};
     V2 run1 = {0, 0};""", """    double run[6] = {0, 0, 0, 0, 0, 0};""")
+elif v=='noprefilter':
+    rep("""  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
+    const std::size_t k0 = b * kBlock, k1 = std::min(np, k0 + kBlock);
+    std::uint32_t count = 0, over = 0;""", """  static int evaluations = 0;
+  const bool cached = ++evaluations > 20;
+  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
+    const std::size_t k0 = b * kBlock, k1 = std::min(np, k0 + kBlock);
+    std::uint32_t count = 0, over = 0;
+    if (cached) {
+      for (std::size_t k = k0; k < k1; k += L) {
+        std::uint64_t bytes;
+        std::memcpy(&bytes, &out.touching[k], L);
+        const std::uint32_t valid = (1u << std::min(L, k1 - k)) - 1u;
+        count += static_cast<std::uint32_t>(__builtin_popcount(static_cast<std::uint32_t>(_pext_u64(bytes, 0x0101010101010101ull)) & valid));
+      }
+      out.block_start[b + 1] = count;
+      return;
+    }""")
 elif v!='base':
     raise SystemExit(f'pair_ablation: unknown variant {v}')
 open(p,'w').write(s)

@@ -146,20 +146,27 @@ def petal_arms_table(cases=(("half_w0.25", "0.25 rad/s at 30 rad"), ("half_w0.50
 
 def pair_ablation_table(path="docs/contact/pair_ablation.csv"):
     """The pair kernel's parts by ablation (tools/contact/pair_ablation.py): per group of alternated
-    rounds, each variant's median of the rounds' medians against the unchanged kernel's."""
+    rounds, each variant's median of the rounds' medians against the unchanged kernel's, and its
+    ratio to the unchanged kernel within each round (median and range)."""
     import csv
     import statistics
     groups = {}
     for r in csv.DictReader((ROOT / path).open()):
         group = r["round"].rstrip("0123456789") or "a"
-        groups.setdefault(group, {}).setdefault(r["variant"], []).append(float(r["median_ms"]))
-    rows = ["| variant | rounds | median (ms) | range (ms) | against the unchanged kernel in its rounds |", "|---|---|---|---|---|"]
+        groups.setdefault(group, {}).setdefault(r["variant"], {})[r["round"]] = float(r["median_ms"])
+    rows = ["| variant | rounds | median (ms) | range (ms) | against the unchanged kernel in its rounds | per round: median (range) |",
+            "|---|---|---|---|---|---|"]
     for g in groups.values():
-        base = statistics.median(g["base"])
-        for v, x in g.items():
+        base = statistics.median(g["base"].values())
+        for v, by_round in g.items():
+            x = list(by_round.values())
             m = statistics.median(x)
-            change = "" if v == "base" else f"{m - base:+.2f} ms (×{m / base:.2f})"
-            rows.append(f"| `{v}` | {len(x)} | {m:.2f} | {min(x):.2f}–{max(x):.2f} | {change} |")
+            change = per_round = ""
+            if v != "base":
+                change = f"{m - base:+.2f} ms (×{m / base:.2f})"
+                q = [t / g["base"][k] for k, t in by_round.items() if k in g["base"]]
+                per_round = f"×{statistics.median(q):.3f} ({min(q):.3f}–{max(q):.3f})"
+            rows.append(f"| `{v}` | {len(x)} | {m:.2f} | {min(x):.2f}–{max(x):.2f} | {change} | {per_round} |")
     return "\n".join(rows) + "\n"
 
 
