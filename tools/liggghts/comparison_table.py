@@ -18,7 +18,8 @@ SKIN = re.compile(r"^# state .*, skin ([0-9.eE+-]+) m,")
 CPU = re.compile(r"^# cpu: (.+)$")
 
 
-def main(path):
+def parse(path):
+    """The log's rates by (code, threads, round), rebuild counts by code, skin and processor."""
     runs, builds, skin, cpu = {}, {}, None, None
     for line in open(path):
         k = SKIN.match(line.strip())
@@ -32,11 +33,22 @@ def main(path):
             runs[m.group(1), int(m.group(2)), int(m.group(3))] = float(m.group(6))
             if m.group(9) is not None:
                 builds.setdefault(m.group(1), set()).add(int(m.group(9)))
+    return runs, builds, skin, cpu
+
+
+def round_ratios(runs):
+    """grainflow / LIGGGHTS per round, by thread count (1, 2)."""
+    rounds = sorted({k[2] for k in runs})
+    return {n: [runs["grainflow", n, r] / runs["liggghts", n, r] for r in rounds
+                if ("grainflow", n, r) in runs and ("liggghts", n, r) in runs] for n in (1, 2)}
+
+
+def main(path):
+    runs, builds, skin, cpu = parse(path)
     rounds = sorted({k[2] for k in runs})
     med = {(c, n): statistics.median(runs[c, n, r] for r in rounds if (c, n, r) in runs)
            for c in ("liggghts", "grainflow") for n in (1, 2)}
-    ratio = {n: [runs["grainflow", n, r] / runs["liggghts", n, r] for r in rounds
-                 if ("grainflow", n, r) in runs and ("liggghts", n, r) in runs] for n in (1, 2)}
+    ratio = round_ratios(runs)
     print("| code | 1 core | 2 cores | 1 → 2 |")
     print("|---|---|---|---|")
     print(f"| LIGGGHTS 3.8 (mesh drum, `hooke/stiffness`, `epsd` rolling; MPI ranks), median of {len(rounds)} | "

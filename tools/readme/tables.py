@@ -342,6 +342,7 @@ TABLES = {
                                            "docs/liggghts/comparison_flowing_mpi.log"),
     "liggghts_flowing_grainflow": lambda: script("tools/liggghts/comparison_table.py",
                                                  "docs/liggghts/comparison_flowing_grainflow.log"),
+    "speed_bounds": lambda: script("tools/contact/bounds_table.py"),
     "pulsation": pulsation_table,
     "pulsation_w0.25": lambda: pulsation_table("docs/seed000/pulsation_w0.25/pulsation.json"),
     "pulsation_surface_w0.25": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.25/pulsation.json"),
