@@ -170,6 +170,24 @@ def pair_ablation_table(path="docs/contact/pair_ablation.csv"):
     return "\n".join(rows) + "\n"
 
 
+def float_prefilter_table(path="docs/contact/bench_float_prefilter.csv"):
+    """The prefilter in float against the double test (tools/contact/prefilter_rounds.sh): per thread
+    count and variant, the rounds' median time and its ratio to the double test within each round."""
+    import csv
+    import statistics
+    t = {}
+    for r in csv.DictReader((ROOT / path).open()):
+        t.setdefault((int(r["threads"]), r["variant"]), {})[r["round"]] = float(r["median_ms"])
+    rows = ["| prefilter | threads | rounds | median (ms) | against the double test per round: median (range) |",
+            "|---|---|---|---|---|"]
+    for (n, v), by_round in sorted(t.items()):
+        base = t[n, "double"]
+        q = [x / base[k] for k, x in by_round.items()]
+        ratio = "" if v == "double" else f"×{statistics.median(q):.3f} ({min(q):.3f}–{max(q):.3f})"
+        rows.append(f"| {v} | {n} | {len(by_round)} | {statistics.median(by_round.values()):.2f} | {ratio} |")
+    return "\n".join(rows) + "\n"
+
+
 def seed002_cost(path="docs/seed002/cost/cost.json"):
     """Seed 002's cost chart: discharge times and cost per particle model (tools/seed002/cost_chart.py)."""
     return script("tools/seed002/cost_chart.py", "table", path)
@@ -342,6 +360,7 @@ TABLES = {
                                            "docs/liggghts/comparison_flowing_mpi.log"),
     "liggghts_flowing_grainflow": lambda: script("tools/liggghts/comparison_table.py",
                                                  "docs/liggghts/comparison_flowing_grainflow.log"),
+    "float_prefilter": float_prefilter_table,
     "speed_bounds": lambda: script("tools/contact/bounds_table.py"),
     "pulsation": pulsation_table,
     "pulsation_w0.25": lambda: pulsation_table("docs/seed000/pulsation_w0.25/pulsation.json"),
