@@ -4,7 +4,7 @@ that tests overlap in float must hand every pair within its error band of touchi
 test. For the state's list pairs (within the skin) this gives the quantiles of the overlaps, and the
 share of list pairs, and of batches of eight list pairs, inside the band of a float test at
 absolute coordinates (half-width 4 * 2^-23 X + 2^-19 (r_i + r_j), X the largest coordinate
-magnitude; the test of systems' prototype) and of one at coordinates relative to cells of the
+magnitude; the test of docs/contact/float_prefilter.patch) and of one at coordinates relative to cells of the
 list's size (X replaced by the cell size). The batch share assumes pairs independent.
 
     /usr/bin/python3 tools/contact/overlap_spectrum.py scenes/data/drum_flowing_grainflow_t3.0s_47108.csv > docs/contact/overlap_spectrum.json
