@@ -117,7 +117,7 @@ def main():
         c, n = cache_gain(logs)
         gains[cpu] = c
         rows.append((f"the whole step at the rate of a smaller, cache-sized layer ({cpu}; blocks of space)",
-                     f"scaling windows with a layer of ~{DRUM_GRAINS // 1000}k grains: {n}", 1 - 1 / c))
+                     f"windows timing a layer within 20 % of the drum's {DRUM_GRAINS:,} grains: {n}", 1 - 1 / c))
     print("| part made free | measured by | share of a one-thread step |")
     print("|---|---|---|")
     for what, how, b in rows:
