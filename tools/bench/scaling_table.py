@@ -13,6 +13,20 @@ LINE = re.compile(r"threads:(\d+)/real_time_median.*grains=([0-9.]+)([kM]?) part
 SCALE = {"": 1.0, "k": 1e3, "M": 1e6, "G": 1e9, "m": 1e-3, "u": 1e-6, "n": 1e-9}
 
 
+def one_thread_windows(paths):
+    """Each window of tools/bench_scaling.sh in the logs (one `# bench_scaling` header each) as
+    {grains: one-thread particle-steps/s}."""
+    windows = []
+    for path in paths:
+        for line in open(path):
+            if line.startswith("# bench_scaling") or not windows:
+                windows.append({})
+            m = LINE.search(line)
+            if m and int(m.group(1)) == 1:
+                windows[-1][round(float(m.group(2)) * SCALE[m.group(3)])] = float(m.group(4)) * SCALE[m.group(5)]
+    return [w for w in windows if w]
+
+
 def main(path):
     rows = {}
     for line in open(path):

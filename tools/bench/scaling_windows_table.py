@@ -10,17 +10,14 @@ import statistics
 import sys
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from scaling_table import LINE, SCALE  # noqa: E402
+from scaling_table import one_thread_windows  # noqa: E402
 
 
 def main(paths):
     rates = {}
-    for path in paths:
-        for line in open(path):
-            m = LINE.search(line)
-            if m and int(m.group(1)) == 1:
-                grains = round(float(m.group(2)) * SCALE[m.group(3)])
-                rates.setdefault(grains, []).append(float(m.group(4)) * SCALE[m.group(5)])
+    for window in one_thread_windows(paths):
+        for grains, rate in window.items():
+            rates.setdefault(grains, []).append(rate)
     largest = statistics.median(rates[max(rates)])
     print("| grains | windows | particle-steps/s, 1 thread: median (range) | median against the largest layer's |")
     print("|---|---|---|---|")
