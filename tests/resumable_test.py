@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""tools/common/resumable.py against a stand-in for `grainflow run` (below): a piece that ends by
+"""grainflow.resumable (python/grainflow) against a stand-in for `grainflow run` (below): a piece that ends by
 itself, one stopped by its budget and continued from its checkpoint, one stopped early by a test on
 its series, a row still being written left out of the series, and the archive's compressed
 checkpoint restored byte for byte (older archives' plain checkpoints too)."""
@@ -12,8 +12,7 @@ import tempfile
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools" / "common"))
-import resumable as r  # noqa: E402
+import grainflow.resumable as r  # the package under python/, on PYTHONPATH
 
 # The stand-in: a series row (time = row / 10) every 10 ms up to --set rows=N; SIGINT stops it
 # after the row in flight. Its checkpoint holds the rows done, from which --resume continues; the

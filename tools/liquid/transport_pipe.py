@@ -6,7 +6,7 @@ periodic pipe of water at the seed's transport speeds, and the seed's observable
                                                      [--budget-minutes 30] [--binary build/grainflow]
       one case per speed into runs/liquid/transport_pipe/u<U> (and with --offaxis u<U>_offaxis for each
       of those speeds: the fill's centre moved 0.01 m off the axis, the seed's check), each in resumable
-      pieces of at most the budget (tools/common/resumable.py: a piece stops with a checkpoint and the
+      pieces of at most the budget (grainflow.resumable: a piece stops with a checkpoint and the
       next resumes from it), each to its end before the next; after each piece the new frames are reduced
       to rows of frames.csv and the case archived under docs/liquid/transport_pipe/<case>; then collect
   /usr/bin/python3 tools/liquid/transport_pipe.py collect [--from 1.0]
@@ -33,11 +33,9 @@ import argparse
 import json
 import math
 import os
-import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "tools", "common"))
-from vtp import read_vtp  # noqa: E402
+from grainflow.vtp import read_vtp  # noqa: E402
 
 SCENE = "scenes/liquid/transport_pipe.toml"
 RUNS = "runs/liquid/transport_pipe"
@@ -54,8 +52,8 @@ SEED = {  # speed: (radial variance, peak r/R, peak fraction %, mean spin rad/s)
 
 
 def resumable():
-    """tools/common/resumable.py, imported where runs are read (it needs numpy; the table does not)."""
-    import resumable as r
+    """grainflow.resumable, imported where runs are read (it needs numpy; the table does not)."""
+    import grainflow.resumable as r
     return r
 
 

@@ -43,8 +43,7 @@ import tempfile
 import tomllib
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "tools", "common"))
-from vtp import read_vtp  # noqa: E402
+from grainflow.vtp import read_vtp  # noqa: E402
 INPUTS = os.path.join(ROOT, "docs/mpi/cost_inputs.json")
 MODEL = os.path.join(ROOT, "docs/mpi/cost_model.json")
 FIGURE = os.path.join(ROOT, "docs/mpi/cost_model.png")

@@ -16,6 +16,7 @@ tools/readme/makers/ (each module's TABLES dict joins this one; a name defined t
 them read only files under docs/. A table may appear on more than one page; each copy is checked.
 """
 import json
+import os
 import pathlib
 import re
 import subprocess
@@ -26,7 +27,10 @@ PY = sys.executable or "/usr/bin/python3"
 
 
 def script(*args):
-    return subprocess.run([PY, *args], cwd=ROOT, check=True, capture_output=True, text=True).stdout
+    """A per-result script's output, run with the grainflow package (python/) on its PYTHONPATH."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (str(ROOT / "python"), env.get("PYTHONPATH")) if p)
+    return subprocess.run([PY, *args], cwd=ROOT, env=env, check=True, capture_output=True, text=True).stdout
 
 
 def fuzz_table():

@@ -16,8 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "common"))
-from resumable import load_series  # noqa: E402
+from grainflow.resumable import load_series  # noqa: E402
 
 COLUMNS = ("from_rad", "to_rad", "rows", "moon", "petals", "undecided", "mean_petal_count", "median_contrast")
 

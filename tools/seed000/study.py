@@ -21,7 +21,7 @@ After each piece of a full-size case its results (series, summary, pieces, log, 
 the seed's angles, and at the end the final state) are archived under docs/seed000/study/<case>,
 with the checkpoint (gzip-compressed, checkpoints/checkpoint.gfc.gz) while the case is unfinished;
 a case whose working folder is missing (a new checkout) is restored from there first, so the study
-goes on in any checkout (tools/common/resumable.py). Commit the archived checkpoint when a working
+goes on in any checkout (grainflow.resumable). Commit the archived checkpoint when a working
 session ends rather than after every piece: every committed version stays in the history.
 
 `report` writes docs/seed000/seed_drum_table.json for the full size (the README's table: its rows
@@ -44,8 +44,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "tools" / "common"))
-from resumable import archive, load_series, pieces, restore, run_piece  # noqa: E402
+from grainflow.resumable import archive, load_series, pieces, restore, run_piece  # noqa: E402
 HALF = "scenes/drum_seed000_settled.toml"
 QUARTER = "scenes/drum_seed000_quarter.toml"
 # name, scene, omega (rad/s), the seed's outcome after 30 rad

@@ -34,8 +34,7 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "tools" / "common"))
-from resumable import archive, load_series, pieces, restore, run_piece  # noqa: E402
+from grainflow.resumable import archive, load_series, pieces, restore, run_piece  # noqa: E402
 
 SCENE = REPO / "scenes" / "kiln_seed001.toml"
 D_SMALL = 2.0e-3  # m

@@ -7,7 +7,7 @@ map's own setting (E/1000) from three fill seeds for the case-to-case noise.
     /usr/bin/python3 tools/seed001/stiffness_study.py run [--budget-minutes 30] [--variants ...]
     /usr/bin/python3 tools/seed001/stiffness_study.py report [--out runs/seed001_stiffness] [--docs docs/seed001]
 
-Each variant runs REVS revolutions in resumable pieces (tools/common/resumable.py); `report`
+Each variant runs REVS revolutions in resumable pieces (grainflow.resumable); `report`
 writes stiffness.json (per variant: the Lacey and radial indices over the last revolution, wall
 time, particle-steps/s) and stiffness.png (index against wall time, the seeds' spread shaded).
 Each variant's results (and an unfinished one's checkpoint) are archived under
@@ -23,8 +23,7 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "tools" / "common"))
-from resumable import archive, load_series, pieces, restore, run_piece  # noqa: E402
+from grainflow.resumable import archive, load_series, pieces, restore, run_piece  # noqa: E402
 
 SCENE = REPO / "scenes" / "kiln_seed001.toml"
 E_GLASS = 4.8e10  # Pa, Chung & Ooi (2011)

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Seed 002's second hopper: the four composite shapes of tools/seed002/armour_shapes.py discharged
-from scenes/hopper_seed002_shapes.toml, each run in resumable pieces (tools/common/resumable.py).
+from scenes/hopper_seed002_shapes.toml, each run in resumable pieces (grainflow.resumable).
 
     /usr/bin/python3 tools/seed002/shapes_hopper.py run [--budget-minutes 30] [--shapes NAME ...]
     /usr/bin/python3 tools/seed002/shapes_hopper.py report     # docs/seed002/shapes/shapes.json, remaining.png
@@ -29,13 +29,12 @@ import sys
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "tools" / "common"))
 sys.path.insert(0, str(REPO / "tools" / "seed002"))
 
 
 def resumable():
-    """tools/common/resumable.py, imported where runs are read (it needs numpy; the table does not)."""
-    import resumable as r
+    """grainflow.resumable, imported where runs are read (it needs numpy; the table does not)."""
+    import grainflow.resumable as r
 
     return r
 

@@ -27,9 +27,8 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools" / "seed004"))
-sys.path.insert(0, str(ROOT / "tools" / "common"))
 import mixer_scene as geometry  # noqa: E402  (the scenes' dimensions, one source)
-from vtp import read_vtp  # noqa: E402
+from grainflow.vtp import read_vtp  # noqa: E402
 
 BOUNDS = [0.0] + list(geometry.PARTITIONS) + [geometry.LENGTH]
 NAMES = ["stage I", "stage II", "stage III", "outlet (no blades)"]

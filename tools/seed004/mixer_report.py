@@ -100,7 +100,7 @@ KEPT = ["series.csv", "layers.csv", "residence.csv", "summary.json", "final_stat
 
 
 def wall_seconds(run, summary):
-    """The run's wall time: its pieces' (tools/common/resumable.py) when it ran in several, else the summary's."""
+    """The run's wall time: its pieces' (grainflow.resumable) when it ran in several, else the summary's."""
     pieces = run / "pieces.jsonl"
     if pieces.exists():
         rows = [json.loads(line) for line in pieces.read_text().splitlines() if line.strip()]

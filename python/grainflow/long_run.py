@@ -1,9 +1,8 @@
-#!/usr/bin/python3
 """One long grainflow run in resumable pieces that survives a new checkout: after every piece its
 results (and, while it is unfinished, its last checkpoint) are archived under a committed folder,
-and a run folder that is missing is restored from there first (tools/common/resumable.py).
+and a run folder that is missing is restored from there first (grainflow.resumable).
 
-    /usr/bin/python3 tools/common/long_run.py SCENE --out runs/NAME --archive docs/.../NAME \\
+    PYTHONPATH=python /usr/bin/python3 -m grainflow.long_run SCENE --out runs/NAME --archive docs/.../NAME \\
         [--set key=value ...] [--keep layers.csv residence.csv] [--budget-minutes 60] [--threads 1] \\
         [--binary build/grainflow]
 
@@ -17,9 +16,9 @@ import shutil
 import sys
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "tools" / "common"))
-from resumable import archive, restore, run_piece  # noqa: E402
+from grainflow.resumable import archive, restore, run_piece
+
+REPO = Path(__file__).resolve().parents[2]  # python/grainflow/long_run.py
 
 
 def completed(folder):
@@ -28,7 +27,8 @@ def completed(folder):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(prog="python3 -m grainflow.long_run", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scene", type=Path)
     ap.add_argument("--out", type=Path, required=True)
     ap.add_argument("--archive", type=Path, required=True)

@@ -4,7 +4,7 @@ A piece runs `grainflow run SCENE --out FOLDER --set ...` (with --resume from th
 checkpoint when there is one) for at most a wall-time budget, then stops it with SIGINT: grainflow
 finishes the step in flight and writes its checkpoint, so the next piece continues where this one
 stopped, bit-identical to an uninterrupted run. Every piece is logged in FOLDER/pieces.jsonl.
-Used by tools/seed000/study.py and tools/seed001/kiln_map.py.
+Used by tools/seed000/study.py, tools/seed001/kiln_map.py and grainflow.long_run.
 
 A piece may also stop early on a condition of its series that the scene cannot state (a hopper
 that has stopped draining): `stop(series)` is read every `poll_s` seconds while it runs, and once
