@@ -8,12 +8,13 @@ namespace gf {
 std::string usage() {
   return "usage:\n"
          "  grainflow run SCENE [--out DIR] [--threads N] [--steps N] [--set key=value]... [--resume CHECKPOINT] [--quiet]\n"
-         "  grainflow check SCENE [--set key=value]...\n"
+         "  grainflow check SCENE [--set key=value]... [--keys]\n"
          "  grainflow --help | --version\n"
          "check validates a scene (and builds its fills) and prints what a run would do; run writes series.csv,\n"
          "frames, pictures, checkpoints and summary.json to DIR (default runs/<scene name>). --threads: 1 to " +
          std::to_string(kMaxThreads) + " (default: all cores); --steps: main-stage steps instead of the scene's\n"
-         "duration; --set: override a scene key, e.g. --set run.dt=2e-5 --set fill.0.count.small=1000.\n";
+         "duration; --set: override a scene key, e.g. --set run.dt=2e-5 --set fill.0.count.small=1000; --keys: list\n"
+         "every key the scene's systems read (set or left at its default), one 'key: PATH' line each.\n";
 }
 
 namespace {
@@ -64,6 +65,8 @@ CliOptions parse_cli(int argc, char** argv) {
       o.overrides.push_back(kv);
     } else if (flag == "--quiet")
       o.quiet = true;
+    else if (flag == "--keys" && o.command == "check")
+      o.keys = true;
     else
       throw std::invalid_argument("unknown option '" + flag + "' for '" + o.command + "'");
   }

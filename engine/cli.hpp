@@ -22,6 +22,7 @@ struct CliOptions {
   std::optional<std::int64_t> steps;         // main-stage steps instead of the scene's duration
   std::vector<std::string> overrides;        // key=value
   bool quiet = false;                        // no progress lines
+  bool keys = false;                         // check: also list every key the scene's systems read
   std::optional<std::filesystem::path> resume;  // continue from this checkpoint
 };
 

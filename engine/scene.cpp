@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -889,7 +890,44 @@ std::filesystem::path SceneDoc::resolve(const std::string& relative) const {
   return st_->file.parent_path() / p;
 }
 
+namespace {
+bool g_report_read_keys = false;
+
+void collect_read(const SceneState& st, const toml::table& t, const std::string& path, std::vector<std::string>& out);
+
+void collect_read_in_array(const SceneState& st, const toml::array& a, const std::string& path,
+                           std::vector<std::string>& out) {
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::string p = path + "[" + std::to_string(i) + "]";
+    if (auto* t = a.get(i)->as_table()) collect_read(st, *t, p, out);
+    else if (auto* sub = a.get(i)->as_array()) collect_read_in_array(st, *sub, p, out);
+  }
+}
+
+void collect_read(const SceneState& st, const toml::table& t, const std::string& path, std::vector<std::string>& out) {
+  if (auto it = st.accepted.find(&t); it != st.accepted.end())
+    for (const auto& k : it->second) out.push_back(join_path(path, k));
+  for (auto&& [k, v] : t) {
+    const std::string p = join_path(path, k.str());
+    if (auto* sub = v.as_table()) collect_read(st, *sub, p, out);
+    else if (auto* arr = v.as_array()) collect_read_in_array(st, *arr, p, out);
+  }
+}
+}  // namespace
+
+void report_read_keys(bool on) { g_report_read_keys = on; }
+
+std::vector<std::string> SceneDoc::read_keys() const {
+  std::vector<std::string> out;
+  collect_read(*st_, st_->root, "", out);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 void SceneDoc::check_all_used() const {
+  if (g_report_read_keys)
+    for (const auto& k : read_keys()) std::printf("key: %s\n", k.c_str());
   std::vector<Unknown> unknown;
   collect_unknown(*st_, st_->root, "", unknown);
   if (unknown.empty()) return;

@@ -123,6 +123,10 @@ void check_step_count(const SceneNode& node, std::string_view key, double second
 // tank, in the first step, reported then as an instability.
 void require_acceleration(const SceneNode& node, std::string_view key, const std::array<double, 3>& g);
 
+// When on, check_all_used() also prints read_keys() to standard output, one "key: PATH" line each
+// (`grainflow check --keys`; the manual's key tables are tested against it).
+void report_read_keys(bool on);
+
 // A parsed scene file plus the --set overrides applied to it, and the record of which keys were read.
 // Copies share that record (they are the same document); moving is a pointer move.
 class SceneDoc {
@@ -151,6 +155,10 @@ class SceneDoc {
   // Every key or table that no get_*/table/maybe_table/tables call read is an unknown key: throws SceneError for the
   // first one in file order, with a fix listing the keys that table accepts and a "did you mean" when one is close.
   void check_all_used() const;
+
+  // Every key a reading call asked for, present in the file or not, as dotted paths with array indices
+  // ("run.dt", "wall[0].omega", "fill[1].region.lo"), sorted: what this scene's systems accept.
+  std::vector<std::string> read_keys() const;
 
  private:
   friend struct detail::SceneState;

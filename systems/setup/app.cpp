@@ -31,6 +31,7 @@ int run_command(const CliOptions& opt) {
 }
 
 int check_command(const CliOptions& opt) {
+  report_read_keys(opt.keys);
   switch (scene_model(SceneDoc::load(opt.scene, opt.overrides))) {
     case SceneModel::Liquid:
       return check_liquid_command(opt);

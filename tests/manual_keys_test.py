@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""The manual's key tables against the keys grainflow's scene readers accept, so neither can drift.
+
+    manual_keys_test.py GRAINFLOW REPOSITORY
+
+Runs `grainflow check SCENE --keys` on every shipped scene (scenes/**/*.toml), which lists each key the
+scene's systems asked for, set in the file or left at its default, and reads the key tables of
+docs/manual/*.md (a heading "### `[section]`" followed by a table whose first column is "key"). Fails when
+  - a key some scene's readers accept is in no table of its section (undocumented), or
+  - a table lists a key that no shipped scene's readers ask for (documented but not read: a stale row, or a
+    branch of a reader that no shipped scene takes; then add a scene that takes it).
+Paths are compared with array indices dropped (wall[2].omega is [[wall]] omega); a table key written
+`count.<species>` stands for any one name in that place.
+"""
+import pathlib
+import re
+import subprocess
+import sys
+
+HEADING = re.compile(r"^### `(\[\[?)([A-Za-z0-9_.]+)(\]\]?)`\s*$")
+ROW = re.compile(r"^\|\s*`([^`]+)`\s*\|")
+
+
+def manual_tables(manual):
+    """{section path as the readers spell it, arrays as 'name[]'}: {key pattern: 'page:line'}."""
+    tables = {}
+    for page in sorted(manual.glob("*.md")):
+        lines = page.read_text().splitlines()
+        i = 0
+        while i < len(lines):
+            m = HEADING.match(lines[i])
+            if not m or i + 1 >= len(lines) or not lines[i + 1].startswith("| key |"):
+                i += 1
+                continue
+            section = m.group(2) + ("[]" if m.group(1) == "[[" else "")
+            keys = tables.setdefault(section, {})
+            i += 3  # heading, header, rule
+            while i < len(lines) and lines[i].startswith("|"):
+                r = ROW.match(lines[i])
+                if r:
+                    keys.setdefault(r.group(1), f"{page.name}:{i + 1}")
+                i += 1
+    return tables
+
+
+def pattern(key):
+    return re.compile("^" + re.sub(r"\\<[^>]*\\>", r"[^.]+", re.escape(key)) + "$")
+
+
+def scene_keys(grainflow, root):
+    """{normalised path: first scene that reads it}, and the scenes that check refused."""
+    read, refused = {}, []
+    for scene in sorted((root / "scenes").rglob("*.toml")):
+        p = subprocess.run([grainflow, "check", str(scene), "--keys"], capture_output=True, text=True, timeout=600)
+        if p.returncode != 0:
+            refused.append(f"{scene.relative_to(root)}: exit {p.returncode}: {p.stderr.strip()[:300]}")
+            continue
+        for line in p.stdout.splitlines():
+            if line.startswith("key: "):
+                path = re.sub(r"\[\d+\]", "[]", line[5:].strip())
+                read.setdefault(path, str(scene.relative_to(root)))
+    return read, refused
+
+
+def section_of(path, sections):
+    """The longest section that path lies in, and the key within it; (None, path) at the top level."""
+    best = None
+    for s in sections:
+        if path.startswith(s + ".") and (best is None or len(s) > len(best)):
+            best = s
+    return (best, path[len(best) + 1:]) if best else (None, path)
+
+
+def main():
+    grainflow, root = sys.argv[1], pathlib.Path(sys.argv[2])
+    tables = manual_tables(root / "docs/manual")
+    read, refused = scene_keys(grainflow, root)
+    problems = list(refused)
+    matched = {(s, k): False for s, keys in tables.items() for k in keys}
+    for path, scene in sorted(read.items()):
+        section, key = section_of(path, tables)
+        if section is None:
+            if path in tables or path.rstrip("[]") + "[]" in tables or any(s.startswith(path + ".") for s in tables):
+                continue  # a section's own name
+            problems.append(f"undocumented: section or key '{path}' (read for {scene}) has no key table in docs/manual")
+            continue
+        hits = [k for k in tables[section] if pattern(k).match(key)]
+        for k in hits:
+            matched[section, k] = True
+        # A key that holds a sub-table documented by its dotted keys (region, count, solver) needs no row.
+        if not hits and not any(k.startswith(key + ".") for k in tables[section]):
+            problems.append(f"undocumented: '{key}' of [{section}] (read for {scene}) is in no key table of docs/manual")
+    for (section, key), hit in sorted(matched.items()):
+        if not hit:
+            problems.append(f"not read: '{key}' of [{section}] ({tables[section][key]}) is asked for by no shipped "
+                            "scene's readers")
+    print(f"{len(read)} key paths read by {len(list((root / 'scenes').rglob('*.toml')))} scenes; "
+          f"{sum(len(k) for k in tables.values())} keys in {len(tables)} manual tables")
+    if problems:
+        print("\n".join(problems))
+        print(f"{len(problems)} differences between the manual's key tables and the readers")
+        sys.exit(1)
+    print("the manual's key tables and the readers agree")
+
+
+if __name__ == "__main__":
+    main()
