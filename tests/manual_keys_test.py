@@ -3,12 +3,14 @@
 
     manual_keys_test.py GRAINFLOW REPOSITORY
 
-Runs `grainflow check SCENE --keys` on every shipped scene (scenes/**/*.toml), which lists each key the
+Runs `grainflow check SCENE --keys` on every shipped scene (scenes/**/*.toml) and on the scenes of
+tests/keys/, which take the branches no shipped scene takes (pair and wall overrides of each law, periodic
+y, cylinder regions, a liquid's solver table, ...); check lists each key the
 scene's systems asked for, set in the file or left at its default, and reads the key tables of
 docs/manual/*.md (a heading "### `[section]`" followed by a table whose first column is "key"). Fails when
   - a key some scene's readers accept is in no table of its section (undocumented), or
-  - a table lists a key that no shipped scene's readers ask for (documented but not read: a stale row, or a
-    branch of a reader that no shipped scene takes; then add a scene that takes it).
+  - a table lists a key that no scene's readers ask for (documented but not read: a stale row, or a branch
+    of a reader that no scene takes; then add a scene to tests/keys/ that takes it).
 Paths are compared with array indices dropped (wall[2].omega is [[wall]] omega); a table key written
 `count.<species>` stands for any one name in that place.
 """
@@ -29,12 +31,16 @@ def manual_tables(manual):
         i = 0
         while i < len(lines):
             m = HEADING.match(lines[i])
-            if not m or i + 1 >= len(lines) or not lines[i + 1].startswith("| key |"):
-                i += 1
+            i += 1
+            if not m:
+                continue
+            while i < len(lines) and not lines[i].startswith(("|", "#")):
+                i += 1  # a sentence or two between the heading and its table
+            if i >= len(lines) or not lines[i].startswith("| key |"):
                 continue
             section = m.group(2) + ("[]" if m.group(1) == "[[" else "")
             keys = tables.setdefault(section, {})
-            i += 3  # heading, header, rule
+            i += 2  # header, rule
             while i < len(lines) and lines[i].startswith("|"):
                 r = ROW.match(lines[i])
                 if r:
@@ -44,13 +50,13 @@ def manual_tables(manual):
 
 
 def pattern(key):
-    return re.compile("^" + re.sub(r"\\<[^>]*\\>", r"[^.]+", re.escape(key)) + "$")
+    return re.compile("^" + re.sub(r"<[^>]*>", r"[^.]+", re.escape(key)) + "$")
 
 
 def scene_keys(grainflow, root):
     """{normalised path: first scene that reads it}, and the scenes that check refused."""
     read, refused = {}, []
-    for scene in sorted((root / "scenes").rglob("*.toml")):
+    for scene in sorted((root / "scenes").rglob("*.toml")) + sorted((root / "tests/keys").glob("*.toml")):
         p = subprocess.run([grainflow, "check", str(scene), "--keys"], capture_output=True, text=True, timeout=600)
         if p.returncode != 0:
             refused.append(f"{scene.relative_to(root)}: exit {p.returncode}: {p.stderr.strip()[:300]}")
@@ -87,14 +93,18 @@ def main():
         hits = [k for k in tables[section] if pattern(k).match(key)]
         for k in hits:
             matched[section, k] = True
-        # A key that holds a sub-table documented by its dotted keys (region, count, solver) needs no row.
-        if not hits and not any(k.startswith(key + ".") for k in tables[section]):
+        # A key that holds a sub-table documented by its dotted keys (region, count, solver), or by a table of
+        # its own ([contact.wall], [[analysis.repose]]), needs no row.
+        own = f"{section}.{key}"
+        if not hits and not any(k.startswith(key + ".") for k in tables[section]) and \
+                own not in tables and own + "[]" not in tables:
             problems.append(f"undocumented: '{key}' of [{section}] (read for {scene}) is in no key table of docs/manual")
     for (section, key), hit in sorted(matched.items()):
         if not hit:
-            problems.append(f"not read: '{key}' of [{section}] ({tables[section][key]}) is asked for by no shipped "
-                            "scene's readers")
-    print(f"{len(read)} key paths read by {len(list((root / 'scenes').rglob('*.toml')))} scenes; "
+            problems.append(f"not read: '{key}' of [{section}] ({tables[section][key]}) is asked for by no scene's "
+                            "readers in scenes/ or tests/keys/")
+    scenes = len(list((root / "scenes").rglob("*.toml"))) + len(list((root / "tests/keys").glob("*.toml")))
+    print(f"{len(read)} key paths read by {scenes} scenes; "
           f"{sum(len(k) for k in tables.values())} keys in {len(tables)} manual tables")
     if problems:
         print("\n".join(problems))

@@ -28,7 +28,12 @@ inline void prepare_nodes(LiquidSimulation& sim, NeighborPairs& nb) {
 }
 
 inline std::string liquid_scene(const std::string& name) {
-  return std::string(GRAINFLOW_SOURCE_DIR) + "/scenes/liquid/" + name;
+  // Appended in place: GCC 12 reads `std::string(literal) + "..." + name` as a copy out of bounds
+  // (a -Warray-bounds false positive inside libstdc++) when the standard headers are precompiled.
+  std::string path = GRAINFLOW_SOURCE_DIR;
+  path += "/scenes/liquid/";
+  path += name;
+  return path;
 }
 
 inline std::size_t column_index(const std::string& name) {
