@@ -18,7 +18,11 @@ def install_times(path="docs/install/fresh_clone.log"):
     tests = re.search(r"^(\d+)% tests passed, (\d+) tests failed out of (\d+)", text, re.M)
     total = re.search(r"^Total Test time \(real\) = +([\d.]+) sec", text, re.M)
     rows.append("")
-    rows.append(" ".join(h.lstrip("# ") for h in head).replace("fresh clone of ", "Fresh clone of commit ") + ".")
+    commit = re.search(r"fresh clone of (\w+) \(([\d-]+)\)", head[0])
+    machine = head[1].split("machine: ", 1)[1]
+    purged = head[2].endswith("yes")
+    rows.append(f"A fresh clone of commit {commit.group(1)[:12]} ({commit.group(2)}) on {machine}"
+                + ("; the project's Debian packages removed first." if purged else "."))
     if tests:
         rows.append(f"The fast suite: {tests.group(3)} tests, {tests.group(2)} failed"
                     + (f", {float(total.group(1)):.0f} s of the second command." if total else "."))
