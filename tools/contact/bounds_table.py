@@ -4,7 +4,7 @@ LIGGGHTS per core needs. Each bound is the share of a one-thread step of the flo
 takes, as if a change made it free:
   - a pair-kernel part: the pair kernel's share of the step (docs/bench/drum_time_split_flowing.json)
     times 1 - r, r the per-round median of the kernel's time with the part removed against the
-    unchanged kernel (docs/contact/pair_ablation.csv, tools/contact/pair_ablation.py);
+    unchanged kernel (docs/contact/pair_ablation.csv, tools/contact/pair_ablation.py (a probe that patched the C++ kernel in a scratch tree; removed, kept in the history: git show 984d50cd9d25:tools/contact/pair_ablation.py));
   - the law's arithmetic: its cost from a second evaluation (lawtwice, r - 1), of which mixed precision
     could take at most half;
   - the wall springs: 1 - 1/q, q the per-round median of the step rate without them against the

@@ -92,7 +92,7 @@ def every_scene_table(path="docs/mpi/every_scene.csv"):
 
 
 def amg_probe_table(path="docs/liquid/amg_probe.jsonl"):
-    """grainflow's Jacobi CG against hypre's PCG + BoomerAMG on one pressure system (tools/liquid/amg_probe.sh)."""
+    """grainflow's Jacobi CG against hypre's PCG + BoomerAMG on one pressure system (tools/liquid/amg_probe.sh (a probe built by hand against hypre; removed, kept in the history: git show 984d50cd9d25:tools/liquid/amg_probe.sh))."""
     lines = [json.loads(l) for l in (ROOT / path).read_text().splitlines() if l.strip()]
     head, ours, runs = lines[0], lines[1], lines[2:]
     coarsen = {8: "PMIS", 10: "HMIS"}
@@ -150,7 +150,7 @@ def petal_arms_table(cases=(("half_w0.25", "0.25 rad/s at 30 rad"), ("half_w0.50
 
 
 def pair_ablation_table(path="docs/contact/pair_ablation.csv"):
-    """The pair kernel's parts by ablation (tools/contact/pair_ablation.py): per group of alternated
+    """The pair kernel's parts by ablation (tools/contact/pair_ablation.py (a probe that patched the C++ kernel in a scratch tree; removed, kept in the history: git show 984d50cd9d25:tools/contact/pair_ablation.py)): per group of alternated
     rounds, each variant's median of the rounds' medians against the unchanged kernel's, and its
     ratio to the unchanged kernel within each round (median and range)."""
     import csv
