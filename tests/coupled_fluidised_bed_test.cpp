@@ -4,7 +4,7 @@
 // Ergun's 8.1 mm/s at minimum fluidisation). Over 0.1 to 0.3 s:
 //  - the bed stays put: the beads' mean speed below 0.1 mm/s;
 //  - the drag carries less than 70 % of the bed's weight less buoyancy (Ergun: 58 %);
-//  - the drag is Ergun's over the bed within 20 %, from below. The sweep (docs/liquid/fluidised_bed.csv,
+//  - the drag is Ergun's over the bed within 20 %, from below. The sweep (studies/seed003/results/fluidised_bed.csv,
 //    1.5 s runs) reads 0.82 to 0.88 of Ergun (0.86 at this drive): beads within the smoothing radius (12.5 mm) of the floor
 //    and the bed's top share volume with clear liquid, so the liquid fraction read at the beads is 0.50
 //    against the bed's 0.48, and Ergun's (1 - eps)^2 / eps^3 is a fifth smaller at 0.50.

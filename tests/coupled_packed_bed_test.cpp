@@ -10,7 +10,7 @@
 // interstitial speed (the liquid is not locally averaged: its nodes fill the bed's whole volume).
 // The drag law is Ergun's own (drag.hpp), so this checks the coupling, not Ergun: the liquid fraction the
 // shares give the nodes, the speed read at the grains, the reaction, and the walls. Measured (the sweep
-// below, docs/liquid/ergun_bed.csv, Re_p 0.4 to 8; the column closed: no free-surface test, gamma 0.05, the
+// below, studies/seed003/results/ergun_bed.csv, Re_p 0.4 to 8; the column closed: no free-surface test, gamma 0.05, the
 // "min" gradient):
 //  - the core of the column (nodes 4 mm or more from the walls) meets Ergun at its own U and eps within
 //    1.5 to 2.5 %; the core's eps, sampled by nodes that move through the fixed lattice, reads 0.392 to
@@ -145,8 +145,8 @@ TEST_CASE("coupled: liquid through a fixed packed bed meets Ergun's pressure gra
   for (const double target : {0.005, 0.02}) check_case(run_case(target));
 }
 
-// The sweep of docs/liquid/ergun_bed.csv (not run by ctest): from the repository root,
-//   GRAINFLOW_RESULTS=docs/liquid build-ergun/tests/coupled_packed_bed_test "[packed_bed_sweep]"
+// The sweep of studies/seed003/results/ergun_bed.csv (not run by ctest): from the repository root,
+//   GRAINFLOW_RESULTS=studies/seed003/results build-ergun/tests/coupled_packed_bed_test "[packed_bed_sweep]"
 TEST_CASE("coupled: packed bed sweep over Re_p 0.4 to 8", "[.][packed_bed_sweep]") {
   for (const double target : {0.002, 0.005, 0.01, 0.02, 0.04}) check_case(run_case(target));
 }

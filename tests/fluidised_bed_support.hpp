@@ -1,7 +1,7 @@
 // scenes/liquid/fluidised_bed.toml measured in-process for the fluidisation tests: the bed's height and
 // liquid fraction from the beads' centres, the drag the liquid gives them over their weight, and the
 // liquid's speed read at them, with Ergun's and Richardson-Zaki's references (as
-// tools/liquid/fluidised_bed.py computes them for the README's sweep).
+// studies/seed003/fluidised_bed.py computes them for the README's sweep).
 #pragma once
 
 #include <algorithm>

@@ -4,7 +4,7 @@
 //   T1 two identical glass spheres head-on, T2 a sphere on a rigid plane, T3 restitution on a plane,
 //   T4 oblique impact on a plane (tangential restitution and rebound spin in gross sliding).
 // With GRAINFLOW_RESULTS set to a folder, each case also writes its figures to chung_ooi.csv there
-// (tools/contact/chung_ooi_table.py turns that file into the README's table).
+// (studies/contact/chung_ooi_table.py turns that file into the README's table).
 #include <catch2/catch.hpp>
 
 #include <cstring>

@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""tools/seed002/left_in_hopper.py on a synthetic frame: fixed and removed bodies are not counted,
+"""studies/seed002/left_in_hopper.py on a synthetic frame: fixed and removed bodies are not counted,
 grains over the 8 m orifice are those with |x| and |z| under 4 m, the lowest of them and the
 fastest grain are found."""
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools" / "seed002"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies" / "seed002"))
 from left_in_hopper import left_in_hopper  # noqa: E402
 
 COLUMNS = "id,shape,group,layer,motion,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz".split(",")

@@ -1,12 +1,12 @@
 #!/usr/bin/python3
-"""tools/seed002/letter_convexity.py against closed forms: the faces of O, T and C are unions of
+"""studies/seed002/letter_convexity.py against closed forms: the faces of O, T and C are unions of
 rectangles whose areas and hulls are known exactly, and a convex plate has convexity 1. The face
 area is counted on a grid of 0.2 mm cells, so it may differ from the exact area by the cells the
 boundary cuts (a few tenths of a per cent of these faces): the tolerance is 0.5 %. Hulls are exact."""
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools" / "seed002"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies" / "seed002"))
 import letter_convexity as lc  # noqa: E402
 
 L, H = 0.100, 0.180

@@ -115,8 +115,8 @@ struct LiquidFigure {
 };
 
 // Appends `f`, with the cost of its run, to validation.csv when GRAINFLOW_RESULTS names a folder
-// (docs/liquid/validation.csv, turned into the README's liquid validation table by
-// tools/liquid/validation_table.py). `test` names the test program, `case_name` the run.
+// (studies/seed003/results/validation.csv, turned into the README's liquid validation table by
+// studies/seed003/validation_table.py). `test` names the test program, `case_name` the run.
 inline void record_liquid(const std::string& test, const std::string& case_name, const LiquidFigure& f,
                           const LiquidCost& c) {
   record_result("validation.csv",

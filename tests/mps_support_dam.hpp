@@ -1,4 +1,4 @@
-// Experimental surge-front points of the dam break (docs/liquid/dam_break_experiments.csv) for the tests.
+// Experimental surge-front points of the dam break (studies/seed003/results/dam_break_experiments.csv) for the tests.
 #pragma once
 
 #include <fstream>
@@ -14,7 +14,7 @@ struct FrontPoint {
 };
 
 inline std::vector<FrontPoint> front_experiments() {
-  std::ifstream in(std::string(GRAINFLOW_SOURCE_DIR) + "/docs/liquid/dam_break_experiments.csv");
+  std::ifstream in(std::string(GRAINFLOW_SOURCE_DIR) + "/studies/seed003/results/dam_break_experiments.csv");
   std::vector<FrontPoint> out;
   std::string line;
   bool header = true;

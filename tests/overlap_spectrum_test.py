@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""tools/contact/state_pairs.py and overlap_spectrum.py on a hand-made state: a row of grains whose
+"""studies/contact/state_pairs.py and overlap_spectrum.py on a hand-made state: a row of grains whose
 gaps are set by hand (overlaps of 1e-9, 1e-8 and 1e-6 m, a gap of 1e-4 m inside the 0.15 mm skin,
 and one of 1e-3 m outside it), so every pair, overlap and band share is known exactly."""
 import json
@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-TOOLS = Path(__file__).resolve().parents[1] / "tools" / "contact"
-sys.path.insert(0, str(TOOLS))
+STUDY = Path(__file__).resolve().parents[1] / "studies" / "contact"
+sys.path.insert(0, str(STUDY))
 from state_pairs import gaps, read_state  # noqa: E402
 
 D = 0.002  # m, every grain's diameter
@@ -40,7 +40,7 @@ def main():
         assert found.shape == expected.shape, (found, expected)
         assert np.all(np.abs(found - expected) < 1e-15), (found, expected)
 
-        out = json.loads(subprocess.run([sys.executable, str(TOOLS / "overlap_spectrum.py"), str(path)],
+        out = json.loads(subprocess.run([sys.executable, str(STUDY / "overlap_spectrum.py"), str(path)],
                                         check=True, capture_output=True, text=True).stdout)
         assert out["list_pairs"] == 4 and out["touching_pairs"] == 3, out
         # The median of the three overlaps is 1e-8 m.

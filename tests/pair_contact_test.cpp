@@ -144,7 +144,7 @@ std::vector<Measured> head_on(double e) {
           {-gs.vn_after / gs.vn_before, static_cast<double>(gs.steps_in_contact) * dt, e, tc_gs}};
 }
 
-// `label` names the pair; the restitution and contact time are recorded (docs/contact/analytic.csv) and checked.
+// `label` names the pair; the restitution and contact time are recorded (studies/contact/results/analytic.csv) and checked.
 void check_collision(const Measured& m, const std::string& label) {
   const double de = m.restitution / m.e - 1.0;
   const double dtc = m.duration / m.t_c - 1.0;

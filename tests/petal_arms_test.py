@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""tools/seed000/petal_arms.py on synthetic half-filled drums: k arms of small grains separated by
+"""studies/seed000/petal_arms.py on synthetic half-filled drums: k arms of small grains separated by
 streaks of large grains are counted as k at the rings they cross (0.5 to 0.8 R), and random
 mixtures read few arms (an arc holds about five large grains' volume, so an arc free of them by
 chance is rare; the bound is below)."""
@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools" / "seed000"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies" / "seed000"))
 import petal_arms  # noqa: E402
 
 R = petal_arms.R

@@ -379,7 +379,7 @@ TEST_CASE("representative volume: species without rotation carry no angular colu
 TEST_CASE("representative volume: the cut-off's effect on a settled bed", "[contact][rv][cutoff]") {
   // The box scene settled at three cut-offs: the bed's centre of mass (the height the amplitude law
   // sets), its kinetic energy left, and the interacting pairs, which grow with the reach
-  // k_d R* ln(1/A_c). Recorded in representative_volume_cutoff.csv (docs/contact/).
+  // k_d R* ln(1/A_c). Recorded in representative_volume_cutoff.csv (studies/contact/results/).
   double com_ref = 0.0;
   std::size_t last_pairs = 0;
   for (double cut : {1e-2, 1e-3, 1e-4}) {

@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""tools/seed002/shapes_hopper.py's stopping rules on synthetic remaining-fraction series: a
+"""studies/seed002/shapes_hopper.py's stopping rules on synthetic remaining-fraction series: a
 12 s case is done at 12 s; the long case at its full duration, or earlier once no grain has left
 for STOPPED seconds after the 12 s, never while grains still leave or before 12 s + STOPPED."""
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools" / "seed002"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "studies" / "seed002"))
 import shapes_hopper as sh  # noqa: E402
 
 failures = []

@@ -130,7 +130,7 @@ inline void record_result(const std::string& file, const std::string& header, co
 // relative as a plain ratio, or absolute in the quantity's unit.
 enum class ErrorKind { percent, relative, absolute };
 
-// One figure a contact or integrator test checks against a closed form (docs/contact/analytic.csv,
+// One figure a contact or integrator test checks against a closed form (studies/contact/results/analytic.csv,
 // the README's table "Contact physics against analytic values"). `closed_form` is the reference as
 // the README writes it (or "conserved", "identical"); `reference` its value and `measured` the
 // engine's, NaN where the check is on an error alone (a drift, a difference); `error` is the number

@@ -2,7 +2,7 @@
 results (and, while it is unfinished, its last checkpoint) are archived under a committed folder,
 and a run folder that is missing is restored from there first (grainflow.resumable).
 
-    PYTHONPATH=python /usr/bin/python3 -m grainflow.long_run SCENE --out runs/NAME --archive docs/.../NAME \\
+    PYTHONPATH=python /usr/bin/python3 -m grainflow.long_run SCENE --out runs/NAME --archive studies/STUDY/results/NAME \\
         [--set key=value ...] [--keep layers.csv residence.csv] [--budget-minutes 60] [--threads 1] \\
         [--binary build/grainflow]
 

@@ -4,7 +4,7 @@ A piece runs `grainflow run SCENE --out FOLDER --set ...` (with --resume from th
 checkpoint when there is one) for at most a wall-time budget, then stops it with SIGINT: grainflow
 finishes the step in flight and writes its checkpoint, so the next piece continues where this one
 stopped, bit-identical to an uninterrupted run. Every piece is logged in FOLDER/pieces.jsonl.
-Used by tools/seed000/study.py, tools/seed001/kiln_map.py and grainflow.long_run.
+Used by studies/seed000/study.py, studies/seed001/kiln_map.py and grainflow.long_run.
 
 A piece may also stop early on a condition of its series that the scene cannot state (a hopper
 that has stopped draining): `stop(series)` is read every `poll_s` seconds while it runs, and once
@@ -12,7 +12,7 @@ it holds the piece gets SIGINT, so it ends with a checkpoint like a piece out of
 
 Run folders live under runs/, which git ignores, so a new checkout has none. `archive` copies a
 case's results (and, while it is unfinished, its last checkpoint, gzip-compressed) into a committed
-folder under docs/, and `restore` rebuilds a missing run folder from that copy, so a study continues
+folder under studies/<study>/results/, and `restore` rebuilds a missing run folder from that copy, so a study continues
 on another machine where it stopped and its report never depends on runs/ alone. Commit an
 archived checkpoint once, when a working session ends, not after every piece: each committed
 version of it stays in the history.

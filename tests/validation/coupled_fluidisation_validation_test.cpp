@@ -10,7 +10,7 @@
 //    steady fluidised runs read +3.7, +1.3 and -1.2 % (the last at this drive);
 //  - and U meets Richardson-Zaki's u_t eps^n (u_t = 0.1342 m/s from
 //    Schiller-Naumann, n = 3.52 from Garside & Al-Dibouni at Re_t = 26.8) at the middle's liquid
-//    fraction within 25 %: the sweep (docs/liquid/fluidised_bed.csv) reads -15 % at this drive, the
+//    fraction within 25 %: the sweep (studies/seed003/results/fluidised_bed.csv) reads -15 % at this drive, the
 //    expanded bed's liquid fraction 0.60 against Richardson-Zaki's 0.575 at the same U; the kernel reads
 //    the liquid fraction at beads near the bed's ends high, as in the packed branch, and the sweep's bed
 //    is still settling at the end of its 1.5 s (its speed falls by 5 % over the last 0.5 s).

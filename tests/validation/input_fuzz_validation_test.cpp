@@ -2,7 +2,7 @@
 // scenes/, the 47,108-grain drums included, and checkpoints of a small and a 3,000-grain drum.
 // With GRAINFLOW_FUZZ_DIR set, each piece writes piece_<k>.json there and a piece already written
 // is not run again, so the run can be stopped and resumed; summary.json there sums the pieces.
-// tools/trust/fuzz_validation.sh runs it into docs/trust/fuzz/; the README's figures come from there.
+// studies/contact/fuzz_validation.sh runs it into studies/contact/results/fuzz/; the README's figures come from there.
 #include <catch2/catch.hpp>
 
 #include <cstdlib>

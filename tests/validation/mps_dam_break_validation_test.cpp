@@ -1,4 +1,4 @@
-// Dam break against the experiments (docs/liquid/dam_break_experiments.csv), full runs: 2D at l0 = a/40 until
+// Dam break against the experiments (studies/seed003/results/dam_break_experiments.csv), full runs: 2D at l0 = a/40 until
 // the front meets the far wall, and a coarse 3D version (l0 = a/10). Reports the front error per source.
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The generated tables of the README and the pages under docs/, made from the result files committed under docs/.
+"""The generated tables of the README and the pages under docs/, made from the result files committed under studies/<study>/results/.
 
 Each generated table sits between two marker lines in README.md or in a Markdown page under docs/:
 
@@ -13,7 +13,7 @@ Each generated table sits between two marker lines in README.md or in a Markdown
 
 A table's maker is a function below, one of the per-result scripts it calls, or a maker in a module of
 tools/readme/makers/ (each module's TABLES dict joins this one; a name defined twice is an error). All of
-them read only files under docs/. A table may appear on more than one page; each copy is checked.
+them read only committed files (studies/<study>/results/, docs/results/data/, docs/install/). A table may appear on more than one page; each copy is checked.
 """
 import json
 import os
@@ -34,7 +34,7 @@ def script(*args):
 
 
 def fuzz_table():
-    s = json.loads((ROOT / "docs/trust/fuzz/summary.json").read_text())
+    s = json.loads((ROOT / "studies/contact/results/fuzz/summary.json").read_text())
     targets = ["scene", "override", "state_csv", "checkpoint"]
     rows = ["| inputs | " + " | ".join(targets) + " | all |", "|---" * (len(targets) + 2) + "|"]
     for label, key in [("mutated", "inputs_by_target"), ("refused (located, with a fix)", "refused_by_target"),
@@ -57,7 +57,7 @@ def fuzz_table():
 
 
 def memory_table():
-    text = (ROOT / "docs/bench/memory.log").read_text()
+    text = (ROOT / "studies/performance/results/memory.log").read_text()
     kb = int(re.search(r"^peak_rss_kb (\d+)", text, re.M).group(1))
     grains = int(re.search(r"^grains (\d+)", text, re.M).group(1))
     return ("| run | grains | peak memory (RSS) | per grain |\n|---|---|---|---|\n"
@@ -65,7 +65,7 @@ def memory_table():
             f"{kb * 1024 / grains / 1000:.2f} kB |\n")
 
 
-def averaged_liquid_table(path="docs/liquid/averaged_liquid.csv"):
+def averaged_liquid_table(path="studies/seed003/results/averaged_liquid.csv"):
     """The tank over a fixed bed, plain and locally averaged liquid (tests/coupled_averaged_test.cpp)."""
     import csv
     rows = ["| pressure gradient | level, plain (mm) | level, averaged (mm) | rise over the plain's (mm) | "
@@ -78,8 +78,8 @@ def averaged_liquid_table(path="docs/liquid/averaged_liquid.csv"):
     return "\n".join(rows) + "\n"
 
 
-def every_scene_table(path="docs/mpi/every_scene.csv"):
-    """Every scene on two ranks (tools/mpi/every_scene.sh): scenes per kind and exit status."""
+def every_scene_table(path="studies/mpi/results/every_scene.csv"):
+    """Every scene on two ranks (studies/mpi/every_scene.sh): scenes per kind and exit status."""
     import csv
     counts = {}
     for r in csv.DictReader(open(ROOT / path)):
@@ -91,8 +91,8 @@ def every_scene_table(path="docs/mpi/every_scene.csv"):
     return "\n".join(rows) + "\n"
 
 
-def amg_probe_table(path="docs/liquid/amg_probe.jsonl"):
-    """grainflow's Jacobi CG against hypre's PCG + BoomerAMG on one pressure system (tools/liquid/amg_probe.sh (a probe built by hand against hypre; removed, kept in the history: git show 984d50cd9d25:tools/liquid/amg_probe.sh))."""
+def amg_probe_table(path="studies/seed003/results/amg_probe.jsonl"):
+    """grainflow's Jacobi CG against hypre's PCG + BoomerAMG on one pressure system (studies/seed003/amg_probe.sh (a probe built by hand against hypre; removed, kept in the history: git show 984d50cd9d25:tools/liquid/amg_probe.sh))."""
     lines = [json.loads(l) for l in (ROOT / path).read_text().splitlines() if l.strip()]
     head, ours, runs = lines[0], lines[1], lines[2:]
     coarsen = {8: "PMIS", 10: "HMIS"}
@@ -116,7 +116,7 @@ def amg_probe_table(path="docs/liquid/amg_probe.jsonl"):
     return "\n".join(rows) + "\n"
 
 
-def pulsation_table(path="docs/seed000/pulsation_w0.50/pulsation.json"):
+def pulsation_table(path="studies/seed000/results/pulsation_w0.50/pulsation.json"):
     s = json.loads((ROOT / path).read_text())
     rows = ["| signal | window (rad) | dominant period (s) | period (rad of rotation) | prominence | mean | std |",
             "|---|---|---|---|---|---|---|"]
@@ -141,16 +141,16 @@ def petal_arms_table(cases=(("half_w0.25", "0.25 rad/s at 30 rad"), ("half_w0.50
                              ("half_w1.00", "1 rad/s at 30 rad"), ("half_w2.00", "2 rad/s at 30 rad"),
                              ("settled_mixed", "the mixed start (shared settled state)"),
                              ("flowing_1.5s", "LIGGGHTS at 1.5 s (shared flowing state)"))):
-    """Arms of small grains crossing rings inside the bed (tools/seed000/petal_arms.py)."""
-    docs = {k: json.loads((ROOT / f"docs/seed000/petal_arms/{k}/petal_arms.json").read_text()) for k, _ in cases}
+    """Arms of small grains crossing rings inside the bed (studies/seed000/petal_arms.py)."""
+    docs = {k: json.loads((ROOT / f"studies/seed000/results/petal_arms/{k}/petal_arms.json").read_text()) for k, _ in cases}
     rows = ["| ring | " + " | ".join(label for _, label in cases) + " |", "|---" * (len(cases) + 1) + "|"]
     for i, ring in enumerate(docs[cases[0][0]]["rings"]):
         rows.append(f"| {ring['r_over_R']:.1f} R | " + " | ".join(str(docs[k]["rings"][i]["arms"]) for k, _ in cases) + " |")
     return "\n".join(rows) + "\n"
 
 
-def pair_ablation_table(path="docs/contact/pair_ablation.csv"):
-    """The pair kernel's parts by ablation (tools/contact/pair_ablation.py (a probe that patched the C++ kernel in a scratch tree; removed, kept in the history: git show 984d50cd9d25:tools/contact/pair_ablation.py)): per group of alternated
+def pair_ablation_table(path="studies/contact/results/pair_ablation.csv"):
+    """The pair kernel's parts by ablation (studies/contact/pair_ablation.py (a probe that patched the C++ kernel in a scratch tree; removed, kept in the history: git show 984d50cd9d25:tools/contact/pair_ablation.py)): per group of alternated
     rounds, each variant's median of the rounds' medians against the unchanged kernel's, and its
     ratio to the unchanged kernel within each round (median and range)."""
     import csv
@@ -175,8 +175,8 @@ def pair_ablation_table(path="docs/contact/pair_ablation.csv"):
     return "\n".join(rows) + "\n"
 
 
-def float_prefilter_table(path="docs/contact/bench_float_prefilter.csv"):
-    """The prefilter in float against the double test (tools/contact/prefilter_rounds.sh): per thread
+def float_prefilter_table(path="studies/contact/results/bench_float_prefilter.csv"):
+    """The prefilter in float against the double test (studies/contact/prefilter_rounds.sh): per thread
     count and variant, the rounds' median time and its ratio to the double test within each round."""
     import csv
     import statistics
@@ -193,12 +193,12 @@ def float_prefilter_table(path="docs/contact/bench_float_prefilter.csv"):
     return "\n".join(rows) + "\n"
 
 
-def seed002_cost(path="docs/seed002/cost/cost.json"):
-    """Seed 002's cost chart: discharge times and cost per particle model (tools/seed002/cost_chart.py)."""
-    return script("tools/seed002/cost_chart.py", "table", path)
+def seed002_cost(path="studies/seed002/results/cost/cost.json"):
+    """Seed 002's cost chart: discharge times and cost per particle model (studies/seed002/cost_chart.py)."""
+    return script("studies/seed002/cost_chart.py", "table", path)
 
 
-def time_split_table(path="docs/bench/drum_time_split.json"):
+def time_split_table(path="studies/performance/results/drum_time_split.json"):
     s = json.loads((ROOT / path).read_text())
     steps, grains = s["steps"], s["grains"]
     rows = ["| system | share of the step | ms per step | calls |", "|---|---|---|---|"]
@@ -225,7 +225,7 @@ def variant_label(sets):
     return ", ".join(f"{k.replace('contact.', '')} {x}" for k, x in sets.items()) or "the scene's"
 
 
-def packing_friction_table(base="docs/seed002/packing/packing.json", variant="docs/seed002/packing/mu0.1/packing.json",
+def packing_friction_table(base="studies/seed002/results/packing/packing.json", variant="studies/seed002/results/packing/mu0.1/packing.json",
                            base_label="friction 0.3", short_label="0.3"):
     """The letters' packing in the scene as it is (friction 0.3, strokes 0.03 m) beside a variant's (its
     overrides named)."""
@@ -263,9 +263,9 @@ def packing_friction_table(base="docs/seed002/packing/packing.json", variant="do
     return "\n".join(rows) + "\n"
 
 
-def packing_stroke_table(base="docs/seed002/packing/packing.json",
-                         variants=("docs/seed002/packing/stroke40/packing.json",
-                                   "docs/seed002/packing/stroke40_dt5/packing.json")):
+def packing_stroke_table(base="studies/seed002/results/packing/packing.json",
+                         variants=("studies/seed002/results/packing/stroke40/packing.json",
+                                   "studies/seed002/results/packing/stroke40_dt5/packing.json")):
     """The letters poured with 0.04 m strokes beside the scene's 0.03 m, each with the step it ran at."""
     b = {r["letter"]: r for r in json.loads((ROOT / base).read_text())["shapes"]}
     rows = ["| shape | interior, stroke 0.03 m | interior, stroke 0.04 m | change | whole bed, 0.03 m | whole bed, 0.04 m | "
@@ -283,7 +283,7 @@ def packing_stroke_table(base="docs/seed002/packing/packing.json",
                         f"{'' if r['settled'] else ' (not settled)'} | `{pathlib.PurePath(path).parent.name}/` |")
             wide[r["letter"]] = r["packing_fraction"]
     if len(wide) > 2:
-        sys.path.insert(0, str(ROOT / "tools" / "seed002"))
+        sys.path.insert(0, str(ROOT / "studies" / "seed002"))
         from packing import order_check
         o = order_check(wide)
         rows.append("")
@@ -292,7 +292,7 @@ def packing_stroke_table(base="docs/seed002/packing/packing.json",
     return "\n".join(rows) + "\n"
 
 
-def packing_table(path="docs/seed002/packing/packing.json"):
+def packing_table(path="studies/seed002/results/packing/packing.json"):
     s = json.loads((ROOT / path).read_text())
 
     def f(v):
@@ -319,112 +319,112 @@ def packing_table(path="docs/seed002/packing/packing.json"):
 
 
 TABLES = {
-    "analytic": lambda: script("tools/contact/analytic_table.py"),
-    "chung_ooi": lambda: script("tools/contact/chung_ooi_table.py"),
-    "speed_accuracy": lambda: script("tools/seed000/speed_accuracy_table.py", "docs/seed000/speed_accuracy.json"),
-    "bench_before_after": lambda: script("tools/contact/bench_table.py", "docs/contact/bench_before_after.csv",
+    "analytic": lambda: script("studies/contact/analytic_table.py"),
+    "chung_ooi": lambda: script("studies/contact/chung_ooi_table.py"),
+    "speed_accuracy": lambda: script("studies/seed000/speed_accuracy_table.py", "studies/seed000/results/speed_accuracy.json"),
+    "bench_before_after": lambda: script("studies/contact/bench_table.py", "studies/contact/results/bench_before_after.csv",
                                          "before", "contact pipeline"),
-    "bench_kernels": lambda: script("tools/contact/bench_table.py", "docs/contact/bench_kernels.csv", "before",
+    "bench_kernels": lambda: script("studies/contact/bench_table.py", "studies/contact/results/bench_kernels.csv", "before",
                                     "contact pipeline", "--kernels"),
-    "bench_flowing_before_after": lambda: script("tools/contact/bench_table.py",
-                                                 "docs/contact/bench_flowing_before_after.csv", "before",
+    "bench_flowing_before_after": lambda: script("studies/contact/bench_table.py",
+                                                 "studies/contact/results/bench_flowing_before_after.csv", "before",
                                                  "list changes"),
-    "bench_deferred_kick": lambda: script("tools/contact/bench_table.py", "docs/contact/bench_deferred_kick.csv",
+    "bench_deferred_kick": lambda: script("studies/contact/bench_table.py", "studies/contact/results/bench_deferred_kick.csv",
                                           "two passes", "deferred closing kick"),
-    "bench_wall_nosprings": lambda: script("tools/contact/bench_table.py", "docs/contact/bench_wall_nosprings.csv",
+    "bench_wall_nosprings": lambda: script("studies/contact/bench_table.py", "studies/contact/results/bench_wall_nosprings.csv",
                                            "unchanged", "no wall springs"),
-    "bench_hertz": lambda: script("tools/contact/bench_table.py", "docs/contact/bench_hertz.csv", "Hertz-Mindlin",
+    "bench_hertz": lambda: script("studies/contact/bench_table.py", "studies/contact/results/bench_hertz.csv", "Hertz-Mindlin",
                                   "--pooled"),
     "fuzz": fuzz_table,
     "memory": memory_table,
     "time_split": time_split_table,
-    "time_split_flowing": lambda: time_split_table("docs/bench/drum_time_split_flowing.json"),
-    "time_split_flowing_xeon": lambda: time_split_table("docs/bench/drum_time_split_flowing_xeon.json"),
-    "time_split_flowing_xeon_before": lambda: time_split_table("docs/bench/drum_time_split_flowing_xeon_before.json"),
-    "scaling": lambda: script("tools/bench/scaling_table.py", "docs/bench/scaling.log"),
-    "scaling_knee": lambda: script("tools/bench/scaling_knee_table.py", "docs/bench/scaling_knee.log",
-                                   "docs/bench/memory_bandwidth.json"),
-    "scaling_xeon": lambda: script("tools/bench/scaling_table.py", "docs/bench/scaling_xeon.log"),
-    "scaling_knee_xeon": lambda: script("tools/bench/scaling_knee_table.py", "docs/bench/scaling_knee_xeon.log",
-                                        "docs/bench/memory_bandwidth_xeon.json"),
-    "scaling_windows_xeon": lambda: script("tools/bench/scaling_windows_table.py", "docs/bench/scaling_xeon.log",
-                                          "docs/bench/scaling_knee_xeon.log", "docs/bench/scaling_small_xeon.log"),
-    "scaling_l2_xeon": lambda: script("tools/bench/scaling_windows_table.py", "docs/bench/scaling_l2_xeon.log"),
-    "system_benchmarks": lambda: script("tools/bench/system_table.py"),
-    "liggghts": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison.log"),
-    "liggghts_flowing": lambda: script("tools/liggghts/comparison_table.py", "docs/liggghts/comparison_flowing.log"),
-    "liggghts_flowing_xeon": lambda: script("tools/liggghts/comparison_table.py",
-                                            "docs/liggghts/comparison_flowing_xeon.log"),
-    "liggghts_flowing_xeon_before": lambda: script("tools/liggghts/comparison_table.py",
-                                                   "docs/liggghts/comparison_flowing_xeon_before.log"),
-    "liggghts_flowing_epyc_deferred": lambda: script("tools/liggghts/comparison_table.py",
-                                                     "docs/liggghts/comparison_flowing_epyc_deferred.log"),
-    "liggghts_flowing_skin": lambda: script("tools/liggghts/comparison_table.py",
-                                            "docs/liggghts/comparison_flowing_skin0.3mm.log"),
-    "liggghts_flowing_mpi": lambda: script("tools/liggghts/comparison_table.py",
-                                           "docs/liggghts/comparison_flowing_mpi.log"),
-    "liggghts_flowing_grainflow": lambda: script("tools/liggghts/comparison_table.py",
-                                                 "docs/liggghts/comparison_flowing_grainflow.log"),
+    "time_split_flowing": lambda: time_split_table("studies/performance/results/drum_time_split_flowing.json"),
+    "time_split_flowing_xeon": lambda: time_split_table("studies/performance/results/drum_time_split_flowing_xeon.json"),
+    "time_split_flowing_xeon_before": lambda: time_split_table("studies/performance/results/drum_time_split_flowing_xeon_before.json"),
+    "scaling": lambda: script("studies/performance/scaling_table.py", "studies/performance/results/scaling.log"),
+    "scaling_knee": lambda: script("studies/performance/scaling_knee_table.py", "studies/performance/results/scaling_knee.log",
+                                   "studies/performance/results/memory_bandwidth.json"),
+    "scaling_xeon": lambda: script("studies/performance/scaling_table.py", "studies/performance/results/scaling_xeon.log"),
+    "scaling_knee_xeon": lambda: script("studies/performance/scaling_knee_table.py", "studies/performance/results/scaling_knee_xeon.log",
+                                        "studies/performance/results/memory_bandwidth_xeon.json"),
+    "scaling_windows_xeon": lambda: script("studies/performance/scaling_windows_table.py", "studies/performance/results/scaling_xeon.log",
+                                          "studies/performance/results/scaling_knee_xeon.log", "studies/performance/results/scaling_small_xeon.log"),
+    "scaling_l2_xeon": lambda: script("studies/performance/scaling_windows_table.py", "studies/performance/results/scaling_l2_xeon.log"),
+    "system_benchmarks": lambda: script("studies/performance/system_table.py"),
+    "liggghts": lambda: script("studies/performance/comparison_table.py", "studies/performance/results/comparison.log"),
+    "liggghts_flowing": lambda: script("studies/performance/comparison_table.py", "studies/performance/results/comparison_flowing.log"),
+    "liggghts_flowing_xeon": lambda: script("studies/performance/comparison_table.py",
+                                            "studies/performance/results/comparison_flowing_xeon.log"),
+    "liggghts_flowing_xeon_before": lambda: script("studies/performance/comparison_table.py",
+                                                   "studies/performance/results/comparison_flowing_xeon_before.log"),
+    "liggghts_flowing_epyc_deferred": lambda: script("studies/performance/comparison_table.py",
+                                                     "studies/performance/results/comparison_flowing_epyc_deferred.log"),
+    "liggghts_flowing_skin": lambda: script("studies/performance/comparison_table.py",
+                                            "studies/performance/results/comparison_flowing_skin0.3mm.log"),
+    "liggghts_flowing_mpi": lambda: script("studies/performance/comparison_table.py",
+                                           "studies/performance/results/comparison_flowing_mpi.log"),
+    "liggghts_flowing_grainflow": lambda: script("studies/performance/comparison_table.py",
+                                                 "studies/performance/results/comparison_flowing_grainflow.log"),
     "float_prefilter": float_prefilter_table,
-    "speed_bounds": lambda: script("tools/contact/bounds_table.py"),
+    "speed_bounds": lambda: script("studies/contact/bounds_table.py"),
     "pulsation": pulsation_table,
-    "pulsation_w0.25": lambda: pulsation_table("docs/seed000/pulsation_w0.25/pulsation.json"),
-    "pulsation_surface_w0.25": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.25/pulsation.json"),
-    "pulsation_surface_w0.50": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50/pulsation.json"),
-    "pulsation_surface_w0.50_from20": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.50_from20/pulsation.json"),
+    "pulsation_w0.25": lambda: pulsation_table("studies/seed000/results/pulsation_w0.25/pulsation.json"),
+    "pulsation_surface_w0.25": lambda: pulsation_table("studies/seed000/results/pulsation_surface_w0.25/pulsation.json"),
+    "pulsation_surface_w0.50": lambda: pulsation_table("studies/seed000/results/pulsation_surface_w0.50/pulsation.json"),
+    "pulsation_surface_w0.50_from20": lambda: pulsation_table("studies/seed000/results/pulsation_surface_w0.50_from20/pulsation.json"),
     "petal_arms": petal_arms_table,
-    "letter_convexity": lambda: script("tools/seed002/letter_convexity.py", "--table",
-                                       "docs/seed002/packing/letter_convexity.json"),
+    "letter_convexity": lambda: script("studies/seed002/letter_convexity.py", "--table",
+                                       "studies/seed002/results/packing/letter_convexity.json"),
     "pair_ablation": pair_ablation_table,
-    "pulsation_surface_w0.25_from20": lambda: pulsation_table("docs/seed000/pulsation_surface_w0.25_from20/pulsation.json"),
-    "mixer": lambda: script("tools/seed004/mixer_report.py", "table", "docs/seed004/mixer.json"),
-    "mixer_compartments": lambda: script("tools/seed004/compartments.py", "table", "docs/seed004/compartments.json"),
+    "pulsation_surface_w0.25_from20": lambda: pulsation_table("studies/seed000/results/pulsation_surface_w0.25_from20/pulsation.json"),
+    "mixer": lambda: script("studies/seed004/mixer_report.py", "table", "studies/seed004/results/mixer.json"),
+    "mixer_compartments": lambda: script("studies/seed004/compartments.py", "table", "studies/seed004/results/compartments.json"),
     "seed002_cost": seed002_cost,
-    "mpi_cost_model": lambda: script("tools/mpi/cost_model.py", "table"),
-    "mpi_mixer_ranks": lambda: script("tools/mpi/mixer_ranks.py", "table"),
-    "mpi_body_ranks": lambda: script("tools/mpi/body_ranks.py", "table"),
+    "mpi_cost_model": lambda: script("studies/mpi/cost_model.py", "table"),
+    "mpi_mixer_ranks": lambda: script("studies/mpi/mixer_ranks.py", "table"),
+    "mpi_body_ranks": lambda: script("studies/mpi/body_ranks.py", "table"),
     "mpi_every_scene": every_scene_table,
-    "coupled_sweep": lambda: script("tools/liquid/coupled_sweep.py", "table"),
-    "seed002_shapes": lambda: script("tools/seed002/shapes_hopper.py", "table", "docs/seed002/shapes/shapes.json"),
-    "mesh_drum": lambda: script("tools/walls/mesh_drum_compare.py", "table", "docs/walls/mesh_drum_compare.json"),
-    "kiln_map": lambda: script("tools/seed001/map_table.py", "docs/seed001/map.json"),
-    "kiln_stiffness": lambda: script("tools/seed001/map_table.py", "--stiffness", "docs/seed001/stiffness.json"),
-    "seed_drum": lambda: script("tools/seed000/study_table.py", "docs/seed000/seed_drum_table.json"),
-    "profile_flowing": lambda: script("tools/bench/profile_table.py", "docs/bench/profile_flowing.txt"),
-    "profile_flowing_xeon": lambda: script("tools/bench/profile_table.py", "docs/bench/profile_flowing_xeon.txt"),
-    "flow_ensemble": lambda: script("tools/liggghts/flow_agreement_table.py", "--ensemble",
-                                    "docs/liggghts/flow_ensemble.csv"),
-    "flow_agreement": lambda: script("tools/liggghts/flow_agreement_table.py", "docs/liggghts/flow_agreement.csv"),
-    "liquid_validation": lambda: script("tools/liquid/validation_table.py", "docs/liquid/validation.csv"),
-    "liquid_boundary": lambda: script("tools/liquid/sweep_table.py", "--boundary", "docs/liquid/sweep.csv",
-                                      "docs/liquid/sweep_3d.csv"),
-    "liquid_sweep": lambda: script("tools/liquid/sweep_table.py", "docs/liquid/sweep.csv"),
-    "liquid_sweep_3d": lambda: script("tools/liquid/sweep_table.py", "docs/liquid/sweep_3d.csv"),
-    "liquid_options": lambda: script("tools/liquid/options_table.py", "docs/liquid/options.csv"),
-    "liquid_bench_ppe": lambda: script("tools/liquid/bench_table.py", "--ppe", "docs/liquid/bench_ppe.json"),
-    "liquid_bench_step": lambda: script("tools/liquid/bench_table.py", "--step", "docs/liquid/bench_step.json",
-                                        "--before", "docs/liquid/bench_step_before.json"),
-    "fluidised_bed": lambda: script("tools/liquid/fluidised_bed.py", "table", "docs/liquid/fluidised_bed.csv"),
-    "fluidised_bed_closed": lambda: script("tools/liquid/fluidised_bed.py", "table",
-                                           "docs/liquid/closed/fluidised_bed.csv"),
-    "coupled_ladder": lambda: script("tools/liquid/ladder_table.py"),
-    "transport_pipe": lambda: script("tools/liquid/transport_pipe.py", "table", "docs/liquid/transport_pipe.json"),
-    "liquid_step_rounds": lambda: script("tools/liquid/step_rounds.py", "table", "docs/liquid/step_rounds.csv"),
-    "liquid_step_rounds_solvers": lambda: script("tools/liquid/step_rounds.py", "table",
-                                                 "docs/liquid/step_rounds_solvers.csv"),
-    "liquid_step_rounds_simd": lambda: script("tools/liquid/step_rounds.py", "table", "docs/liquid/step_rounds_simd.csv"),
-    "liquid_solve_rounds_simd": lambda: script("tools/liquid/step_rounds.py", "table",
-                                               "docs/liquid/solve_rounds_simd.csv", "--per", "solve"),
-    "liquid_solve_rounds_float": lambda: script("tools/liquid/step_rounds.py", "table",
-                                                "docs/liquid/solve_rounds_float.csv", "--per", "solve"),
+    "coupled_sweep": lambda: script("studies/seed003/coupled_sweep.py", "table"),
+    "seed002_shapes": lambda: script("studies/seed002/shapes_hopper.py", "table", "studies/seed002/results/shapes/shapes.json"),
+    "mesh_drum": lambda: script("studies/walls/mesh_drum_compare.py", "table", "studies/walls/results/mesh_drum_compare.json"),
+    "kiln_map": lambda: script("studies/seed001/map_table.py", "studies/seed001/results/map.json"),
+    "kiln_stiffness": lambda: script("studies/seed001/map_table.py", "--stiffness", "studies/seed001/results/stiffness.json"),
+    "seed_drum": lambda: script("studies/seed000/study_table.py", "studies/seed000/results/seed_drum_table.json"),
+    "profile_flowing": lambda: script("studies/performance/profile_table.py", "studies/performance/results/profile_flowing.txt"),
+    "profile_flowing_xeon": lambda: script("studies/performance/profile_table.py", "studies/performance/results/profile_flowing_xeon.txt"),
+    "flow_ensemble": lambda: script("studies/performance/flow_agreement_table.py", "--ensemble",
+                                    "studies/performance/results/flow_ensemble.csv"),
+    "flow_agreement": lambda: script("studies/performance/flow_agreement_table.py", "studies/performance/results/flow_agreement.csv"),
+    "liquid_validation": lambda: script("studies/seed003/validation_table.py", "studies/seed003/results/validation.csv"),
+    "liquid_boundary": lambda: script("studies/seed003/sweep_table.py", "--boundary", "studies/seed003/results/sweep.csv",
+                                      "studies/seed003/results/sweep_3d.csv"),
+    "liquid_sweep": lambda: script("studies/seed003/sweep_table.py", "studies/seed003/results/sweep.csv"),
+    "liquid_sweep_3d": lambda: script("studies/seed003/sweep_table.py", "studies/seed003/results/sweep_3d.csv"),
+    "liquid_options": lambda: script("studies/seed003/options_table.py", "studies/seed003/results/options.csv"),
+    "liquid_bench_ppe": lambda: script("studies/seed003/bench_table.py", "--ppe", "studies/seed003/results/bench_ppe.json"),
+    "liquid_bench_step": lambda: script("studies/seed003/bench_table.py", "--step", "studies/seed003/results/bench_step.json",
+                                        "--before", "studies/seed003/results/bench_step_before.json"),
+    "fluidised_bed": lambda: script("studies/seed003/fluidised_bed.py", "table", "studies/seed003/results/fluidised_bed.csv"),
+    "fluidised_bed_closed": lambda: script("studies/seed003/fluidised_bed.py", "table",
+                                           "studies/seed003/results/closed/fluidised_bed.csv"),
+    "coupled_ladder": lambda: script("studies/seed003/ladder_table.py"),
+    "transport_pipe": lambda: script("studies/seed003/transport_pipe.py", "table", "studies/seed003/results/transport_pipe.json"),
+    "liquid_step_rounds": lambda: script("studies/seed003/step_rounds.py", "table", "studies/seed003/results/step_rounds.csv"),
+    "liquid_step_rounds_solvers": lambda: script("studies/seed003/step_rounds.py", "table",
+                                                 "studies/seed003/results/step_rounds_solvers.csv"),
+    "liquid_step_rounds_simd": lambda: script("studies/seed003/step_rounds.py", "table", "studies/seed003/results/step_rounds_simd.csv"),
+    "liquid_solve_rounds_simd": lambda: script("studies/seed003/step_rounds.py", "table",
+                                               "studies/seed003/results/solve_rounds_simd.csv", "--per", "solve"),
+    "liquid_solve_rounds_float": lambda: script("studies/seed003/step_rounds.py", "table",
+                                                "studies/seed003/results/solve_rounds_float.csv", "--per", "solve"),
     "packing": packing_table,
     "packing_friction": packing_friction_table,
     "packing_stroke": packing_stroke_table,
     "averaged_liquid": averaged_liquid_table,
     "amg_probe": amg_probe_table,
-    "seed002_outlet": lambda: script("tools/seed002/arch_or_heap.py", "--table", "docs/seed002/outlet/outlet.json"),
-    "seed002_outlet_pours": lambda: script("tools/seed002/arch_or_heap.py", "--ensemble",
-                                           "docs/seed002/outlet/outlet.json"),
+    "seed002_outlet": lambda: script("studies/seed002/arch_or_heap.py", "--table", "studies/seed002/results/outlet/outlet.json"),
+    "seed002_outlet_pours": lambda: script("studies/seed002/arch_or_heap.py", "--ensemble",
+                                           "studies/seed002/results/outlet/outlet.json"),
 }
 
 def all_tables():
@@ -443,7 +443,7 @@ def all_tables():
 
 
 def pages():
-    """README.md and every Markdown page under docs/ (and studies/, once it exists)."""
+    """README.md and every Markdown page under docs/ and studies/."""
     found = [ROOT / "README.md"]
     for top in ("docs", "studies"):
         found += sorted((ROOT / top).rglob("*.md"))

@@ -1,8 +1,8 @@
 """Generated tables of docs/results/contact.md (tools/readme/tables.py collects TABLES).
 
 contact_side_by_side: the references' figures (docs/results/data/contact_paper.json: closed forms and
-Chung & Ooi 2011) next to grainflow's, from the files the tests write (docs/contact/analytic.csv and
-docs/contact/chung_ooi.csv). Before it compares, it checks that the JSON's reference values equal the
+Chung & Ooi 2011) next to grainflow's, from the files the tests write (studies/contact/results/analytic.csv and
+studies/contact/results/chung_ooi.csv). Before it compares, it checks that the JSON's reference values equal the
 reference column the tests recorded, so the two cannot drift apart. "agree?" follows the JSON's
 agree_rule: every figure of the row within the tolerance its test asserts.
 """

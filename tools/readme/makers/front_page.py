@@ -3,7 +3,7 @@
 Both are drawn from the results pages' own generated tables (the other modules of tools/readme/makers/), so
 the front page can never say more than the pages do: a study's line counts the rows of its side-by-side
 table whose "agree?" cell starts with "yes"; the speed lines are the first two rows of the performance
-page's summary. They read only files under docs/, through those makers.
+page's summary. They read only committed files (studies/<study>/results/ and docs/results/data/), through those makers.
 """
 import importlib.util
 from pathlib import Path
@@ -14,17 +14,17 @@ MAKERS = Path(__file__).resolve().parent
 STUDIES = [
     ("000 drum", "Zhao & Cheng 2007", "a binary mixture in a thin rotating drum forms a moon at high speed and "
      "petals at low speed", "seed000", "seed000_side_by_side",
-     "docs/seed000/study/half_w0.25/pictures/angle_30.00.png", "docs/results/seed000-drum.md"),
+     "studies/seed000/results/study/half_w0.25/pictures/angle_30.00.png", "docs/results/seed000-drum.md"),
     ("001 kiln", "Chen Hui et al.", "a map of mixing and segregation over size and density ratios in a "
-     "rotary kiln", "seed001", "seed001_side_by_side", "docs/seed001/map.png", "docs/results/seed001-kiln.md"),
+     "rotary kiln", "seed001", "seed001_side_by_side", "studies/seed001/results/map.png", "docs/results/seed001-kiln.md"),
     ("002 composites", "Li, Liu & Ji", "concave grains as rigid composites of dilated polyhedra: packing order "
      "of letters, hopper discharge and arches", "seed002", "seed002_side_by_side",
-     "docs/seed002/packing/packing_profiles.png", "docs/results/seed002-composites.md"),
+     "studies/seed002/results/packing/packing_profiles.png", "docs/results/seed002-composites.md"),
     ("003 liquid", "Pan, Xie & Wan 2021", "MPS liquid coupled to DEM: grains carried up a vertical pipe",
-     "seed003", "seed003_side_by_side", "docs/liquid/transport_pipe_views.png", "docs/results/seed003-liquid.md"),
+     "seed003", "seed003_side_by_side", "studies/seed003/results/transport_pipe_views.png", "docs/results/seed003-liquid.md"),
     ("004 mixer", "Cherpitskiy, Korolev & Tarshis 2022", "coarse-grained DEM of a continuous drum-blade "
      "mixer: the inhomogeneity Vc along its length", "seed004", "seed004_side_by_side",
-     "docs/seed004/vc_profile.png", "docs/results/seed004-mixer.md"),
+     "studies/seed004/results/vc_profile.png", "docs/results/seed004-mixer.md"),
     ("contact laws", "analytic solutions, Chung & Ooi 2011", "single contacts with known answers",
      "contact", "contact_side_by_side", None, "docs/results/contact.md"),
 ]

@@ -2,9 +2,9 @@
 LIGGGHTS 3.8 and against the project's stated aims, from the committed result files.
 
 Reads docs/results/data/performance_reference.json (the aims), the comparison logs of
-tools/liggghts/run_comparison.sh (docs/liggghts/comparison*.log, parsed by tools/liggghts/comparison_table.py),
-the flow ensemble (docs/liggghts/flow_ensemble.json) and the scaling logs of tools/bench_scaling.sh
-(docs/bench/scaling*.log, parsed by tools/bench/scaling_table.py).
+studies/performance/run_comparison.sh (studies/performance/results/comparison*.log, parsed by studies/performance/comparison_table.py),
+the flow ensemble (studies/performance/results/flow_ensemble.json) and the scaling logs of studies/performance/bench_scaling.sh
+(studies/performance/results/scaling*.log, parsed by studies/performance/scaling_table.py).
 
 Rules for "agree?":
   - a speed row: "faster" when grainflow's rate is above LIGGGHTS's in every round of the log (each round runs
@@ -20,12 +20,11 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(ROOT / "tools" / "liggghts"))
-sys.path.insert(0, str(ROOT / "tools" / "bench"))
+sys.path.insert(0, str(ROOT / "studies" / "performance"))
 from comparison_table import parse, round_ratios  # noqa: E402
 from scaling_table import LINE, SCALE, one_thread_windows  # noqa: E402
 
-LOGS = ROOT / "docs/liggghts"
+LOGS = ROOT / "studies/performance/results"
 REFERENCE = ROOT / "docs/results/data/performance_reference.json"
 
 
@@ -44,7 +43,7 @@ def _speed_row(what, name, n, aim):
     faster = sum(x > 1 for x in q)
     verdict = (f"faster in {faster} of {len(q)} rounds" if faster < len(q) else "faster in every round")
     verdict += f"; the aim ×{aim:g}: {'reached' if statistics.median(q) >= aim else 'not reached'}"
-    return (f"{what} (`docs/liggghts/{name}`)", f"LIGGGHTS {lig:.3g} particle-steps/s (median of {len(rounds)})",
+    return (f"{what} (`studies/performance/results/{name}`)", f"LIGGGHTS {lig:.3g} particle-steps/s (median of {len(rounds)})",
             f"{gf:.3g} particle-steps/s; per round **×{statistics.median(q):.2f}** (×{min(q):.2f}–{max(q):.2f})",
             verdict)
 
@@ -57,7 +56,7 @@ def _windows_row(n, aim):
             meds.append(statistics.median(q))
     reached = sum(m >= aim for m in meds)
     cores = f"{n} core{'s' if n > 1 else ''}"
-    return (f"flowing drum, {cores}, every committed window (`docs/liggghts/comparison_flowing*.log`, {len(meds)} logs)",
+    return (f"flowing drum, {cores}, every committed window (`studies/performance/results/comparison_flowing*.log`, {len(meds)} logs)",
             f"the aim: ×{aim:g} LIGGGHTS per core",
             f"median per-round ratio of each window: ×{min(meds):.2f}–{max(meds):.2f} (median ×{statistics.median(meds):.2f})",
             f"faster in every window; the aim reached in {reached} of {len(meds)}")
@@ -85,7 +84,7 @@ def _flow_rows():
     n = len(s["members"])
     return [
         (f"free-surface angle, 1.5 s of rotation from rest, every 0.1 s from {s['from_t']} s "
-         "(`docs/liggghts/flow_ensemble.json`)",
+         "(`studies/performance/results/flow_ensemble.json`)",
          "LIGGGHTS, one run",
          f"{n} runs differing only in round-off; LIGGGHTS outside their range by at most "
          f"{s['max_angle_outside_deg']:.2f}° (their own spread up to {s['max_angle_spread_deg']:.2f}°)",
@@ -100,22 +99,22 @@ def _flow_rows():
 
 
 def _scaling_row(within):
-    # AMD EPYC: one window, docs/bench/scaling.log; Intel Xeon: the medians over its windows.
+    # AMD EPYC: one window, studies/performance/results/scaling.log; Intel Xeon: the medians over its windows.
     epyc = {}
-    for line in (ROOT / "docs/bench/scaling.log").open():
+    for line in (ROOT / "studies/performance/results/scaling.log").open():
         m = LINE.search(line)
         if m and int(m.group(1)) == 1:
             epyc[round(float(m.group(2)) * SCALE[m.group(3)])] = float(m.group(4)) * SCALE[m.group(5)]
     e = epyc[min(epyc)] / epyc[max(epyc)]
     rates = {}
-    for w in one_thread_windows([ROOT / p for p in ("docs/bench/scaling_xeon.log", "docs/bench/scaling_knee_xeon.log",
-                                                    "docs/bench/scaling_small_xeon.log")]):
+    for w in one_thread_windows([ROOT / p for p in ("studies/performance/results/scaling_xeon.log", "studies/performance/results/scaling_knee_xeon.log",
+                                                    "studies/performance/results/scaling_small_xeon.log")]):
         for g, r in w.items():
             rates.setdefault(g, []).append(r)
     x = statistics.median(rates[min(rates)]) / statistics.median(rates[max(rates)])
     ok = max(e, x) <= 1 + within
     return (f"cost per grain, settled layer of {min(epyc):,} against {max(epyc):,} grains, 1 thread "
-            "(`docs/bench/scaling.log`; Xeon: `scaling_xeon.log`, `scaling_knee_xeon.log`, `scaling_small_xeon.log`)",
+            "(`studies/performance/results/scaling.log`; Xeon: `scaling_xeon.log`, `scaling_knee_xeon.log`, `scaling_small_xeon.log`)",
             f"the aim: equal within {100 * within:.0f} %",
             f"the smaller layer ×{e:.2f} as fast per grain (AMD EPYC); ×{x:.2f} (Intel Xeon, medians over windows)",
             "yes" if ok else "no")
@@ -133,7 +132,7 @@ NOTES = {
     "rebuilds": "grainflow keeps its list past skin/2 while no pair missing from it touches",
     "angle": "LIGGGHTS's angle above the range by more than 0.05° at t = {ts} s (by {lo:.2f}–{hi:.2f}°): within the "
              "tolerance but on one side; cause not yet measured",
-    "speed": "a single run of each is {miss} % apart at t = {ts} s (`docs/liggghts/flow_agreement.csv`): "
+    "speed": "a single run of each is {miss} % apart at t = {ts} s (`studies/performance/results/flow_agreement.csv`): "
              "round-off moves the first avalanche",
     "scaling": "the state leaves the cache; running the step over blocks of space is not built",
 }
@@ -162,7 +161,7 @@ def summary():
         _speed_row("settled drum, 1 core, AMD EPYC", "comparison.log", 1, aim)
         + (NOTES["settled1"].format(lr=min(sbuilds["liggghts"]), gr=min(sbuilds["grainflow"])),),
         _speed_row("settled drum, 2 cores, AMD EPYC", "comparison.log", 2, aim) + (NOTES["settled2"],),
-        ("neighbour-list rebuilds in 2,000 steps of the flowing drum (`docs/liggghts/comparison_flowing.log`)",
+        ("neighbour-list rebuilds in 2,000 steps of the flowing drum (`studies/performance/results/comparison_flowing.log`)",
          f"LIGGGHTS {min(builds['liggghts'])}", f"{min(builds['grainflow'])}",
          "fewer" if max(builds["grainflow"]) < min(builds["liggghts"]) else "not fewer", NOTES["rebuilds"]),
     ]

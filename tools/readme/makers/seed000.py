@@ -1,11 +1,11 @@
 """Seed 000 (the thin drum): the paper's results beside grainflow's, for docs/results/seed000-drum.md.
 
-Reads only files under docs/: the paper's values (docs/results/data/seed000_paper.json), the archived
-runs (docs/seed000/study/<case>/series.csv, tools/seed000/study.py), the cases' table
-(docs/seed000/seed_drum_table.json, study.py report), the arms inside the bed
-(docs/seed000/petal_arms/<case>/petal_arms.json, tools/seed000/petal_arms.py), the pulsation
-(docs/seed000/pulsation_surface_w0.50_from20/pulsation.json, tools/seed000/pulsation.py) and the
-speed/accuracy runs (docs/seed000/speed_accuracy.json, tools/seed000/speed_accuracy.py).
+Reads only committed files: the paper's values (docs/results/data/seed000_paper.json), the archived
+runs (studies/seed000/results/study/<case>/series.csv, studies/seed000/study.py), the cases' table
+(studies/seed000/results/seed_drum_table.json, study.py report), the arms inside the bed
+(studies/seed000/results/petal_arms/<case>/petal_arms.json, studies/seed000/petal_arms.py), the pulsation
+(studies/seed000/results/pulsation_surface_w0.50_from20/pulsation.json, studies/seed000/pulsation.py) and the
+speed/accuracy runs (studies/seed000/results/speed_accuracy.json, studies/seed000/speed_accuracy.py).
 """
 import csv
 import json
@@ -13,19 +13,19 @@ import math
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[3]
-DOCS = ROOT / "docs"
+RESULTS = ROOT / "studies" / "seed000" / "results"
 
 KINDS = {"0": "moon", "1": "petals", "-1": "undecided"}
-LAST_BIN = (29.75, 30.0)  # the last quarter radian before 30 rad, as tools/seed000/pattern_calls.py bins it
+LAST_BIN = (29.75, 30.0)  # the last quarter radian before 30 rad, as studies/seed000/pattern_calls.py bins it
 PERIOD_TOLERANCE = 0.10   # one shared period: the two periods within 10 % of the shorter
 
 
 def load(rel):
-    return json.loads((DOCS / rel).read_text())
+    return json.loads((ROOT / rel).read_text())
 
 
 def series(case):
-    with open(DOCS / "seed000" / "study" / case / "series.csv") as f:
+    with open(RESULTS / "study" / case / "series.csv") as f:
         return [(float(r["angle"]), r["pattern"], float(r["petals"])) for r in csv.DictReader(f)]
 
 
@@ -49,7 +49,7 @@ def ring_text(r):
 
 
 def arms(case):
-    rings = load(f"seed000/petal_arms/{case}/petal_arms.json")["rings"]
+    rings = load(f"studies/seed000/results/petal_arms/{case}/petal_arms.json")["rings"]
     best = max(r["arms"] for r in rings)
     at = "/".join(f"{r['r_over_R']:.1f}" for r in rings if r["arms"] == best)
     return best, at
@@ -61,8 +61,8 @@ def fmt_e(x):
 
 
 def side_by_side():
-    paper = load("results/data/seed000_paper.json")
-    table = {r["case"]: r for r in load("seed000/seed_drum_table.json")}
+    paper = load("docs/results/data/seed000_paper.json")
+    table = {r["case"]: r for r in load("studies/seed000/results/seed_drum_table.json")}
     rows = ["| quantity | the paper reports | grainflow gets | agree? | why not |", "|---|---|---|---|---|"]
 
     for p in paper["patterns_at_30_rad"]:
@@ -98,7 +98,7 @@ def side_by_side():
                     f"{'' if agree else 'cause not yet measured'} |")
 
     p = paper["pulsation"]
-    s = load("seed000/pulsation_surface_w0.50_from20/pulsation.json")
+    s = load("studies/seed000/results/pulsation_surface_w0.50_from20/pulsation.json")
     b, v = s["surface_bulge"], s["surface_speed"]
     shared = abs(b["period_s"] - v["period_s"]) <= PERIOD_TOLERANCE * min(b["period_s"], v["period_s"])
     rows.append(f"| pulsation once the petals form, 1/2 fill, {p['omega']:.2f} rad/s | {p['shown']} | "
@@ -108,7 +108,7 @@ def side_by_side():
                 f"{'' if shared else 'the speed and the bulge do not share one period; cause not yet measured'} |")
 
     p = paper["time_step"]
-    runs = load("seed000/speed_accuracy.json")
+    runs = load("studies/seed000/results/speed_accuracy.json")
     seed = next(r for r in runs if abs(r["dt"] - p["dt_s"]) < 1e-12 * p["dt_s"] + 1e-15)
     period = seed["dt"] / seed["critical_fraction"]
     double = next((r for r in runs if abs(r["dt"] - 2 * p["dt_s"]) < 1e-12 and r["status"] == "completed"), None)

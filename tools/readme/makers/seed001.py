@@ -1,7 +1,7 @@
 """Seed 001 (the kiln mixing map): the paper's statements beside grainflow's map, for docs/results/seed001-kiln.md.
 
-Reads only files under docs/: the paper's statements and the literature rows
-(docs/results/data/seed001_paper.json) and the map (docs/seed001/map.json, tools/seed001/kiln_map.py report).
+Reads only committed files: the paper's statements and the literature rows
+(docs/results/data/seed001_paper.json) and the map (studies/seed001/results/map.json, studies/seed001/kiln_map.py report).
 The radial index is that of the large species (systems/analysis/mixing.hpp): + when it lies at the
 periphery (a small-grain core), - when it lies in the core. "Beyond its fluctuation" means farther from
 0 than its standard deviation over the averaging window, the map's own test (map.json radial_near_zero).
@@ -11,11 +11,11 @@ import math
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[3]
-DOCS = ROOT / "docs"
+RESULTS = ROOT / "studies" / "seed001" / "results"
 
 
 def load(rel):
-    return json.loads((DOCS / rel).read_text())
+    return json.loads((ROOT / rel).read_text())
 
 
 def cases(m):
@@ -47,8 +47,8 @@ def balances(m):
 
 
 def side_by_side():
-    paper = load("results/data/seed001_paper.json")
-    m = load("seed001/map.json")
+    paper = load("docs/results/data/seed001_paper.json")
+    m = load("studies/seed001/results/map.json")
     cs = cases(m)
     rows = ["| quantity | the paper reports | grainflow gets | agree? | why not |", "|---|---|---|---|---|"]
 

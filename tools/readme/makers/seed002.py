@@ -1,7 +1,7 @@
 """Seed 002 (composite grains of dilated polyhedra): the side-by-side table of docs/results/seed002-composites.md.
 
 The paper's statements are in docs/results/data/seed002_paper.json (each with its place in the paper); grainflow's
-side comes from the committed result files under docs/seed002/. The rules for "agree?" are in each row's function.
+side comes from the committed result files under studies/seed002/results/. The rules for "agree?" are in each row's function.
 """
 import json
 import pathlib
@@ -9,13 +9,13 @@ import statistics
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(ROOT / "tools" / "seed002"))
+sys.path.insert(0, str(ROOT / "studies" / "seed002"))
 from arch_or_heap import first_stop, grain_side_mm, shape_of, verdict  # noqa: E402
 
 NAMES = {"hollow_block": "hollow block", "tetrapod": "tetrapod", "twisted_i": "twisted I",
          "twisted_king": "twisted king"}
-LETTER_FILES = (("0.03 m (the scene)", "docs/seed002/packing/packing.json"),
-                ("0.04 m", "docs/seed002/packing/stroke40_dt5/packing.json"))
+LETTER_FILES = (("0.03 m (the scene)", "studies/seed002/results/packing/packing.json"),
+                ("0.04 m", "studies/seed002/results/packing/stroke40_dt5/packing.json"))
 
 
 def load(path):
@@ -30,8 +30,8 @@ def spread(values, fmt="{:.2f}"):
 
 
 def pours(shape, sides):
-    """The outlet runs (docs/seed002/outlet/outlet.json) of one grain and gate width in grain sides."""
-    runs = load("docs/seed002/outlet/outlet.json")
+    """The outlet runs (studies/seed002/results/outlet/outlet.json) of one grain and gate width in grain sides."""
+    runs = load("studies/seed002/results/outlet/outlet.json")
     return [e for e in runs.values()
             if shape_of(e["overrides"]) == shape and round(40 / grain_side_mm(e["overrides"]), 1) == sides]
 
@@ -55,9 +55,9 @@ def yes(flag):
 def hopper_rows(paper):
     rows = []
     prisms, cones = paper["prisms_arches"], paper["cones_arch"]
-    first_runs = load("docs/seed002/friction/friction.json")
+    first_runs = load("studies/seed002/results/friction/friction.json")
     # Prisms of the scene (gate 4 grain sides): the scene's own pour and the outlet study's pours at 10 mm.
-    p4 = [first_runs["docs/seed002/hopper_prisms"]] + pours("prisms", 4.0)
+    p4 = [first_runs["studies/seed002/results/hopper_prisms"]] + pours("prisms", 4.0)
     arches = sum(verdict(e) == "arch" for e in p4)
     left = [e["remaining_at_end"] for e in p4]
     rows.append(("prisms, gate 4 grain sides (the scene's 10 mm prisms): arches", prisms["value"],
@@ -81,7 +81,7 @@ def hopper_rows(paper):
                  else yes(twice * 2 > len(p3)),
                  "the pattern agrees; its times vary between pours"))
     # Cones of the scene (gate 4 sides): one pour, no final frame (its pictures show the dead zones).
-    c4 = first_runs["docs/seed002/hopper_cones"]
+    c4 = first_runs["studies/seed002/results/hopper_cones"]
     rows.append(("cones, gate 4 grain sides (the scene's element): lasting arch", cones["value"],
                  f"no: the flow stops at {c4['last_change_s']:.2f} s with {c4['remaining_at_end']:.3f} left, "
                  "on the dead zones beside the gate (pictures)",
@@ -104,7 +104,7 @@ def packing_rows(paper):
     groups = paper["packing_order"]["value"]
     rank = {letter: i for i, group in enumerate(groups) for letter in group}
     text = " > ".join(", ".join(g) for g in groups)
-    conv = load("docs/seed002/packing/letter_convexity.json")["rows"]
+    conv = load("studies/seed002/results/packing/letter_convexity.json")["rows"]
     most_convex = {r["stroke_m"]: max((x for x in conv if x["stroke_m"] == r["stroke_m"]),
                                       key=lambda x: x["convexity"])["letter"] for r in conv}
     for label, path in LETTER_FILES:
@@ -123,8 +123,8 @@ def packing_rows(paper):
 
 
 def shapes_rows(paper):
-    s = {k: v for k, v in load("docs/seed002/shapes/shapes.json")["shapes"].items() if k in NAMES}
-    long = load("docs/seed002/shapes/shapes.json")["shapes"].get("hollow_block_long")
+    s = {k: v for k, v in load("studies/seed002/results/shapes/shapes.json")["shapes"].items() if k in NAMES}
+    long = load("studies/seed002/results/shapes/shapes.json")["shapes"].get("hollow_block_long")
     rows = []
     left = {k: v["left_at_end"] for k, v in s.items()}
     drained = [k for k in s if k == min(left, key=left.get)]

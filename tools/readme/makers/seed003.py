@@ -1,16 +1,16 @@
 """Seed 003 (MPS-DEM transport pipe): the paper's figures beside grainflow's, for docs/results/seed003-liquid.md.
 
 Reads docs/results/data/seed003_paper.json (the paper's values, each with its place in the paper) and
-docs/liquid/transport_pipe.json (written by tools/liquid/transport_pipe.py collect). Numbers are printed with
-the formats of the transport_pipe table (tools/liquid/transport_pipe.py table).
+studies/seed003/results/transport_pipe.json (written by studies/seed003/transport_pipe.py collect). Numbers are printed with
+the formats of the transport_pipe table (studies/seed003/transport_pipe.py table).
 """
 import json
 import pathlib
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 PAPER = "docs/results/data/seed003_paper.json"
-PIPE = "docs/liquid/transport_pipe.json"
-LIQUID_ONLY = "docs/liquid/transport_pipe_liquid_only.json"
+PIPE = "studies/seed003/results/transport_pipe.json"
+LIQUID_ONLY = "studies/seed003/results/transport_pipe_liquid_only.json"
 
 RULES = ("Agreement rules: a variance agrees when it lies within two standard deviations of the frames' own "
          "variances; a trend or a statement agrees when it holds at every speed the paper reports; a peak position "

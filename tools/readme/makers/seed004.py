@@ -1,8 +1,8 @@
 """Seed 004 (the continuous drum-blade mixer): the paper's values beside grainflow's.
 
 Reads docs/results/data/seed004_paper.json (the paper's values, each with its source and reading
-uncertainty, and the agreement rules), docs/seed004/mixer.json (tools/seed004/mixer_report.py) and
-docs/seed004/compartments.json (tools/seed004/compartments.py).
+uncertainty, and the agreement rules), studies/seed004/results/mixer.json (studies/seed004/mixer_report.py) and
+studies/seed004/results/compartments.json (studies/seed004/compartments.py).
 """
 import json
 import pathlib
@@ -33,8 +33,8 @@ def _pct(v):
 def seed004_side_by_side():
     paper = _load("docs/results/data/seed004_paper.json")["values"]
     assumed = _load("docs/results/data/seed004_paper.json")["assumptions"]
-    mixer = _load("docs/seed004/mixer.json")
-    comp = {r["run"]: r for r in _load("docs/seed004/compartments.json")["runs"]}
+    mixer = _load("studies/seed004/results/mixer.json")
+    comp = {r["run"]: r for r in _load("studies/seed004/results/compartments.json")["runs"]}
     designs = mixer["designs"]
     finest = next(m for m in mixer["models"] if m["model"] == "sphere DEM, factor 3")
     inlet, far = paper["vc_near_inlet_percent"], paper["vc_at_0p4_m_percent"]
@@ -91,7 +91,7 @@ def seed004_side_by_side():
                     f"{'yes' if ok else 'no'} | {why} |")
     rows.append("")
     rows.append("grainflow's Vc: mean of the pooled layer rows in steady state (their range), from "
-                "docs/seed004/mixer.json. agree?: a value within the paper's range widened by its reading "
+                "studies/seed004/results/mixer.json. agree?: a value within the paper's range widened by its reading "
                 "uncertainty; a count or fraction within 5 %; a trend in every design.")
     return "\n".join(rows) + "\n"
 

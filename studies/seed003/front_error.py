@@ -1,0 +1,60 @@
+#!/usr/bin/python3
+"""Surge-front error of a dam-break run against the experiments in studies/seed003/results/dam_break_experiments.csv.
+
+usage: front_error.py RUN_DIR [a_m]   (a: the column width, default 0.146 m)
+Prints, per experimental point with Z/a < 3.9 (before the front meets the far wall at Z/a = 4), our Z/a
+interpolated at the same T = t sqrt(2 g / a) and the relative difference, then the mean and max per source.
+"""
+import csv
+import math
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+EXP = os.path.join(HERE, "results", "dam_break_experiments.csv")
+
+
+def experiments():
+    with open(EXP) as f:
+        rows = [l for l in f if not l.startswith("#")]
+    return [(r["source"], float(r["T"]), float(r["Z_over_a"])) for r in csv.DictReader(rows)]
+
+
+def front_series(run_dir, a, g=9.81):
+    with open(os.path.join(run_dir, "series.csv")) as f:
+        rows = list(csv.DictReader(f))
+    T = [float(r["time"]) * math.sqrt(2 * g / a) for r in rows]
+    Z = [float(r["surge_front"]) / a for r in rows]
+    return T, Z
+
+
+def interp(T, Z, t):
+    for i in range(1, len(T)):
+        if T[i] >= t:
+            f = (t - T[i - 1]) / (T[i] - T[i - 1])
+            return Z[i - 1] + f * (Z[i] - Z[i - 1])
+    return float("nan")
+
+
+def errors(run_dir, a=0.146):
+    T, Z = front_series(run_dir, a)
+    out = {}
+    for src, t, z in experiments():
+        if z >= 3.9 or t > T[-1]:
+            continue
+        out.setdefault(src, []).append((t, z, interp(T, Z, t)))
+    return out
+
+
+def main():
+    run_dir = sys.argv[1]
+    a = float(sys.argv[2]) if len(sys.argv) > 2 else 0.146
+    for src, pts in errors(run_dir, a).items():
+        rel = [(ours - z) / z for _, z, ours in pts]
+        for (t, z, ours), r in zip(pts, rel):
+            print(f"{src:22s} T={t:5.3f} exp Z/a={z:5.3f} ours={ours:5.3f} {100 * r:+6.1f} %")
+        print(f"{src:22s} mean {100 * sum(rel) / len(rel):+6.1f} %  max |err| {100 * max(abs(r) for r in rel):5.1f} %")
+
+
+if __name__ == "__main__":
+    main()

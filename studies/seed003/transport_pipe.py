@@ -1,0 +1,328 @@
+#!/usr/bin/python3
+"""Seed 003's vertical transport pipe, scaled down (scenes/liquid/transport_pipe.toml): grains carried up a
+periodic pipe of water at the seed's transport speeds, and the seed's observables against its table.
+
+  /usr/bin/python3 studies/seed003/transport_pipe.py run [--speeds 2 3 4 5] [--offaxis] [--duration 2.5]
+                                                     [--budget-minutes 30] [--binary build/grainflow]
+      one case per speed into runs/liquid/transport_pipe/u<U> (and with --offaxis u<U>_offaxis for each
+      of those speeds: the fill's centre moved 0.01 m off the axis, the seed's check), each in resumable
+      pieces of at most the budget (grainflow.resumable: a piece stops with a checkpoint and the
+      next resumes from it), each to its end before the next; after each piece the new frames are reduced
+      to rows of frames.csv and the case archived under studies/seed003/results/transport_pipe/<case>; then collect
+  /usr/bin/python3 studies/seed003/transport_pipe.py collect [--from 1.0]
+      studies/seed003/results/transport_pipe.json and studies/seed003/results/transport_pipe.png (profiles) from the cases'
+      frames.csv, studies/seed003/results/transport_pipe_views.png (pictures) from the last frames where a run
+      folder has them
+  /usr/bin/python3 studies/seed003/transport_pipe.py table [studies/seed003/results/transport_pipe.json]
+      the README's table (tools/readme/tables.py calls it; needs no numpy)
+
+Each frame (every 0.05 s) is reduced to one row of frames.csv: per ring of r/R 0.1 wide the fluid nodes'
+count and mean axial velocity and the grains' count; the grains' mean r/R, mean (r/R)^2, mean |omega| and
+mean axial velocity. Observables, over the rows from --from s to the end of each case:
+  u_profile     the fluid nodes' mean axial velocity over U in rings of r/R 0.1 wide
+  phi_profile   the grains' volume fraction in the same rings (each grain's volume at its centre's ring)
+  phi_peak      the ring of the largest volume fraction (its middle r/R) and that fraction
+  r_variance    the variance of the grains' r/R over all frames' grains (a disc filled evenly: 1/18 =
+                0.0556; the seed's values 0.029 to 0.040 are below it: the grains gather towards the axis),
+                with the standard deviation of the frames' own variances beside it
+  spin          the grains' mean |omega| (rad/s)
+  grain_speed   the grains' mean axial velocity (m/s)
+The seed's figures (spec/003, after 100 s of its 4 m pipe) are in SEED below.
+"""
+import argparse
+import json
+import math
+import os
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+from grainflow.vtp import read_vtp  # noqa: E402
+
+SCENE = "scenes/liquid/transport_pipe.toml"
+RUNS = "runs/liquid/transport_pipe"
+ARCHIVE = "studies/seed003/results/transport_pipe"
+DOCS = "studies/seed003/results/transport_pipe.json"
+R, LENGTH, RG = 0.1, 0.4, 0.01  # m: pipe radius, periodic length, grain radius
+RINGS = 10
+SEED = {  # speed: (radial variance, peak r/R, peak fraction %, mean spin rad/s)
+    2: (2.875e-2, 0.16, 13.8, 2.86),
+    3: (3.39e-2, 0.18, 13.5, 3.11),
+    4: (3.94e-2, 0.26, 12.3, 3.84),
+    5: (3.96e-2, None, None, 3.85),
+}
+
+
+def resumable():
+    """grainflow.resumable, imported where runs are read (it needs numpy; the table does not)."""
+    import grainflow.resumable as r
+    return r
+
+
+def cases(a):
+    out = [(f"u{u:g}", u, 0.0) for u in a.speeds]
+    if a.offaxis:
+        out += [(f"u{u:g}_offaxis", u, 0.01) for u in a.speeds]
+    return out
+
+
+def overrides(u, shift, duration):
+    sets = [f"drive.mean_velocity={u}", f"run.velocity_scale={1.2 * u}",
+            f"run.duration={duration}", "output.checkpoint_interval=0.5"]
+    if shift:
+        sets.append(f'fill.0.region={{shape="cylinder", center=[0.2,{shift},0.0], axis=[1.0,0.0,0.0], '
+                    f'radius=0.08, length=0.4}}')
+    return sets
+
+
+def run(a):
+    r = resumable()
+    pathlib = __import__("pathlib")
+    for name, u, shift in cases(a):
+        folder, dest = pathlib.Path(ROOT) / RUNS / name, pathlib.Path(ROOT) / ARCHIVE / name
+        r.restore(folder, dest)
+        done = lambda s: float(s[-1]["time"]) >= a.duration - 1e-9  # noqa: E731
+        while True:
+            piece = r.run_piece(name, a.binary, pathlib.Path(ROOT) / SCENE, folder, overrides(u, shift, a.duration),
+                                a.threads, a.budget_minutes * 60, done)
+            update_frames(str(folder))
+            s = r.load_series(folder)
+            finished = s is not None and done(s)
+            r.archive(folder, dest, finished, extra=("frames.csv", "final_state.csv"))
+            if piece is None or piece["status"] != "interrupted":
+                break
+    collect(a)
+
+
+def frames(run_dir, part):
+    import re
+    path = os.path.join(run_dir, part, "frames.pvd")
+    if not os.path.exists(path):
+        return []
+    text = open(path).read()
+    return [(float(t), os.path.join(run_dir, part, f))
+            for t, f in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)]
+
+
+def ring(r):
+    return min(RINGS - 1, int(r / R * RINGS))
+
+
+COLUMNS = (["time"] + [f"fluid_{k}" for k in range(RINGS)] + [f"u_{k}" for k in range(RINGS)] +
+           [f"grains_{k}" for k in range(RINGS)] + ["grains", "r_mean", "r2_mean", "spin", "grain_vx"])
+
+
+def reduce_frame(t, liquid_file, grain_file):
+    """One row of frames.csv from a frame of both parts."""
+    count, u_sum, grains = [0] * RINGS, [0.0] * RINGS, [0] * RINGS
+    liq = read_vtp(liquid_file)
+    for (_, y, z), (u, _, _), kind in zip(liq["Points"], liq["velocity"], liq["type"]):
+        if kind == 1:  # fluid nodes only
+            k = ring(math.hypot(y, z))
+            count[k] += 1
+            u_sum[k] += u
+    g = read_vtp(grain_file)
+    rr, spin, vx = [], 0.0, 0.0
+    for (_, y, z), (u, _, _), w in zip(g["Points"], g["velocity"], g["angular_velocity"]):
+        r = math.hypot(y, z)
+        rr.append(r / R)
+        grains[ring(r)] += 1
+        spin += math.sqrt(sum(c * c for c in w))
+        vx += u
+    n = len(rr)
+    return ([t] + count + [s / c if c else 0.0 for s, c in zip(u_sum, count)] + grains +
+            [n, sum(rr) / n, sum(v * v for v in rr) / n, spin / n, vx / n])
+
+
+def update_frames(run_dir):
+    """Appends to run_dir/frames.csv the rows of the frames it does not hold yet."""
+    path = os.path.join(run_dir, "frames.csv")
+    rows = read_rows(path)
+    have = {round(r["time"], 9) for r in rows}
+    new = [(t, lf, gf) for (t, lf), (_, gf) in zip(frames(run_dir, "liquid"), frames(run_dir, "grains"))
+           if round(t, 9) not in have and os.path.exists(lf) and os.path.exists(gf)]
+    if not new:
+        return
+    exists = os.path.exists(path)
+    with open(path, "a") as fh:
+        if not exists:
+            fh.write(",".join(COLUMNS) + "\n")
+        for t, lf, gf in new:
+            fh.write(",".join(repr(float(v)) for v in reduce_frame(t, lf, gf)) + "\n")
+
+
+def read_rows(path):
+    if not os.path.exists(path):
+        return []
+    with open(path) as fh:
+        lines = [l.strip() for l in fh if l.strip()]
+    head = lines[0].split(",")
+    return [dict(zip(head, map(float, l.split(",")))) for l in lines[1:]]
+
+
+def measure(run_dir, t_from):
+    """The observables of one case, averaged over its frames.csv rows from t_from on."""
+    rows = [r for r in read_rows(os.path.join(run_dir, "frames.csv")) if r["time"] >= t_from - 1e-9]
+    summary_path = os.path.join(run_dir, "summary.json")
+    if not os.path.exists(summary_path):
+        return None
+    summary = json.load(open(summary_path))
+    if not rows:  # stopped before the statistics begin: what stopped it
+        if summary.get("status") != "failed":
+            return None
+        return {"status": "failed", "to_s": summary.get("simulated_time"), "failure": summary.get("failure", "")}
+    used = len(rows)
+    rings = [(k + 0.5) / RINGS for k in range(RINGS)]
+    area = [math.pi * R * R * ((k + 1) ** 2 - k ** 2) / RINGS ** 2 for k in range(RINGS)]
+    fluid = [sum(r[f"fluid_{k}"] for r in rows) for k in range(RINGS)]
+    u = [sum(r[f"fluid_{k}"] * r[f"u_{k}"] for r in rows) / fluid[k] if fluid[k] else None for k in range(RINGS)]
+    volume = 4.0 / 3.0 * math.pi * RG ** 3
+    phi = [100.0 * volume * sum(r[f"grains_{k}"] for r in rows) / (used * area[k] * LENGTH) for k in range(RINGS)]
+    mean = sum(r["r_mean"] for r in rows) / used
+    mean2 = sum(r["r2_mean"] for r in rows) / used
+    per_frame = [r["r2_mean"] - r["r_mean"] ** 2 for r in rows]  # each frame's own variance of r/R
+    spread = (sum((v - sum(per_frame) / used) ** 2 for v in per_frame) / max(1, used - 1)) ** 0.5
+    peak = max(range(RINGS), key=lambda k: phi[k])
+    pieces = resumable().pieces(__import__("pathlib").Path(run_dir))
+    wall = sum(p["wall_seconds"] or 0 for p in pieces) if pieces else summary.get("wall_seconds")
+    return {
+        "frames": used, "from_s": t_from, "to_s": rows[-1]["time"], "status": summary.get("status"),
+        "wall_seconds": wall, "rings": rings, "u_profile": u, "phi_profile": phi, "phi_peak_r": rings[peak],
+        "phi_peak": phi[peak], "r_variance": mean2 - mean * mean, "r_variance_frame_sd": spread, "spin": sum(r["spin"] for r in rows) / used,
+        "grain_speed": sum(r["grain_vx"] for r in rows) / used,
+    }
+
+
+def pictures(run_dirs, path):
+    """Per speed, the last frame: a side view (a slab |z| < 10 mm: liquid nodes by axial speed, grains in
+    it as circles) and a cross-section (every grain projected along the axis, liquid nodes of one layer)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle
+    fig, axes = plt.subplots(2, len(run_dirs), figsize=(3.2 * len(run_dirs), 7.4), squeeze=False,
+                             gridspec_kw={"height_ratios": [2.0, 1.0]})
+    for col, (name, d) in enumerate(run_dirs):
+        t, lf = frames(d, "liquid")[-1]
+        _, gf = frames(d, "grains")[-1]
+        liq, g = read_vtp(lf), read_vtp(gf)
+        pts = [(p, v[0]) for p, v, k in zip(liq["Points"], liq["velocity"], liq["type"]) if k == 1]
+        side, top = axes[0][col], axes[1][col]
+        slab = [(p[1], p[0], u) for p, u in pts if abs(p[2]) < 0.005]
+        sc = side.scatter([s[0] for s in slab], [s[1] for s in slab], c=[s[2] for s in slab], s=9, cmap="viridis",
+                          marker="s", linewidths=0)
+        layer = [(p[1], p[2], u) for p, u in pts if abs(p[0] - 0.205) < 0.005]
+        top.scatter([s[0] for s in layer], [s[1] for s in layer], c=[s[2] for s in layer], s=14, cmap="viridis",
+                    marker="s", linewidths=0, vmin=sc.get_clim()[0], vmax=sc.get_clim()[1])
+        for (x, y, z) in g["Points"]:
+            if abs(z) < RG:
+                side.add_patch(Circle((y, x), math.sqrt(RG * RG - z * z), fc="none", ec="red", lw=0.8))
+            top.add_patch(Circle((y, z), RG, fc="none", ec="red", lw=0.6))
+        for ax in (side, top):
+            ax.set_aspect("equal")
+            ax.set_xlim(-R, R)
+            ax.set_xticks([-0.1, 0, 0.1])
+        side.set_ylim(0, LENGTH)
+        side.set_title(f"{name}, t = {t:.2f} s", fontsize=9)
+        top.set_ylim(-R, R)
+        fig.colorbar(sc, ax=side, shrink=0.6, label="axial liquid speed (m/s)")
+    axes[0][0].set_ylabel("x along the pipe (m)")
+    axes[1][0].set_ylabel("z (m)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
+def chart(result, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
+    for name, m in result["runs"].items():
+        if "u_profile" not in m:
+            continue
+        u = m["speed"]
+        a.plot(m["rings"], [v / u if v is not None else None for v in m["u_profile"]], "o-", ms=3, label=name)
+        b.plot(m["rings"], m["phi_profile"], "o-", ms=3, label=name)
+    for speed, (_, r, p, _) in SEED.items():
+        if r is not None:
+            b.plot([r], [p], "k*", ms=9)
+    b.plot([], [], "k*", label="seed's peaks")
+    a.set_xlabel("r/R")
+    a.set_ylabel("axial liquid velocity / U")
+    b.set_xlabel("r/R")
+    b.set_ylabel("grain volume fraction (%)")
+    a.legend(fontsize=8)
+    b.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def collect(a):
+    r = resumable()
+    pathlib = __import__("pathlib")
+    result = {"scene": SCENE, "from_s": a.from_s, "runs": {}}
+    pictured = []
+    names = set()
+    for base in (RUNS, ARCHIVE):
+        if os.path.isdir(os.path.join(ROOT, base)):
+            names |= {n for n in os.listdir(os.path.join(ROOT, base)) if n.startswith("u")}
+    for name in sorted(names, key=lambda n: (len(n), n)):
+        folder, dest = pathlib.Path(ROOT) / RUNS / name, pathlib.Path(ROOT) / ARCHIVE / name
+        r.restore(folder, dest)
+        update_frames(str(folder))
+        m = measure(str(folder), a.from_s)
+        if m is None:
+            continue
+        m["speed"] = float(name[1:].split("_")[0])
+        result["runs"][name] = m
+        if frames(str(folder), "liquid"):
+            pictured.append((name, str(folder)))
+    with open(os.path.join(ROOT, DOCS), "w") as fh:
+        json.dump(result, fh, indent=1)
+    chart(result, os.path.join(ROOT, DOCS.replace(".json", ".png")))
+    if pictured:
+        pictures(pictured, os.path.join(ROOT, DOCS.replace(".json", "_views.png")))
+    print(f"wrote {DOCS} ({len(result['runs'])} cases; pictures of {len(pictured)})")
+
+
+def fmt(v, spec):
+    return "—" if v is None else format(v, spec)
+
+
+def table(a):
+    d = json.load(open(a.path))
+    print("| run | U (m/s) | statistics over (s) | var(r/R) ours (frames' sd) / seed | peak r/R ours / seed | peak fraction (%) "
+          "ours / seed | mean spin (rad/s) ours / seed | grains' mean speed (m/s) | centre liquid / U | wall time (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for name, m in d["runs"].items():
+        if "r_variance" not in m:
+            print(f"| {name} | {m['speed']:g} | failed at t = {m['to_s']:.3f} s: {m['failure'].split(':')[0]} "
+                  "| | | | | | | |")
+            continue
+        var, pr, pp, spin = SEED.get(int(m["speed"]), (None,) * 4)
+        centre = m["u_profile"][0] / m["speed"] if m["u_profile"][0] is not None else None
+        print(f"| {name} | {m['speed']:g} | {m['from_s']:g}–{m['to_s']:.2f} ({m['frames']} frames) | "
+              f"{m['r_variance']:.4f} (± {m['r_variance_frame_sd']:.4f}) / {fmt(var, '.4f')} | {m['phi_peak_r']:.2f} / {fmt(pr, '.2f')} | "
+              f"{m['phi_peak']:.1f} / {fmt(pp, '.1f')} | {m['spin']:.2f} / {fmt(spin, '.2f')} | "
+              f"{m['grain_speed']:.2f} | {fmt(centre, '.3f')} | {m['wall_seconds']:.0f} |")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("run")
+    r.add_argument("--speeds", type=float, nargs="*", default=[2.0, 3.0, 4.0, 5.0])
+    r.add_argument("--offaxis", action="store_true")
+    r.add_argument("--duration", type=float, default=2.5)
+    r.add_argument("--threads", type=int, default=1)
+    r.add_argument("--budget-minutes", type=float, default=30.0)
+    r.add_argument("--binary", default="build/grainflow")
+    r.add_argument("--from", dest="from_s", type=float, default=1.0)
+    c = sub.add_parser("collect")
+    c.add_argument("--from", dest="from_s", type=float, default=1.0)
+    t = sub.add_parser("table")
+    t.add_argument("path", nargs="?", default=os.path.join(ROOT, DOCS))
+    a = p.parse_args()
+    {"run": run, "collect": collect, "table": table}[a.cmd](a)
+
+
+if __name__ == "__main__":
+    main()
