@@ -5,9 +5,9 @@
 // touching ones, because the pair kernel evaluates every listed pair.
 //
 // kPairCost is measured: the pair kernel on the settled seed-000 drum (47,108 grains, 157,621 list
-// pairs, one thread) takes 1.92 ms a step, 12.2 ns a list pair (docs/bench/pair_contact.json, the
+// pairs, one thread) takes 1.92 ms a step, 12.2 ns a list pair (studies/performance/results/pair_contact.json, the
 // median of BM_PairForces/simd/threads:1); the rest of the flowing drum's step takes 2.50 s of its
-// 6.49 s over 2,000 steps, 26.5 ns a row (docs/bench/drum_time_split_flowing.json). 12.2 / 26.5 = 0.46.
+// 6.49 s over 2,000 steps, 26.5 ns a row (studies/performance/results/drum_time_split_flowing.json). 12.2 / 26.5 = 0.46.
 // A dense bed (about 3.4 list pairs a row) then weighs 2.5 times a loose gas (none).
 #pragma once
 
