@@ -123,6 +123,18 @@ TEST_CASE("scene: a fully read scene passes check_all_used", "[scene]") {
   CHECK_NOTHROW(doc.check_all_used());
 }
 
+TEST_CASE("scene: read_keys lists every key asked for, present or not, with array indices", "[scene]") {
+  const auto doc = SceneDoc::parse("[run]\ndt = 1e-5\n[[wall]]\nkind = \"drum\"\n[[wall]]\nkind = \"plane\"\n", "k.toml");
+  const auto root = doc.root();
+  const auto run = root.table("run");
+  run.get_double("dt", Range::positive());
+  run.get_double("skin", 1e-4, Range::positive());  // absent: read at its default
+  for (const auto& w : root.tables("wall")) w.get_string("kind");
+  root.maybe_table("settle");  // an absent section is a key of the root too
+  const std::vector<std::string> want = {"run", "run.dt", "run.skin", "settle", "wall", "wall[0].kind", "wall[1].kind"};
+  CHECK(doc.read_keys() == want);
+}
+
 TEST_CASE("scene: a missing required key names the file, the table's line, the key and the fix", "[scene]") {
   const auto doc = SceneDoc::parse("# header\n\n[run]\nend_time = 1.0\n", "scenes/drum.toml");
   const auto run = doc.root().table("run");
