@@ -14,7 +14,7 @@ Run folders live under runs/, which git ignores, so a new checkout has none. `ar
 case's results (and, while it is unfinished, its last checkpoint, gzip-compressed) into a committed
 folder under studies/<study>/results/, and `restore` rebuilds a missing run folder from that copy, so a study continues
 on another machine where it stopped and its report never depends on runs/ alone. Commit an
-archived checkpoint once, when a working session ends, not after every piece: each committed
+archived checkpoint once, when you stop for the day, not after every piece: each committed
 version of it stays in the history.
 """
 import gzip

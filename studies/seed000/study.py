@@ -21,8 +21,8 @@ After each piece of a full-size case its results (series, summary, pieces, log, 
 the seed's angles, and at the end the final state) are archived under studies/seed000/results/study/<case>,
 with the checkpoint (gzip-compressed, checkpoints/checkpoint.gfc.gz) while the case is unfinished;
 a case whose working folder is missing (a new checkout) is restored from there first, so the study
-goes on in any checkout (grainflow.resumable). Commit the archived checkpoint when a working
-session ends rather than after every piece: every committed version stays in the history.
+goes on in any checkout (grainflow.resumable). Commit the archived checkpoint when you stop
+for the day rather than after every piece: every committed version stays in the history.
 
 `report` writes studies/seed000/results/seed_drum_table.json for the full size (the README's table: its rows
 for the cases run here, the committed rows kept for the others) and, for each case archived with its
