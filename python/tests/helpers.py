@@ -1,6 +1,10 @@
 """Small run-folder files written for the tests: a series, a summary, a final state, a two-point frame."""
 import json
+import stat
 import struct
+import sys
+import tempfile
+import unittest
 from pathlib import Path
 
 SERIES = ("time,angle,ke_translational,contacts,lacey_index,surface_angle\n"
@@ -74,3 +78,20 @@ def write_run(folder, optional=True):
         (folder / "layers.csv").write_text(LAYERS)
         (folder / "surface.csv").write_text("time,angle,surface_angle,surface_level\n0,0,nan,0.01\n")
     return folder
+
+
+class FakeBinaryTest(unittest.TestCase):
+    """A temporary folder holding `grainflow`, a Python stand-in whose body is the class's FAKE text."""
+
+    FAKE = ""
+    PREFIX = "grainflow_test_"
+
+    def setUp(self):
+        self._tmp = tempfile.TemporaryDirectory(prefix=self.PREFIX)
+        self.dir = Path(self._tmp.name)
+        self.binary = self.dir / "grainflow"
+        self.binary.write_text(f"#!{sys.executable}\n{self.FAKE}")
+        self.binary.chmod(self.binary.stat().st_mode | stat.S_IXUSR)
+
+    def tearDown(self):
+        self._tmp.cleanup()

@@ -5,14 +5,16 @@ import gzip
 import io
 import json
 import os
-import stat
 import subprocess
 import sys
-import tempfile
 import unittest
 from pathlib import Path
 
 import grainflow.resumable as r
+try:
+    from .helpers import FakeBinaryTest
+except ImportError:  # run as a script from python/tests
+    from helpers import FakeBinaryTest
 
 PYTHON_DIR = Path(__file__).resolve().parents[1]
 
@@ -37,16 +39,9 @@ with open(out / "series.csv", "a") as f:
 '''
 
 
-class ResumableTest(unittest.TestCase):
-    def setUp(self):
-        self._tmp = tempfile.TemporaryDirectory(prefix="grainflow_resumable_")
-        self.dir = Path(self._tmp.name)
-        self.binary = self.dir / "grainflow"
-        self.binary.write_text(f"#!{sys.executable}\n{FAKE}")
-        self.binary.chmod(self.binary.stat().st_mode | stat.S_IXUSR)
-
-    def tearDown(self):
-        self._tmp.cleanup()
+class ResumableTest(FakeBinaryTest):
+    FAKE = FAKE
+    PREFIX = "grainflow_resumable_"
 
     def test_piece_archive_restore(self):
         with contextlib.redirect_stderr(io.StringIO()):  # the pieces' log lines

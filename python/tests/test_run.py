@@ -2,15 +2,17 @@
 failing run's stderr in the error."""
 import json
 import os
-import stat
 import sys
-import tempfile
 import unittest
 from pathlib import Path
 from unittest import mock
 
 from grainflow.outputs import Run
 from grainflow.run import RunError, command, default_binary, run_scene
+try:
+    from .helpers import FakeBinaryTest
+except ImportError:  # run as a script from python/tests
+    from helpers import FakeBinaryTest
 
 # The stand-in for `grainflow run`: records its arguments, writes a series and a summary, and with
 # --set fail=true says why on stderr and exits 1 (as grainflow does on bad input) after writing nothing.
@@ -32,16 +34,9 @@ if "unstable=true" in a:
 '''
 
 
-class RunSceneTest(unittest.TestCase):
-    def setUp(self):
-        self._tmp = tempfile.TemporaryDirectory(prefix="grainflow_run_")
-        self.dir = Path(self._tmp.name)
-        self.binary = self.dir / "grainflow"
-        self.binary.write_text(f"#!{sys.executable}\n{FAKE}")
-        self.binary.chmod(self.binary.stat().st_mode | stat.S_IXUSR)
-
-    def tearDown(self):
-        self._tmp.cleanup()
+class RunSceneTest(FakeBinaryTest):
+    FAKE = FAKE
+    PREFIX = "grainflow_run_"
 
     def args(self, run):
         return json.loads((run.folder / "args.json").read_text())
