@@ -41,3 +41,4 @@ while IFS= read -r cmd; do
   echo "## command $n: exit status $rc, wall time $(( $(date +%s) - start )) s" >> "$log"
 done < "$work/commands"
 grep '^## command .*wall time' "$log"
+echo "the clone and its build are left in $work for inspection; remove it with: rm -rf $work"
