@@ -145,47 +145,6 @@ std::string join_path(const std::string& parent, std::string_view key) {
   return parent.empty() ? key_text(key) : parent + "." + key_text(key);
 }
 
-std::string lower(std::string_view s) {
-  std::string r(s);
-  for (char& c : r)
-    if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
-  return r;
-}
-
-// Optimal string alignment distance: insertions, deletions, substitutions and adjacent swaps ("dnesity") cost 1.
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  const std::size_t n = a.size(), m = b.size();
-  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
-  for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= n; ++i)
-    for (std::size_t j = 1; j <= m; ++j) {
-      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  return d[n][m];
-}
-
-// The closest candidate within edit distance 2, or "". Short words need a closer match: two edits turn any 2-letter
-// key into any other, and "did you mean 'dt'?" for 'xy' would only mislead.
-std::string closest(std::string_view word, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t best_d = 3;
-  const std::string w = lower(word);
-  for (const auto& c : candidates) {
-    if (c == word) continue;
-    const std::size_t d = edit_distance(w, lower(c));
-    const bool close = d == 0 || (d <= 2 && 2 * d <= w.size());
-    if (close && d < best_d) {
-      best = c;
-      best_d = d;
-    }
-  }
-  return best;
-}
-
 std::string quoted_list(const std::vector<std::string>& xs) {
   std::string r;
   for (std::size_t i = 0; i < xs.size(); ++i) r += (i ? ", '" : "'") + xs[i] + "'";

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace gf {
 
@@ -15,5 +16,13 @@ std::string clipped(std::string_view s, std::size_t max = 60);
 // passes through it, so no file content can cut a message short or reach the terminal as a command.
 std::string printable(std::string_view s);
 std::string quoted(std::string_view s, std::size_t max = 60);
+
+// ASCII lower case.
+std::string lower(std::string_view s);
+// Optimal string alignment distance: insertions, deletions, substitutions and adjacent swaps cost 1.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+// The candidate closest to `word` (case ignored) within edit distance 2, or "": the "did you mean" of a
+// mistyped key or option. Short words need a closer match (2 edits turn any 2-letter word into another).
+std::string closest(std::string_view word, const std::vector<std::string>& candidates);
 
 }  // namespace gf

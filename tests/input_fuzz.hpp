@@ -28,7 +28,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/checkpoint_file.hpp"
-#include "engine/cli.hpp"
+#include "app/cli.hpp"
 #include "engine/machine_memory.hpp"
 #include "engine/scene.hpp"
 #include "tests/input_fuzz_mutator.hpp"

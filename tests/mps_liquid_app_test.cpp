@@ -1,4 +1,4 @@
-// `grainflow check` and `grainflow run` on a liquid scene (systems/mps/liquid_app.cpp): the model is picked from
+// `grainflow check` and `grainflow run` on a liquid scene (app/liquid_app.cpp): the model is picked from
 // the [liquid] table, check describes it without running, run writes series.csv (with surge_front, flushed per
 // row), VTK frames with their .pvd index and a completed summary.json.
 #include <catch2/catch.hpp>

@@ -353,7 +353,7 @@ def measure():
 
 
 def code_counts():
-    """What one step and one rebuild send, read from the code (engine/mpi_main.cpp,
+    """What one step and one rebuild send, read from the code (app/mpi_main.cpp,
     systems/decomposition/mpi/rank_simulation.cpp, domain_ghosts.cpp, migration.cpp, row_bytes.cpp)."""
     return {
         "per_step": {

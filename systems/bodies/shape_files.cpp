@@ -237,12 +237,6 @@ Vector3d point(std::span<const std::string_view> t, const Source& src, std::size
   return x;
 }
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 // ---- OBJ --------------------------------------------------------------------------------------------
 
 // An OBJ group: the vertices declared after its statement, those its faces use (in order, once),

@@ -16,7 +16,7 @@
 #include "engine/table.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/setup/dem_simulation.hpp"
-#include "systems/setup/mpi/rank_body_app.hpp"
+#include "app/mpi/rank_body_app.hpp"
 #include "tests/mpi/mpi_test_support.hpp"
 
 namespace {

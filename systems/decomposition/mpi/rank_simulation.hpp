@@ -79,7 +79,7 @@ class RankSimulation {
                                   const std::vector<std::string>& overrides = {});
   // The scene a rank run steps, or a refusal (SceneError naming the file and key) of what does not
   // run on ranks yet (a liquid). Scenes of composite bodies load; they run through
-  // run_rank_body_command (systems/setup/mpi/rank_body_app.hpp), not this class.
+  // run_rank_body_command (app/mpi/rank_body_app.hpp), not this class.
   static DemScene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
   RankSimulation(RankSimulation&&) noexcept;
   ~RankSimulation();

@@ -14,7 +14,7 @@
 #include <tbb/global_control.h>
 
 #include "engine/atomic_file.hpp"
-#include "engine/cli.hpp"
+#include "app/cli.hpp"
 #include "engine/run_loop.hpp"
 #include "systems/mps/liquid_checkpoint.hpp"
 #include "systems/mps/liquid_observables.hpp"
@@ -22,7 +22,7 @@
 #include "systems/mps/liquid_simulation.hpp"
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/summary_json.hpp"
-#include "systems/setup/app.hpp"
+#include "app/commands.hpp"
 
 namespace gf {
 
@@ -203,7 +203,7 @@ int check_liquid_command(const CliOptions& opt) {
 int run_liquid_command(const CliOptions& opt) {
   const auto wall0 = WallClock::now();
   const LiquidScene s = load_liquid_scene(SceneDoc::load(opt.scene, opt.overrides));
-  const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
+  const std::filesystem::path out = opt.out_dir();
   ensure_directory(out);
   LiquidSimulation sim(s);
   World& world = sim.world();

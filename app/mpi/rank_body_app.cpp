@@ -1,10 +1,10 @@
-#include "systems/setup/mpi/rank_body_app.hpp"
+#include "app/mpi/rank_body_app.hpp"
 
 #include <cstdio>
 
 #include "engine/mpi/rank_failure.hpp"
 #include "engine/run_loop.hpp"
-#include "systems/setup/dem_body_app.hpp"
+#include "app/dem_body_app.hpp"
 
 namespace gf {
 

@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/atomic_file.hpp"
-#include "engine/cli.hpp"
+#include "app/cli.hpp"
 #include "engine/run_loop.hpp"
 #include "systems/coupling/coupled_observables.hpp"
 #include "systems/coupling/coupled_step.hpp"
@@ -25,7 +25,7 @@
 #include "systems/output/dem_observers.hpp"
 #include "systems/output/series_csv.hpp"
 #include "systems/output/summary_json.hpp"
-#include "systems/setup/app.hpp"
+#include "app/commands.hpp"
 #include "systems/setup/coupled_checkpoint.hpp"
 #include "systems/setup/coupled_simulation.hpp"
 #include "systems/setup/final_state.hpp"
@@ -220,7 +220,7 @@ int run_coupled_command(const CliOptions& opt) {
     sim.resume(*ckpt);
   }
   const CheckpointReader* from = ckpt ? &*ckpt : nullptr;
-  const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
+  const std::filesystem::path out = opt.out_dir();
   ensure_directory(out);
   std::fprintf(stderr, "grainflow: %s: liquid and %zu grains, dt = %.3g s with %d DEM sub-steps -> %s\n",
                s.file.string().c_str(), sim.world().grains.n_owned, s.liquid.dt, s.coupling.substeps, out.string().c_str());

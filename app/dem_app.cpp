@@ -9,7 +9,7 @@
 #include <tbb/global_control.h>
 
 #include "engine/atomic_file.hpp"
-#include "engine/cli.hpp"
+#include "app/cli.hpp"
 #include "engine/run_loop.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/contact/laws.hpp"
@@ -18,8 +18,8 @@
 #include "systems/output/layer_output.hpp"
 #include "systems/output/residence_csv.hpp"
 #include "systems/output/summary_json.hpp"
-#include "systems/setup/app.hpp"
-#include "systems/setup/dem_body_app.hpp"
+#include "app/commands.hpp"
+#include "app/dem_body_app.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
 #include "systems/setup/dem_simulation.hpp"
 #include "systems/setup/final_state.hpp"
@@ -138,7 +138,7 @@ int run_dem_command(const CliOptions& opt) {
   const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
   const DemScene s = load_dem_scene(doc);
   if (s.bodies) return run_body_command(opt, s);
-  const std::filesystem::path out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
+  const std::filesystem::path out = opt.out_dir();
   ensure_directory(out);
 
   DemSimulation sim(s);

@@ -1,4 +1,4 @@
-#include "engine/rank_launch.hpp"
+#include "app/rank_launch.hpp"
 
 #include <unistd.h>
 

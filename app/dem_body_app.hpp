@@ -6,7 +6,7 @@
 
 #include <functional>
 
-#include "engine/cli.hpp"
+#include "app/cli.hpp"
 #include "engine/world.hpp"
 #include "systems/setup/dem_scene.hpp"
 

@@ -1,4 +1,4 @@
-#include "systems/setup/dem_body_app.hpp"
+#include "app/dem_body_app.hpp"
 
 #include <algorithm>
 #include <array>
@@ -238,7 +238,7 @@ void together(const BodyRunHooks& hooks, const std::function<void()>& f) {
 // The simulation (restored from the checkpoint when resumed) and, on the writer, the output folder
 // and the summary's opening.
 void start_body_run(BodyRun& run, const CliOptions& opt, const DemScene& s, const BodyRunHooks& hooks) {
-  run.out = opt.out ? *opt.out : std::filesystem::path("runs") / opt.scene.stem();
+  run.out = opt.out_dir();
   if (hooks.writer) ensure_directory(run.out);
   run.sim = std::make_unique<DemSimulation>(s);
   World& world = run.sim->world();

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/cli.hpp"
+#include "app/cli.hpp"
 #include "engine/scene.hpp"
 
 namespace gf {
@@ -20,9 +20,9 @@ std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path
 
 int run_dem_command(const CliOptions& opt);
 int check_dem_command(const CliOptions& opt);
-int run_liquid_command(const CliOptions& opt);    // systems/mps/liquid_app.cpp
+int run_liquid_command(const CliOptions& opt);    // app/liquid_app.cpp
 int check_liquid_command(const CliOptions& opt);
-int run_coupled_command(const CliOptions& opt);   // systems/setup/coupled_app.cpp
+int run_coupled_command(const CliOptions& opt);   // app/coupled_app.cpp
 int check_coupled_command(const CliOptions& opt);
 
 }  // namespace gf

@@ -1,4 +1,4 @@
-#include "systems/setup/app.hpp"
+#include "app/commands.hpp"
 
 #include "systems/setup/coupled_scene.hpp"
 

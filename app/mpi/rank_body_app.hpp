@@ -13,7 +13,7 @@
 // spatial decomposition of the bodies, as the grains have, would lift both).
 #pragma once
 
-#include "engine/cli.hpp"
+#include "app/cli.hpp"
 #include "engine/mpi/mpi_context.hpp"
 #include "systems/bodies/body_contact_split.hpp"
 #include "systems/setup/dem_scene.hpp"

@@ -6,8 +6,8 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
-#include "engine/cli.hpp"
-#include "engine/rank_launch.hpp"
+#include "app/cli.hpp"
+#include "app/rank_launch.hpp"
 #include "engine/run_loop.hpp"
 
 int main(int argc, char** argv) {
@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (opt.command == "version") {
-    std::printf("grainflow %s\n", GRAINFLOW_VERSION);
+    std::printf("%s", gf::version_line().c_str());
     return 0;
   }
   // Under an MPI launcher with several ranks, the run is grainflow_mpi's (rank_launch.hpp); `check`
