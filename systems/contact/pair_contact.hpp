@@ -80,6 +80,10 @@ inline std::size_t slab_rows(std::size_t n) {
   return s < 256 ? 256 : (s > 2048 ? 2048 : s);
 }
 
+// Throws StabilityError naming the deepest pair past `limit` (run.max_overlap), the step and the fix.
+[[noreturn]] void report_pair_overlap(const Grains& g, const PairForces& contacts, double limit,
+                                      const StepContext& step);
+
 // Evaluates every pair of `list` with law L and sums per row into Force and Torque. Instantiated
 // for every law of ContactLaws. Returns whether some pair overlaps by more than overlap_limit of the
 // smaller diameter (run.max_overlap, at most 1), found in the same pass (the overlap test of every

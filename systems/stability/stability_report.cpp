@@ -6,13 +6,18 @@
 #include <string>
 
 #include "engine/run_loop.hpp"
-#include "systems/contact/pair_contact.hpp"
 
 namespace gf {
 
 namespace {
 
-std::string when(const StepContext& s) {
+const char* const kFixStep =
+    "Fix: reduce run.dt (`grainflow check` prints the critical step and its smallest term), or raise the "
+    "stiffness";
+
+}  // namespace
+
+std::string step_words(const StepContext& s) {
   char buf[160];
   if (s.prime)
     std::snprintf(buf, sizeof buf, "in the initial state (t = %.9g s)", s.t);
@@ -23,27 +28,15 @@ std::string when(const StepContext& s) {
   return buf;
 }
 
-std::string grain(const Grains& g, std::size_t row) {
+std::string grain_words(const Grains& g, std::size_t row) {
   return "grain id " + std::to_string(g.pid.id[row]) + " (row " + std::to_string(row) + ")";
 }
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-
-const char* const kFixStep =
-    "Fix: reduce run.dt (`grainflow check` prints the critical step and its smallest term), or raise the "
-    "stiffness";
-
 // In the initial state no step has been taken: the input placed the grains so.
-std::string fix(const StepContext& step) {
+std::string overlap_fix(const StepContext& step) {
   return step.prime ? "Fix: place the grains apart (the state file's positions, or the fill's region and walls)"
                     : kFixStep;
 }
-
-}  // namespace
 
 void report_nonfinite(const Grains& g, const StepContext& step, std::string_view pass) {
   std::string what = "a value";
@@ -64,46 +57,10 @@ void report_nonfinite(const Grains& g, const StepContext& step, std::string_view
       what = name;
     }
   }
-  throw StabilityError("the " + what + " of " + (bad ? grain(g, row) : std::string("a grain")) + " became non-finite " +
-                       when(step) + ", in " + std::string(pass) + " (" + std::to_string(bad) +
+  throw StabilityError("the " + what + " of " + (bad ? grain_words(g, row) : std::string("a grain")) + " became non-finite " +
+                       step_words(step) + ", in " + std::string(pass) + " (" + std::to_string(bad) +
                        " grains in all): the run blew up. " + kFixStep +
                        "; a state file with NaN or infinite values has the same effect");
-}
-
-void report_pair_overlap(const Grains& g, const PairForces& c, double limit, const StepContext& step) {
-  double worst = -1.0;
-  std::size_t at = 0, past = 0;
-  for (std::size_t k = 0; k < c.contacts(); ++k) {
-    const auto i = static_cast<std::size_t>(c.ci[k]), j = static_cast<std::size_t>(c.cj[k]);
-    const double dx = g.pos.x[j] - g.pos.x[i], dy = g.pos.y[j] - g.pos.y[i], dz = g.pos.z[j] - g.pos.z[i];
-    const double delta = g.radius.r[i] + g.radius.r[j] - std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double ratio = delta / (2.0 * std::min(g.radius.r[i], g.radius.r[j]));
-    past += ratio > limit;
-    if (ratio > worst) worst = ratio, at = k;
-  }
-  const auto i = static_cast<std::size_t>(c.ci[at]), j = static_cast<std::size_t>(c.cj[at]);
-  throw StabilityError(grain(g, i) + " and " + grain(g, j) + " overlap by " + number(worst) +
-                       " of the smaller diameter " + when(step) + ", past run.max_overlap = " + number(limit) + " (" +
-                       std::to_string(past) + " contacts past it). " + fix(step) +
-                       ", or raise run.max_overlap if such overlaps are intended");
-}
-
-void report_wall_overlap(const Grains& g, const Walls& walls, double limit, const StepContext& step) {
-  double worst = -1.0;
-  std::size_t at = 0, wall = 0, past = 0;
-  for (std::size_t i = 0; i < g.n_owned; ++i)
-    for (std::size_t w = 0; w < walls.list.size(); ++w) {
-      Vec3d n;
-      const double ratio =
-          (g.radius.r[i] - wall_gap(walls.list[w], {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, n)) / (2.0 * g.radius.r[i]);
-      past += ratio > limit;
-      if (ratio > worst) worst = ratio, at = i, wall = w;
-    }
-  const std::string name = walls.list.empty() ? std::string("a wall") : "wall '" + walls.list[wall].name + "'";
-  throw StabilityError(grain(g, at) + " overlaps " + name + " by " + number(worst) + " of its diameter " + when(step) +
-                       ", past run.max_overlap = " + number(limit) + " (" + std::to_string(past) +
-                       " wall contacts past it). " + fix(step) +
-                       ", or raise run.max_overlap if such overlaps are intended");
 }
 
 }  // namespace gf

@@ -5,15 +5,13 @@
 // what to change.
 #pragma once
 
+#include <string>
 #include <string_view>
 
 #include "engine/grains.hpp"
 #include "engine/step_context.hpp"
-#include "systems/walls/walls.hpp"
 
 namespace gf {
-
-struct PairForces;
 
 // run.max_overlap: the largest overlap allowed, as a fraction of the smaller diameter of a pair
 // (of the grain's diameter against a wall).
@@ -21,10 +19,16 @@ struct OverlapLimit {
   double ratio = 0.1;
 };
 
-// Each throws StabilityError naming the step, the grain(s) by id and row, and the fix.
+// Throws StabilityError naming the step, the grain by id and row, and the fix. The overlap reports
+// live beside the contacts that find them (report_pair_overlap in pair_contact.hpp, report_wall_overlap
+// in wall_contact.hpp) and word their messages with the helpers below (and engine's short_number).
 [[noreturn]] void report_nonfinite(const Grains& g, const StepContext& step, std::string_view pass);
-[[noreturn]] void report_pair_overlap(const Grains& g, const PairForces& contacts, double limit,
-                                      const StepContext& step);
-[[noreturn]] void report_wall_overlap(const Grains& g, const Walls& walls, double limit, const StepContext& step);
+
+// "in step N of the STAGE stage (t = ... s to ... s)", or "in the initial state (...)".
+std::string step_words(const StepContext& step);
+// "grain id I (row R)".
+std::string grain_words(const Grains& g, std::size_t row);
+// The fix of an overlap past run.max_overlap: a smaller step, or (in the initial state) grains placed apart.
+std::string overlap_fix(const StepContext& step);
 
 }  // namespace gf

@@ -17,6 +17,10 @@
 
 namespace gf {
 
+// Throws StabilityError naming the grain deepest in a wall past `limit` (run.max_overlap), the wall,
+// the step and the fix.
+[[noreturn]] void report_wall_overlap(const Grains& g, const Walls& walls, double limit, const StepContext& step);
+
 // Sums every wall's force and torque on each owned row into WallForce/WallTorque; the walls are
 // placed at time t_contact (the time the positions refer to). Instantiated for every law of
 // ContactLaws. Returns whether some wall overlap passed overlap_limit of the grain's diameter
