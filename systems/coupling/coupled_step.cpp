@@ -13,6 +13,7 @@
 #include "systems/mps/liquid_fraction.hpp"
 #include "systems/mps/liquid_params.hpp"
 #include "systems/mps/liquid_step.hpp"
+#include "systems/walls/contact_systems.hpp"
 #include "systems/walls/wall_contact.hpp"
 
 namespace gf {
@@ -169,12 +170,7 @@ std::unique_ptr<Schedule> coupled_dem_step(const DemScene& scene) {
   auto step = std::make_unique<Schedule>();
   step->emplace<IntegratePositions>(terms);
   step->emplace<Broadphase>();
-  const bool known = with_law(scene.law, [&]<class Law>() {
-    step->emplace<PairContact<Law>>();
-    if (!scene.walls.empty()) step->emplace<WallContact<Law>>();
-    if (!scene.mesh_walls.list.empty()) step->emplace<MeshWallContact<Law>>();
-  });
-  if (!known) throw std::invalid_argument("coupled_dem_step: no contact law is named '" + scene.law + "'");
+  add_contact_systems(*step, {scene.law, !scene.walls.empty(), !scene.mesh_walls.list.empty()});
   step->emplace<LiquidForceSystem>();
   step->emplace<IntegrateVelocities>(terms);
   return step;

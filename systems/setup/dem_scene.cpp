@@ -15,6 +15,7 @@
 #include "systems/fill/random_fill.hpp"
 #include "systems/fill/state_csv.hpp"
 #include "systems/setup/flow_scene.hpp"
+#include "systems/walls/contact_systems.hpp"
 #include "systems/walls/mesh_wall_scene.hpp"
 #include "systems/walls/wall_contact.hpp"
 
@@ -523,13 +524,8 @@ void schedule_dem_step(Schedule& step, const DemScene& scene) {
   step.emplace<IntegratePositions>(dem_force_terms(scene), deferred);
   step.emplace<Broadphase>();
   if (scene.periodic.any()) step.emplace<PeriodicRefresh>();
-  const bool known = with_law(law, [&]<class Law>() {
-    step.emplace<PairContact<Law>>();
-    if (!scene.walls.empty()) step.emplace<WallContact<Law>>();
-    if (!scene.mesh_walls.list.empty()) step.emplace<MeshWallContact<Law>>();
-  });
+  add_contact_systems(step, {law, !scene.walls.empty(), !scene.mesh_walls.list.empty()});
   if (scene.periodic.any()) step.emplace<PeriodicFold>();
-  if (!known) throw std::invalid_argument("schedule_dem_step: no contact law is named '" + std::string(law) + "'");
   step.emplace<IntegrateVelocities>(dem_force_terms(scene), deferred);
   if (!scene.flow.outlets.empty()) step.emplace<OutletSystem>(scene.flow.outlets);
 }

@@ -19,6 +19,7 @@
 #include "systems/decomposition/row_cost.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/periodic/periodic_images.hpp"
+#include "systems/walls/contact_systems.hpp"
 #include "systems/walls/mesh_wall_contact.hpp"
 #include "systems/walls/wall_contact.hpp"
 #include "systems/walls/walls.hpp"
@@ -104,12 +105,7 @@ RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mp
   contacts_ = std::make_unique<Schedule>();
   kick_ = std::make_unique<Schedule>();
   drift_->emplace<IntegratePositions>(dem_force_terms(s));
-  const bool known = with_law(s.law, [&]<class Law>() {
-    contacts_->emplace<PairContact<Law>>();
-    if (!s.walls.empty()) contacts_->emplace<WallContact<Law>>();
-    if (!s.mesh_walls.list.empty()) contacts_->emplace<MeshWallContact<Law>>();
-  });
-  if (!known) throw std::invalid_argument("no contact law is named '" + s.law + "'");
+  add_contact_systems(*contacts_, {s.law, !s.walls.empty(), !s.mesh_walls.list.empty()});
   kick_->emplace<IntegrateVelocities>(dem_force_terms(s));
   drift_->build(w);
   contacts_->build(w);
