@@ -26,6 +26,7 @@
 #include "systems/output/series_csv.hpp"
 #include "systems/output/summary_json.hpp"
 #include "app/commands.hpp"
+#include "app/run_summary.hpp"
 #include "systems/setup/coupled_checkpoint.hpp"
 #include "systems/setup/coupled_simulation.hpp"
 #include "systems/setup/final_state.hpp"
@@ -76,9 +77,10 @@ void print_coupling(const CoupledScene& s) {
 
 nlohmann::json start_summary(const CliOptions& opt, const CoupledScene& s, CoupledSimulation& sim) {
   nlohmann::json j;
-  j["scene"] = s.file.string();
-  j["overrides"] = opt.overrides;
-  j["model"] = "mps+dem";
+  summary_opening(j, opt, "coupled",
+                  {static_cast<std::int64_t>(sim.world().grains.n_owned),
+                   static_cast<std::int64_t>(sim.world().tables.get<FluidNodes>().count(kFluid))},
+                  1, threads_in_use());
   j["fluid_nodes"] = sim.world().tables.get<FluidNodes>().count(kFluid);
   j["grains"] = sim.world().grains.n_owned;
   j["dt"] = s.liquid.dt;
@@ -95,12 +97,6 @@ nlohmann::json start_summary(const CliOptions& opt, const CoupledScene& s, Coupl
   j["averaged"] = s.coupling.averaged;
   j["status"] = "running";
   return j;
-}
-
-nlohmann::json timings(const Schedule& step) {
-  nlohmann::json per = nlohmann::json::array();
-  for (auto& t : step.timings()) per.push_back({{"system", t.name}, {"seconds", t.seconds}, {"calls", t.calls}});
-  return per;
 }
 
 struct CoupledRun {
@@ -263,8 +259,10 @@ int run_coupled_command(const CliOptions& opt) {
   summary["checkpoints_written"] = obs.checkpoints->written();
   if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
   summary["final"] = fin;
-  summary["time_per_system"] = timings(sim.step());
-  summary["time_per_dem_system"] = timings(sim.dem_substeps().inner());
+  summary_counts_at_end(summary, {static_cast<std::int64_t>(sim.world().grains.n_owned),
+                                  static_cast<std::int64_t>(sim.world().tables.get<FluidNodes>().count(kFluid))});
+  summary["time_per_system"] = timings_json({&sim.step()});
+  summary["time_per_dem_system"] = timings_json({&sim.dem_substeps().inner()});
   write_final_state(out / "final_state.csv", sim.world().grains, s.dem);
   write_summary_json(out / "summary.json", summary);
   std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall\n", r.status.c_str(),

@@ -19,6 +19,7 @@
 #include "systems/output/residence_csv.hpp"
 #include "systems/output/summary_json.hpp"
 #include "app/commands.hpp"
+#include "app/run_summary.hpp"
 #include "app/dem_body_app.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
 #include "systems/setup/dem_simulation.hpp"
@@ -28,20 +29,6 @@
 namespace gf {
 
 namespace {
-
-std::size_t threads_in_use() {
-  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-}
-
-nlohmann::json timings_json(const Schedule& sched, double total) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const SystemTiming& t : sched.timings())
-    out.push_back({{"system", t.name},
-                   {"seconds", t.seconds},
-                   {"calls", t.calls},
-                   {"fraction", total > 0 ? t.seconds / total : 0.0}});
-  return out;
-}
 
 nlohmann::json flow_json(const FlowState& f, const Grains& g, const ResidenceOutput* residence) {
   double kg = 0.0;
@@ -157,10 +144,8 @@ int run_dem_command(const CliOptions& opt) {
                  static_cast<long long>(world.clock.step), world.clock.t);
 
   nlohmann::json summary;
-  summary["scene"] = s.file.string();
-  summary["overrides"] = opt.overrides;
+  summary_opening(summary, opt, "spheres", {static_cast<std::int64_t>(n), 0}, 1, threads_in_use());
   summary["grains"] = n;
-  summary["threads"] = threads_in_use();
   summary["dt"] = s.dt;
   summary["critical_period"] = s.critical.period;
   summary["critical_term"] = s.critical.term;
@@ -312,12 +297,8 @@ int run_dem_command(const CliOptions& opt) {
   summary["pictures"] = pictures ? pictures->pictures() : 0;
   summary["final"] = final_row_json(row);
   if (const FlowState* f = world.resources.find<FlowState>()) summary["flow"] = flow_json(*f, world.grains, residence);
-  double step_total = 0;
-  for (auto& t : step.timings()) step_total += t.seconds;
-  for (auto& t : observe.timings()) step_total += t.seconds;
-  nlohmann::json per = timings_json(step, step_total);
-  for (auto& j : timings_json(observe, step_total)) per.push_back(j);
-  summary["time_per_system"] = per;
+  summary_counts_at_end(summary, {static_cast<std::int64_t>(world.grains.n_owned), 0});
+  summary["time_per_system"] = timings_json({&step, &observe});
   try {
     write_final_state(out / "final_state.csv", world.grains, s);
     write_summary_json(out / "summary.json", summary);

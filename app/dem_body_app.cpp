@@ -1,5 +1,7 @@
 #include "app/dem_body_app.hpp"
 
+#include "app/run_summary.hpp"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -41,10 +43,6 @@ std::string rim_warning(const DemScene& s) {
          "a settled bed); to be safe give run.dt = " + short_number(s.dt_safety * rim.period) + " or less";
 }
 
-std::size_t threads_in_use() {
-  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-}
-
 struct BodyCounts {
   std::size_t moving = 0, fixed = 0, timed = 0, members = 0;
 };
@@ -58,14 +56,6 @@ BodyCounts count_bodies(const DemScene& s, World& w) {
   }
   c.members = w.tables.get<Members>().n;
   return c;
-}
-
-nlohmann::json timings_json(const Schedule& sched, double total) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const SystemTiming& t : sched.timings())
-    out.push_back({{"system", t.name}, {"seconds", t.seconds}, {"calls", t.calls},
-                   {"fraction", total > 0 ? t.seconds / total : 0.0}});
-  return out;
 }
 
 // The pictures' colours per body row and the legend for the PNG's Comment entry.
@@ -257,14 +247,12 @@ void start_body_run(BodyRun& run, const CliOptions& opt, const DemScene& s, cons
                run.out.string().c_str());
   if (!rim_warning(s).empty()) std::fprintf(stderr, "grainflow: warning: %s\n", rim_warning(s).c_str());
   nlohmann::json& summary = run.summary;
-  summary["scene"] = s.file.string();
-  summary["overrides"] = opt.overrides;
+  summary_opening(summary, opt, "bodies", {static_cast<std::int64_t>(run.counts.moving + run.counts.fixed), 0},
+                  hooks.ranks, threads_in_use());
   summary["bodies"] = {{"moving", run.counts.moving}, {"fixed", run.counts.fixed}, {"members", run.counts.members}};
   for (const BodyShape& sh : s.bodies->shapes)
     summary["shapes"][sh.name] = {{"parts", sh.shape.parts.size()}, {"mass", sh.props.mass}, {"volume", sh.props.volume},
                                   {"moments", {sh.props.moments[0], sh.props.moments[1], sh.props.moments[2]}}};
-  summary["threads"] = threads_in_use();
-  summary["ranks"] = hooks.ranks;
   summary["dt"] = s.dt;
   summary["critical_period"] = s.critical.period;
   summary["critical_term"] = s.critical.term;
@@ -410,12 +398,8 @@ int finish_body_run(BodyRun& run, const DemScene& s, const StageReport& settle, 
   if (s.bodies->output.has_outlet) summary["final"]["remaining_fraction"] = number_or_null(row.remaining_fraction);
   if (!packing.is_null()) summary["packing"] = packing;
   if (!repose.empty()) summary["repose"] = repose;
-  double total = 0;
-  for (auto& t : run.sim->step().timings()) total += t.seconds;
-  for (auto& t : run.observe.timings()) total += t.seconds;
-  nlohmann::json per = timings_json(run.sim->step(), total);
-  for (auto& j : timings_json(run.observe, total)) per.push_back(j);
-  summary["time_per_system"] = per;
+  summary_counts_at_end(summary, {static_cast<std::int64_t>(run.counts.moving + run.counts.fixed), 0});
+  summary["time_per_system"] = timings_json({&run.sim->step(), &run.observe});
   write_summary_json(run.out / "summary.json", summary);
   std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g body-steps/s\n",
                status.c_str(), static_cast<long long>(main.steps), world.clock.t, main.wall_seconds, bsps);

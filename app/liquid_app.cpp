@@ -23,16 +23,13 @@
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/summary_json.hpp"
 #include "app/commands.hpp"
+#include "app/run_summary.hpp"
 
 namespace gf {
 
 namespace {
 
 using WallClock = std::chrono::steady_clock;
-
-std::size_t threads_in_use() {
-  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-}
 
 double seconds_since(WallClock::time_point t0) {
   return std::chrono::duration<double>(WallClock::now() - t0).count();
@@ -70,12 +67,9 @@ nlohmann::json start_summary(const CliOptions& opt, const LiquidScene& s, Liquid
   const FluidNodes& f = sim.nodes();
   const auto& c = sim.world().clock;
   nlohmann::json j;
-  j["scene"] = s.file.string();
-  j["overrides"] = opt.overrides;
-  j["model"] = "mps";
+  summary_opening(j, opt, "liquid", {0, static_cast<std::int64_t>(f.count(kFluid))}, 1, threads_in_use());
   j["fluid_nodes"] = f.count(kFluid);
   j["nodes"] = f.size();
-  j["threads"] = threads_in_use();
   j["dt"] = s.dt;
   j["l0"] = s.params.k.l0;
   j["cfl_at_load"] = s.cfl;
@@ -166,13 +160,8 @@ void finish_summary(nlohmann::json& summary, LiquidSimulation& sim, const Liquid
   summary["checkpoints_written"] = checkpoints.written();
   if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
   summary["final"] = fin;
-  nlohmann::json per = nlohmann::json::array();
-  double total = 0;
-  for (auto& t : sim.step().timings()) total += t.seconds;
-  for (auto& t : sim.step().timings())
-    per.push_back({{"system", t.name}, {"seconds", t.seconds}, {"calls", t.calls},
-                   {"fraction", total > 0 ? t.seconds / total : 0.0}});
-  summary["time_per_system"] = per;
+  summary_counts_at_end(summary, {0, static_cast<std::int64_t>(n_fluid)});
+  summary["time_per_system"] = timings_json({&sim.step()});
 }
 
 }  // namespace

@@ -43,6 +43,7 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "app/run_summary.hpp"
 #include "engine/mpi/mpi_context.hpp"
 #include "engine/mpi/rank_failure.hpp"
 #include "engine/run_loop.hpp"
@@ -210,10 +211,8 @@ void summarise(nlohmann::json& summary, const gf::CliOptions& opt, gf::RankSimul
   const std::int64_t migrated = mpi.sum(sim.counters().migrated - m.before.migrated);
   const std::int64_t ghosts = mpi.sum(sim.counters().ghosts);
   if (checkpoints.written() > 0) summary["checkpoint"] = checkpoints.index_path().string();
+  gf::summary_counts_at_end(summary, {still, 0});
   summary["status"] = m.interrupted ? "interrupted" : "completed";
-  summary["scene"] = opt.scene.string();
-  summary["overrides"] = opt.overrides;
-  summary["ranks"] = mpi.size();
   summary["threads_per_rank"] = threads;
   summary["grains"] = grains;
   summary["grains_at_end"] = still;
@@ -335,6 +334,7 @@ int run_ranks(const gf::CliOptions& opt, const gf::MpiContext& mpi, int threads)
   const std::int64_t steps = std::max<std::int64_t>(0, total - first_step);
   say_start(opt, *sim, resumed, grains, steps, threads);
   nlohmann::json summary;
+  gf::summary_opening(summary, opt, "spheres", {grains, 0}, mpi.size(), static_cast<std::size_t>(threads));
   if (opt.resume)
     summary["resumed_from"] = {{"checkpoint", opt.resume->string()}, {"step", first_step}, {"time", sim->world().clock.t}};
   std::unique_ptr<gf::RankOutputs> outputs;
