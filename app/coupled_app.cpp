@@ -119,7 +119,7 @@ class CoupledSeries : public SystemBase<CoupledSeries>, public Checkpointable {
   std::string_view name() const override { return "series_output"; }
   void run(World& w, const StepContext&) override {
     if (w.clock.step % every_ != 0) return;
-    csv_.append(sample_coupled(w, s_));
+    csv_.append(sample_coupled(w, s_.liquid));
     ++rows_;
   }
   void save(CheckpointWriter& out) const override { out.value("coupled_series.rows", rows_); }
@@ -246,7 +246,7 @@ int run_coupled_command(const CliOptions& opt) {
   }
   r.wall = seconds_since(run0);
   const auto cols = coupled_series_columns();
-  const auto last = sample_coupled(sim.world(), s);
+  const auto last = sample_coupled(sim.world(), s.liquid);
   nlohmann::json fin;
   for (std::size_t c = 0; c < cols.size(); ++c) fin[cols[c]] = std::isfinite(last[c]) ? nlohmann::json(last[c]) : nlohmann::json();
   summary["status"] = r.status;

@@ -189,7 +189,7 @@ TEST_CASE("coupled scene: sub-steps computed from the DEM step limit when not gi
   const double limit = s.dem.dt_safety * s.dem.critical.period;
   CHECK(s.coupling.substeps == static_cast<int>(std::ceil(5.0e-4 / limit)));
   CHECK(s.dem.dt <= limit);
-  CHECK(s.coupling.drag == gf::DragModel::ErgunWenYu);
+  CHECK(s.coupling.drag == &gf::drag_law("ergun_wen_yu"));
 }
 
 TEST_CASE("coupled scene: bad keys are refused with file, line, key and fix", "[coupled]") {

@@ -99,11 +99,11 @@ TEST_CASE("drag: the seed's switch at eps = 0.8 jumps, the blended form does not
     // 0.8^-2.65 / d^2 against 150 x 0.2 / 0.8 mu / d^2, then the Re corrections), by a factor of 3.7
     // at 1 m/s (Re = 1600, C_d = 0.44 against Ergun's inertial term): why a blended form is offered.
     CHECK(jump < 1.0);
-    const double b0 = gf::drag_per_volume(0.8 - 1e-9, slip, d, kWater, gf::DragModel::Blended);
-    const double b1 = gf::drag_per_volume(0.8 + 1e-9, slip, d, kWater, gf::DragModel::Blended);
+    const double b0 = gf::drag_per_volume(0.8 - 1e-9, slip, d, kWater, gf::drag_law("blend"));
+    const double b1 = gf::drag_per_volume(0.8 + 1e-9, slip, d, kWater, gf::drag_law("blend"));
     CHECK(b1 / b0 == Approx(1.0).epsilon(1e-6));
     // Far from the switch the blend is its nearer form to within the blend's tail, atan(262.5 x 0.2) / pi.
-    const double dense = gf::drag_per_volume(0.4, slip, d, kWater, gf::DragModel::Blended);
+    const double dense = gf::drag_per_volume(0.4, slip, d, kWater, gf::drag_law("blend"));
     CHECK(dense == Approx(gf::drag_per_volume(0.4, slip, d, kWater)).epsilon(0.05));
   }
 }
@@ -115,4 +115,16 @@ TEST_CASE("drag: out-of-range arguments are refused", "[drag]") {
   CHECK_THROWS_AS(gf::drag_per_volume(0.5, 1.0, 0.0, kWater), std::invalid_argument);
   CHECK_THROWS_AS(gf::drag_per_volume(0.5, 1.0, 1e-3, gf::LiquidProps{1000.0, 0.0}), std::invalid_argument);
   CHECK_THROWS_AS(gf::schiller_naumann(0.0), std::invalid_argument);
+}
+
+TEST_CASE("drag: the registry names its laws and refuses an unknown one", "[drag]") {
+  CHECK(gf::drag_law_names() == std::vector<std::string>{"ergun_wen_yu", "blend"});
+  CHECK(&gf::drag_law("ergun_wen_yu") == &gf::drag_laws()[0]);  // the default first
+  for (const gf::DragLaw& law : gf::drag_laws()) {
+    CHECK_FALSE(law.meaning.empty());
+    // Each law through the registry is its function: the same number as calling it.
+    CHECK(gf::drag_per_volume(0.5, 0.1, 2e-3, kWater, law) == law.per_volume(0.5, 0.1, 2e-3, kWater));
+  }
+  CHECK_THROWS_WITH(gf::drag_law("stokes"), Catch::Matchers::Contains("no drag law is named 'stokes'") &&
+                                                Catch::Matchers::Contains("'ergun_wen_yu', 'blend'"));
 }

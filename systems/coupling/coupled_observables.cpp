@@ -27,8 +27,8 @@ std::vector<std::string> coupled_series_columns() {
   return c;
 }
 
-std::vector<double> sample_coupled(World& w, const CoupledScene& s) {
-  std::vector<double> row = sample_liquid(w, s.liquid);
+std::vector<double> sample_coupled(World& w, const LiquidScene& liquid) {
+  std::vector<double> row = sample_liquid(w, liquid);
   Grains& g = w.grains;
   const CouplingState& c = w.resources.get<CouplingState>();
   const LiquidAtGrain& at = g.extras.get<LiquidAtGrain>();

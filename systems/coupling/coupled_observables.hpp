@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "engine/world.hpp"
-#include "systems/setup/coupled_scene.hpp"
+#include "systems/mps/liquid_scene.hpp"
 
 namespace gf {
 
 std::vector<std::string> coupled_series_columns();
-std::vector<double> sample_coupled(World& w, const CoupledScene& s);
+std::vector<double> sample_coupled(World& w, const LiquidScene& liquid);
 
 }  // namespace gf

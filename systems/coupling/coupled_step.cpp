@@ -5,16 +5,11 @@
 #include <utility>
 
 #include "engine/sub_schedule.hpp"
-#include "systems/broadphase/broadphase.hpp"
-#include "systems/contact/laws.hpp"
-#include "systems/contact/pair_contact.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/mps/fluid_nodes.hpp"
 #include "systems/mps/liquid_fraction.hpp"
 #include "systems/mps/liquid_params.hpp"
 #include "systems/mps/liquid_step.hpp"
-#include "systems/walls/contact_systems.hpp"
-#include "systems/walls/wall_contact.hpp"
 
 namespace gf {
 
@@ -44,7 +39,7 @@ struct LiquidForceSystem : SystemBase<LiquidForceSystem> {
     const double half = 0.5 * step.dt;
     for (std::size_t i = 0; i < g.n_owned; ++i) {
       const V3<double> u{at.ux[i], at.uy[i], at.uz[i]}, v{g.vel.x[i], g.vel.y[i], g.vel.z[i]};
-      const V3<double> F = liquid_force(u, v, at.eps[i], 2.0 * g.radius.r[i], c.liquid, gv, c.drag);
+      const V3<double> F = liquid_force(u, v, at.eps[i], 2.0 * g.radius.r[i], c.liquid, gv, *c.drag);
       if (!step.prime) {
         // The integrator's closing half-kick of this sub-step uses F, its opening one the force before.
         j.x[i] += half * (f.x[i] + F.x);
@@ -148,33 +143,25 @@ void prepare_coupling(World& w) {
   }
 }
 
-void attach_coupling(const CoupledScene& s, World& w) {
+void attach_coupling(const CouplingSpec& coupling, const LiquidScene& liquid, World& w) {
   const std::size_t n = w.grains.rows();
   w.grains.extras.attach<LiquidForce>(n);
   w.grains.extras.attach<LiquidAtGrain>(n);
   w.grains.extras.attach<LiquidImpulse>(n);
   CouplingState& c = w.resources.emplace<CouplingState>();
-  c.h = s.coupling.smoothing_radius;
-  c.drag = s.coupling.drag;
-  c.eps_min = s.coupling.min_liquid_fraction;
-  c.node_volume = std::pow(s.liquid.params.k.l0, 3);
-  c.periodic = s.liquid.params.periodic;
-  c.fluid_nodes_only = s.coupling.fluid_nodes_only;
-  c.liquid = {s.liquid.params.rho, s.liquid.params.rho * s.liquid.params.nu};
-  if (s.coupling.averaged) w.resources.emplace<LiquidFraction>();
+  c.h = coupling.smoothing_radius;
+  c.drag = coupling.drag;
+  c.eps_min = coupling.min_liquid_fraction;
+  c.node_volume = std::pow(liquid.params.k.l0, 3);
+  c.periodic = liquid.params.periodic;
+  c.fluid_nodes_only = coupling.fluid_nodes_only;
+  c.liquid = {liquid.params.rho, liquid.params.rho * liquid.params.nu};
+  if (coupling.averaged) w.resources.emplace<LiquidFraction>();
 }
 
-std::unique_ptr<Schedule> coupled_dem_step(const DemScene& scene) {
-  ForceTerms terms = dem_force_terms(scene);
-  terms.list.push_back(force_term<LiquidForce>("liquid_force"));
-  auto step = std::make_unique<Schedule>();
-  step->emplace<IntegratePositions>(terms);
-  step->emplace<Broadphase>();
-  add_contact_systems(*step, {scene.law, !scene.walls.empty(), !scene.mesh_walls.list.empty()});
-  step->emplace<LiquidForceSystem>();
-  step->emplace<IntegrateVelocities>(terms);
-  return step;
-}
+ForceTerm liquid_force_term() { return force_term<LiquidForce>("liquid_force"); }
+
+void add_liquid_force(Schedule& step) { step.emplace<LiquidForceSystem>(); }
 
 std::unique_ptr<Schedule> fixed_grains_step() {
   auto step = std::make_unique<Schedule>();
@@ -182,12 +169,11 @@ std::unique_ptr<Schedule> fixed_grains_step() {
   return step;
 }
 
-SubSchedule& schedule_coupled_step(Schedule& outer, const CoupledScene& scene) {
+SubSchedule& schedule_coupled_step(Schedule& outer, std::unique_ptr<Schedule> inner, int substeps, bool driven) {
   outer.emplace<CouplingPrepare>();
-  auto inner = scene.coupling.fixed_grains ? fixed_grains_step() : coupled_dem_step(scene.dem);
-  SubSchedule& dem = outer.emplace<SubSchedule>("dem_substeps", scene.coupling.substeps, std::move(inner));
+  SubSchedule& dem = outer.emplace<SubSchedule>("dem_substeps", substeps, std::move(inner));
   outer.emplace<LiquidReaction>();
-  schedule_liquid_step(outer, scene.liquid.drive.has_value());
+  schedule_liquid_step(outer, driven);
   return dem;
 }
 

@@ -24,8 +24,10 @@
 #include "engine/schedule.hpp"
 #include "systems/coupling/drag.hpp"
 #include "systems/coupling/void_fraction.hpp"
+#include "systems/integrate/force_terms.hpp"
 #include "systems/mps/neighbors.hpp"
-#include "systems/setup/coupled_scene.hpp"
+#include "systems/coupling/coupling_settings.hpp"
+#include "systems/mps/liquid_scene.hpp"
 
 namespace gf {
 
@@ -50,7 +52,7 @@ struct LiquidImpulse {
 // The coupling's settings and what its last step measured (a world resource).
 struct CouplingState {
   double h = 0;            // m, smoothing radius
-  DragModel drag = DragModel::ErgunWenYu;
+  DragModel drag = &drag_laws()[0];
   double eps_min = 0.2;
   double node_volume = 0;  // m^3, l0^3
   Periodicity periodic;    // the liquid's periodic axis: shares reach across it
@@ -64,16 +66,20 @@ struct CouplingState {
 };
 
 // Attaches the grain columns and the CouplingState resource (the liquid and the grains are in `world`).
-void attach_coupling(const CoupledScene& scene, World& world);
+void attach_coupling(const CouplingSpec& coupling, const LiquidScene& liquid, World& world);
 
-// The DEM step of the scene with the liquid's force as one more force term (grains of spheres, no feeds).
-std::unique_ptr<Schedule> coupled_dem_step(const DemScene& scene);
+// The liquid's force on the grains, one more force term of the DEM step (the step itself is assembled
+// with the scene's: systems/setup/coupled_simulation.cpp).
+ForceTerm liquid_force_term();
+// The system that sets that force and tallies its impulse (after the contacts, before the closing kick).
+void add_liquid_force(Schedule& step);
 // The sub-step of grains held fixed (coupling.fixed_grains): the liquid's force and its impulse only.
 std::unique_ptr<Schedule> fixed_grains_step();
 
 class SubSchedule;
-// The whole coupled step into `outer` (the systems above, then the liquid's); returns the DEM sub-steps.
-SubSchedule& schedule_coupled_step(Schedule& outer, const CoupledScene& scene);
+// The coupled step around the DEM sub-steps `inner` into `outer`: coupling_prepare, `substeps` runs of
+// `inner`, liquid_reaction, then the liquid's step; returns the DEM sub-steps.
+SubSchedule& schedule_coupled_step(Schedule& outer, std::unique_ptr<Schedule> inner, int substeps, bool driven);
 
 // The systems of the outer step that the coupled simulation runs on its own while priming.
 void prepare_coupling(World& world);

@@ -100,8 +100,7 @@ void read_coupling(CoupledScene& s, const SceneNode& root) {
            short_number(s.coupling.smoothing_radius) + " m is shorter than the node spacing l0 = " + short_number(l0) +
                " m: a grain between nodes would reach none",
            "set smoothing_radius >= l0, e.g. " + short_number(2.5 * l0) + " m (2.5 l0)");
-  const std::string drag = c.get_choice("drag", {"ergun_wen_yu", "blend"}, "ergun_wen_yu");
-  s.coupling.drag = drag == "blend" ? DragModel::Blended : DragModel::ErgunWenYu;
+  s.coupling.drag = &drag_law(c.get_choice("drag", drag_law_names(), std::string(drag_laws()[0].name)));
   s.coupling.min_liquid_fraction = c.get_double("min_liquid_fraction", 0.2, Range::open_closed(0.0, 1.0));
   s.coupling.fluid_nodes_only = c.get_choice("share_with", {"all_nodes", "fluid_nodes"}, "all_nodes") == "fluid_nodes";
   s.coupling.averaged = c.get_bool("averaged", false);
@@ -128,6 +127,6 @@ CoupledScene load_coupled_scene(const SceneDoc& doc) {
   return s;
 }
 
-const char* drag_model_name(DragModel m) { return m == DragModel::Blended ? "blend" : "ergun_wen_yu"; }
+const char* drag_model_name(DragModel m) { return m->name.data(); }
 
 }  // namespace gf

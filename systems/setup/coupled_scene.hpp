@@ -30,24 +30,11 @@
 #include <string>
 
 #include "engine/scene.hpp"
-#include "systems/coupling/drag.hpp"
+#include "systems/coupling/coupling_settings.hpp"
 #include "systems/mps/liquid_scene.hpp"
 #include "systems/setup/dem_scene.hpp"
 
 namespace gf {
-
-struct CouplingSpec {
-  int substeps = 1;
-  bool substeps_computed = false;  // no coupling.substeps: from the DEM step limit
-  double dem_step_limit = 0;       // s, run.dt_safety times the contact law's smallest period
-  double smoothing_radius = 0;     // m
-  DragModel drag = DragModel::ErgunWenYu;
-  double min_liquid_fraction = 0.2;
-  bool modified_pressure = false;
-  bool fixed_grains = false;
-  bool fluid_nodes_only = false;  // share_with = "fluid_nodes"
-  bool averaged = false;          // the liquid locally averaged (eps n0 as its number-density target)
-};
 
 struct CoupledScene {
   std::filesystem::path file;

@@ -5,20 +5,41 @@
 
 #include "engine/run_loop.hpp"
 #include "systems/broadphase/neighbor_list.hpp"
+#include "systems/broadphase/broadphase.hpp"
 #include "systems/coupling/coupled_step.hpp"
+#include "systems/integrate/integrate.hpp"
 #include "systems/mps/liquid_simulation.hpp"
 #include "systems/setup/coupled_checkpoint.hpp"
+#include "systems/walls/contact_systems.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
+
+namespace {
+
+// The DEM step of the scene with the liquid's force as one more force term (grains of spheres, no feeds).
+std::unique_ptr<Schedule> coupled_dem_step(const DemScene& scene) {
+  ForceTerms terms = dem_force_terms(scene);
+  terms.list.push_back(liquid_force_term());
+  auto step = std::make_unique<Schedule>();
+  step->emplace<IntegratePositions>(terms);
+  step->emplace<Broadphase>();
+  add_contact_systems(*step, {scene.law, !scene.walls.empty(), !scene.mesh_walls.list.empty()});
+  add_liquid_force(*step);
+  step->emplace<IntegrateVelocities>(terms);
+  return step;
+}
+
+}  // namespace
 
 CoupledSimulation::CoupledSimulation(CoupledScene scene)
     : scene_(std::move(scene)), world_(std::make_unique<World>()), step_(std::make_unique<Schedule>()) {
   World& w = *world_;
   build_dem_world(scene_.dem, w);
   build_liquid_world(scene_.liquid, w);  // the clock: the liquid's step
-  attach_coupling(scene_, w);
-  dem_ = &schedule_coupled_step(*step_, scene_);
+  attach_coupling(scene_.coupling, scene_.liquid, w);
+  auto inner = scene_.coupling.fixed_grains ? fixed_grains_step() : coupled_dem_step(scene_.dem);
+  dem_ = &schedule_coupled_step(*step_, std::move(inner), scene_.coupling.substeps, scene_.liquid.drive.has_value());
   step_->build(w);
 }
 
