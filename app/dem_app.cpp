@@ -15,6 +15,7 @@
 #include "systems/contact/laws.hpp"
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
+#include "systems/setup/dem_output_settings.hpp"
 #include "systems/output/layer_output.hpp"
 #include "systems/output/residence_csv.hpp"
 #include "systems/output/summary_json.hpp"

@@ -58,6 +58,20 @@ BodyCounts count_bodies(const DemScene& s, World& w) {
   return c;
 }
 
+// What the body frames write of each body beside its state.
+BodyFrameLabels frame_labels(const BodiesSpec& b) {
+  BodyFrameLabels l;
+  for (const BodyShape& sh : b.shapes) {
+    l.shape_name.push_back(sh.name);
+    l.shape_axes.emplace_back(sh.props.axes);
+  }
+  for (const BodyPlacement& p : b.placed) {
+    l.shape.push_back(p.shape);
+    l.group.push_back(p.group);
+  }
+  return l;
+}
+
 // The pictures' colours per body row and the legend for the PNG's Comment entry.
 std::vector<Rgb> picture_colours(const DemScene& s, const std::vector<int>& layers, std::string& legend) {
   const BodiesSpec& b = *s.bodies;
@@ -300,7 +314,7 @@ void make_body_observers(BodyRun& run, const DemScene& s) {
   if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("body_series_output.rows");
   run.series = &observe.emplace<BodySeriesOutput>(ss);
   if (s.output.frame_interval > 0)
-    run.frames = &observe.emplace<BodyFrameOutput>(run.out, s.output.frame_interval, s.bodies, layers);
+    run.frames = &observe.emplace<BodyFrameOutput>(run.out, s.output.frame_interval, frame_labels(*s.bodies), layers);
   if (bo.picture_interval > 0) {
     std::string legend;
     std::vector<Rgb> colours = picture_colours(s, layers, legend);

@@ -26,12 +26,11 @@ FLOORS = [
     ["systems/contact"],
     ["systems/walls"],
     ["systems/bodies"],
-    ["systems/analysis"],
+    ["systems/analysis", "systems/decomposition"],
     ["systems/output"],
     ["systems/mps"],
     ["systems/coupling"],
     ["systems/setup"],
-    ["systems/decomposition"],
     ["app"],
 ]
 INCLUDE = re.compile(r'^\s*#include "((?:app|engine|systems)/[^"]+)"', re.M)

@@ -354,7 +354,7 @@ def measure():
 
 def code_counts():
     """What one step and one rebuild send, read from the code (app/mpi_main.cpp,
-    systems/decomposition/mpi/rank_simulation.cpp, domain_ghosts.cpp, migration.cpp, row_bytes.cpp)."""
+    systems/setup/mpi/rank_simulation.cpp, domain_ghosts.cpp, migration.cpp, row_bytes.cpp)."""
     return {
         "per_step": {
             "allreduce_8_bytes": 2,

@@ -10,7 +10,6 @@
 
 #include "systems/output/sample_grid.hpp"
 #include "engine/atomic_file.hpp"
-#include "systems/setup/dem_body_scene.hpp"
 
 namespace gf {
 
@@ -138,9 +137,9 @@ void BodySeriesOutput::sample(World& world, double t) {
 
 // ---- Frames --------------------------------------------------------------------------------------
 
-BodyFrameOutput::BodyFrameOutput(std::filesystem::path out_dir, double interval, std::shared_ptr<const BodiesSpec> spec,
+BodyFrameOutput::BodyFrameOutput(std::filesystem::path out_dir, double interval, BodyFrameLabels labels,
                                  std::vector<int> layers)
-    : dir_(out_dir / "frames"), interval_(interval), spec_(std::move(spec)), layers_(std::move(layers)) {
+    : dir_(out_dir / "frames"), interval_(interval), labels_(std::move(labels)), layers_(std::move(layers)) {
   ensure_directory(dir_);
 }
 
@@ -170,14 +169,13 @@ void BodyFrameOutput::write(const Bodies& b, double t) {
   std::string text = "id,shape,group,layer,motion,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
   text.reserve(b.n * 260);
   for (std::size_t i = 0; i < b.n; ++i) {
-    const BodyPlacement& p = spec_->placed[i];
-    const BodyShape& sh = spec_->shapes[p.shape];
+    const std::size_t shape = labels_.shape[i];
     // The body frame is the shape's principal frame: q_body = q_shape * quaternion(axes).
     Eigen::Quaterniond qs = Eigen::Quaterniond(b.q.w[i], b.q.x[i], b.q.y[i], b.q.z[i]) *
-                            Eigen::Quaterniond(sh.props.axes).conjugate();
+                            labels_.shape_axes[shape].conjugate();
     qs.normalize();
     if (qs.w() < 0) qs.coeffs() *= -1.0;  // one of the two signs, for readable files
-    text += std::to_string(i) + "," + sh.name + "," + std::to_string(p.group) + "," +
+    text += std::to_string(i) + "," + labels_.shape_name[shape] + "," + std::to_string(labels_.group[i]) + "," +
             std::to_string(i < layers_.size() ? layers_[i] : -1) + "," + motion_name(b.motion.state[i]);
     for (double v : {b.pos.x[i], b.pos.y[i], b.pos.z[i], qs.w(), qs.x(), qs.y(), qs.z(), b.vel.x[i], b.vel.y[i],
                      b.vel.z[i], b.omega.x[i], b.omega.y[i], b.omega.z[i]}) {

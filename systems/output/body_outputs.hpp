@@ -27,6 +27,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "engine/checkpoint_file.hpp"
 #include "engine/system.hpp"
 #include "systems/bodies/bodies.hpp"
@@ -37,7 +39,14 @@
 
 namespace gf {
 
-struct BodiesSpec;
+// What a body frame writes of each body beside its state: its shape's name and group, and the rotation
+// from its shape's frame to its principal frame (the frame the Bodies table holds it in).
+struct BodyFrameLabels {
+  std::vector<std::string> shape_name;        // per shape
+  std::vector<Eigen::Quaterniond> shape_axes;  // per shape: the principal axes in the shape's frame
+  std::vector<std::size_t> shape;              // per body row
+  std::vector<int> group;                      // per body row
+};
 
 // The last sample of the series, for summary.json.
 struct BodySeriesRow {
@@ -98,9 +107,8 @@ class BodyFrameOutput : public SystemBase<BodyFrameOutput>, public Checkpointabl
  public:
   using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMotion>;
   using Writes = gf::Writes<BodyFrameFiles>;
-  // `spec` gives the shapes' names and frames; `layers` per body row.
-  BodyFrameOutput(std::filesystem::path out_dir, double interval, std::shared_ptr<const BodiesSpec> spec,
-                  std::vector<int> layers);
+  // `labels` gives the shapes' names and frames; `layers` per body row.
+  BodyFrameOutput(std::filesystem::path out_dir, double interval, BodyFrameLabels labels, std::vector<int> layers);
   std::string_view name() const override { return "body_frame_output"; }
   void run(World& world, const StepContext& now) override;
   void finish(World& world);
@@ -113,7 +121,7 @@ class BodyFrameOutput : public SystemBase<BodyFrameOutput>, public Checkpointabl
   void write(const Bodies& b, double t);
   std::filesystem::path dir_;
   double interval_;
-  std::shared_ptr<const BodiesSpec> spec_;
+  BodyFrameLabels labels_;
   std::vector<int> layers_;
   std::vector<double> times_;
   double next_ = 0;

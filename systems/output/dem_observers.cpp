@@ -7,7 +7,6 @@
 
 #include "systems/output/sample_grid.hpp"
 #include "engine/atomic_file.hpp"
-#include "systems/setup/dem_scene.hpp"
 
 namespace gf {
 
@@ -37,20 +36,6 @@ std::vector<std::string> series_columns(const SeriesSettings& s) {
 std::vector<std::string> surface_columns() {
   return {"time", "angle", "surface_angle", "surface_level", "surface_bulge", "surface_span", "surface_speed",
           "surface_grains"};
-}
-
-SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::path& out) {
-  SeriesSettings ss;
-  if (s.output.series_interval > 0) ss.csv = out / "series.csv";
-  ss.interval = s.output.series_interval > 0 ? s.output.series_interval : 1000 * s.dt;
-  ss.segregation_type = s.segregation_type;
-  ss.segregation_cell = s.segregation_cell;
-  ss.pattern = s.pattern;
-  ss.pattern_settings.large_type = s.segregation_type;
-  ss.mixing_cell = s.mixing_cell;
-  ss.mixing_min_grains = s.mixing_min_grains;
-  ss.flow = s.flow.any();
-  return ss;
 }
 
 SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
@@ -235,25 +220,6 @@ void FrameOutput::finish(World& world) {
   if (world.clock.t == last_written_) return;
   series_.write(world.grains, world.clock.t, fields_);
   last_written_ = world.clock.t;
-}
-
-bool scene_draws_pictures(const DemScene& s) {
-  return !s.output.picture_angles.empty() || s.output.picture_interval > 0;
-}
-
-PictureSettings scene_picture_settings(const DemScene& s, const std::filesystem::path& out) {
-  PictureSettings ps;
-  ps.dir = out / "pictures";
-  ps.angles = s.output.picture_angles;
-  ps.interval = s.output.picture_interval;
-  ps.options = s.output.picture;
-  for (std::size_t k = 0; k < s.species.size(); ++k) {
-    char hex[16];
-    const Rgb& c = ps.options.palette[k];
-    std::snprintf(hex, sizeof hex, "#%02X%02X%02X", c[0], c[1], c[2]);
-    ps.legend += (k ? ", " : "") + s.species[k].name + " " + hex;
-  }
-  return ps;
 }
 
 PictureOutput::PictureOutput(PictureSettings s) : s_(std::move(s)) {}

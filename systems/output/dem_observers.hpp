@@ -29,7 +29,6 @@
 
 namespace gf {
 
-struct DemScene;
 
 
 struct SeriesRow {
@@ -85,9 +84,6 @@ std::vector<std::string> series_columns(const SeriesSettings& s);
 
 // The columns of surface.csv (scenes with the pattern columns).
 std::vector<std::string> surface_columns();
-
-// The settings `grainflow run` gives its SeriesOutput for a scene (the csv under out, if any).
-SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::path& out);
 
 class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
  public:
@@ -153,11 +149,6 @@ struct PictureSettings {
   PictureOptions options;
   std::string legend;           // species colours, for the PNG's Comment entry
 };
-
-// Whether the scene asks for drum pictures (output.picture_angles or output.picture_interval), and
-// the settings it gives them, into out/pictures.
-bool scene_draws_pictures(const DemScene& s);
-PictureSettings scene_picture_settings(const DemScene& s, const std::filesystem::path& out);
 
 // Draws the drum (the first rotating inner cylinder, else the first one) when the rotation angle of
 // the first rotating wall reaches each requested angle: pictures/angle_XX.XX.png, named after the

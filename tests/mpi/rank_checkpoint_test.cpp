@@ -9,10 +9,10 @@
 #include <string>
 
 #include "engine/mpi/rank_failure.hpp"
-#include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/setup/mpi/rank_simulation.hpp"
 #include "systems/output/mpi/rank_checkpoint_index.hpp"
-#include "systems/output/mpi/rank_checkpoints.hpp"
-#include "systems/output/mpi/rank_outputs.hpp"
+#include "systems/setup/mpi/rank_checkpoints.hpp"
+#include "systems/setup/mpi/rank_outputs.hpp"
 #include "tests/mpi/mpi_test_support.hpp"
 #include "tests/mpi/rank_outputs_support.hpp"
 

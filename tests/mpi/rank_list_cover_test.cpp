@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string>
 
-#include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/setup/mpi/rank_simulation.hpp"
 #include "tests/mpi/mpi_test_support.hpp"
 
 namespace {

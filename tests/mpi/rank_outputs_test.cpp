@@ -11,10 +11,11 @@
 #include <string>
 
 #include "engine/mpi/rank_failure.hpp"
-#include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/setup/mpi/rank_simulation.hpp"
 #include "systems/fill/state_csv.hpp"
 #include "systems/output/mpi/rank_frames.hpp"
-#include "systems/output/mpi/rank_outputs.hpp"
+#include "systems/setup/dem_output_settings.hpp"
+#include "systems/setup/mpi/rank_outputs.hpp"
 #include "tests/mpi/mpi_test_support.hpp"
 #include "tests/mpi/rank_outputs_support.hpp"
 

@@ -19,7 +19,7 @@
 #include <string>
 #include <utility>
 
-#include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/setup/mpi/rank_simulation.hpp"
 #include "systems/decomposition/row_cost.hpp"
 #include "tests/mpi/mpi_test_support.hpp"
 

@@ -1,4 +1,4 @@
-#include "systems/output/mpi/gathered_grains.hpp"
+#include "systems/setup/mpi/gathered_grains.hpp"
 
 #include <algorithm>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "systems/output/mpi/rank_checkpoints.hpp"
+#include "systems/setup/mpi/rank_checkpoints.hpp"
 
 #include <system_error>
 

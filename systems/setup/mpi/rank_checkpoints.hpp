@@ -11,9 +11,9 @@
 
 #include "engine/checkpoint_file.hpp"
 #include "engine/mpi/mpi_context.hpp"
-#include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/setup/mpi/rank_simulation.hpp"
 #include "systems/output/mpi/rank_checkpoint_index.hpp"
-#include "systems/output/mpi/rank_outputs.hpp"
+#include "systems/setup/mpi/rank_outputs.hpp"
 
 namespace gf {
 

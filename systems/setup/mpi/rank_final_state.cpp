@@ -1,8 +1,8 @@
-#include "systems/output/mpi/rank_final_state.hpp"
+#include "systems/setup/mpi/rank_final_state.hpp"
 
 #include "engine/mpi/rank_failure.hpp"
 #include "systems/fill/state_csv.hpp"
-#include "systems/output/mpi/gathered_grains.hpp"
+#include "systems/setup/mpi/gathered_grains.hpp"
 
 namespace gf {
 

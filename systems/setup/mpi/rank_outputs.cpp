@@ -1,9 +1,10 @@
-#include "systems/output/mpi/rank_outputs.hpp"
+#include "systems/setup/mpi/rank_outputs.hpp"
 
 #include "engine/atomic_file.hpp"
 #include "engine/mpi/rank_failure.hpp"
-#include "systems/output/mpi/gathered_grains.hpp"
-#include "systems/output/mpi/rank_final_state.hpp"
+#include "systems/setup/mpi/gathered_grains.hpp"
+#include "systems/setup/dem_output_settings.hpp"
+#include "systems/setup/mpi/rank_final_state.hpp"
 
 namespace gf {
 

@@ -17,7 +17,7 @@
 #include "systems/output/layer_output.hpp"
 #include "systems/output/residence_csv.hpp"
 #include "systems/output/mpi/rank_frames.hpp"
-#include "systems/output/mpi/rank_series.hpp"
+#include "systems/setup/mpi/rank_series.hpp"
 #include "systems/setup/dem_scene.hpp"
 
 namespace gf {

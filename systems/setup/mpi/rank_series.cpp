@@ -1,4 +1,4 @@
-#include "systems/output/mpi/rank_series.hpp"
+#include "systems/setup/mpi/rank_series.hpp"
 
 #include <array>
 #include <limits>
@@ -8,7 +8,7 @@
 #include "engine/mpi/rank_failure.hpp"
 #include "systems/analysis/drum_section.hpp"
 #include "systems/flow/flow_systems.hpp"
-#include "systems/output/mpi/gathered_grains.hpp"
+#include "systems/setup/mpi/gathered_grains.hpp"
 
 namespace gf {
 

@@ -1,4 +1,4 @@
-#include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/setup/mpi/rank_simulation.hpp"
 
 #include <algorithm>
 #include <cmath>

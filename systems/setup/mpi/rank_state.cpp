@@ -12,7 +12,7 @@
 
 #include "engine/mpi/rank_failure.hpp"
 #include "systems/broadphase/broadphase.hpp"
-#include "systems/decomposition/mpi/rank_simulation.hpp"
+#include "systems/setup/mpi/rank_simulation.hpp"
 #include "systems/decomposition/row_bytes.hpp"
 #include "systems/flow/flow_systems.hpp"
 #include "systems/setup/list_sections.hpp"
