@@ -121,6 +121,175 @@ int check_dem_command(const CliOptions& opt) {
   return 0;
 }
 
+namespace {
+
+// The observers of a grain run (series, frames, pictures, residence and layer files, checkpoints), each
+// restored from the checkpoint a run resumes.
+struct DemObservers {
+  Schedule schedule;
+  SeriesOutput* series = nullptr;
+  FrameOutput* frames = nullptr;
+  PictureOutput* pictures = nullptr;
+  ResidenceOutput* residence = nullptr;
+  LayerOutput* layers = nullptr;
+  CheckpointOutput* checkpoints = nullptr;
+};
+
+void restore_observers(DemObservers& o, const CheckpointReader& ckpt) {
+  o.series->restore(ckpt);
+  if (o.frames) {
+    if (!ckpt.has("frame_output.next"))
+      ckpt.fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
+    o.frames->restore(ckpt);
+  }
+  if (o.pictures) {
+    if (!ckpt.has("picture_output.next_angle"))
+      ckpt.fail("the run that wrote it drew no pictures",
+                "resume without output.picture_angles and output.picture_interval, as that run had");
+    o.pictures->restore(ckpt);
+  }
+  if (o.residence) o.residence->restore(ckpt);
+  if (o.layers) o.layers->restore(ckpt);
+  o.checkpoints->restore(ckpt);
+}
+
+void add_observers(DemObservers& o, const DemScene& s, const std::filesystem::path& out, World& world,
+                   const CheckpointReader* ckpt) {
+  world.resources.emplace<SeriesRow>();
+  SeriesSettings ss = scene_series_settings(s, out);
+  if (ckpt) {
+    ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");
+    ss.resume_time = world.clock.t;
+  }
+  o.series = &o.schedule.emplace<SeriesOutput>(ss);
+  if (s.output.frame_interval > 0) o.frames = &o.schedule.emplace<FrameOutput>(out, s.output.frame_interval, s.output.fields);
+  if (scene_draws_pictures(s)) o.pictures = &o.schedule.emplace<PictureOutput>(scene_picture_settings(s, out));
+  if (!s.flow.outlets.empty()) {
+    std::optional<std::size_t> keep;
+    if (ckpt) keep = ckpt->value<std::uint64_t>("residence_output.rows");
+    o.residence = &o.schedule.emplace<ResidenceOutput>(out / "residence.csv", keep);
+  }
+  if (s.layers) {
+    std::optional<std::size_t> keep;
+    if (ckpt) keep = ckpt->value<std::uint64_t>("layer_output.rows");
+    o.layers = &o.schedule.emplace<LayerOutput>(out / "layers.csv", *s.layers, keep);
+  }
+  std::vector<const Checkpointable*> parts{o.series};
+  if (o.layers) parts.push_back(o.layers);
+  if (o.frames) parts.push_back(o.frames);
+  if (o.pictures) parts.push_back(o.pictures);
+  if (o.residence) parts.push_back(o.residence);
+  o.checkpoints = &o.schedule.emplace<CheckpointOutput>(
+      CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
+      [&s](CheckpointWriter& w, World& wd) { save_dem_state(w, wd, s); }, parts);
+  o.schedule.build(world);
+  if (ckpt) restore_observers(o, *ckpt);
+}
+
+// How the main stage ended: its report, the status and failure, the checkpoint at the end, the exit status.
+struct MainOutcome {
+  StageReport main;
+  std::string status = "completed", failure, checkpoint_file;
+  int rc = 0;
+  void fail(std::string why) {
+    status = "failed";
+    failure = std::move(why);
+    rc = 3;
+  }
+};
+
+// The main stage with its observers, then the checkpoint at the end and the outputs' last writes; a
+// failure ends the stage and is recorded, the files written before kept.
+MainOutcome step_main_stage(const CliOptions& opt, const DemScene& s, DemSimulation& sim, DemObservers& o,
+                            const std::filesystem::path& out, const CheckpointReader* ckpt) {
+  World& world = sim.world();
+  MainOutcome r;
+  StageOptions so;
+  so.progress_seconds = opt.quiet ? 0.0 : 2.0;
+  so.label = "run";
+  // --steps and the scene's duration count the whole main stage, so a resumed run ends where the
+  // uninterrupted one would.
+  const std::int64_t total_steps = opt.steps ? *opt.steps : s.main_steps();
+  so.steps = std::max<std::int64_t>(0, total_steps - world.clock.step);
+  so.observe = &o.schedule;
+  const auto run0 = std::chrono::steady_clock::now();
+  const auto write_failed = [&](const WriteError& e) {
+    r.fail(e.what() + write_failure_fix(opt, out, ckpt || o.checkpoints->written() > 0));
+  };
+  const auto stopped = [&] {  // a stage that threw: the steps it took, and its wall time
+    r.main.steps = world.clock.step - (ckpt ? ckpt->value<std::int64_t>("clock.step") : 0);
+    r.main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
+  };
+  try {
+    r.main = run_stage(world, sim.step(), so);
+    if (r.main.interrupted) r.status = "interrupted";
+  } catch (const WriteError& e) {
+    write_failed(e);
+    stopped();
+  } catch (const std::exception& e) {
+    r.fail(e.what());
+    stopped();
+  }
+  const auto guarded = [&](auto&& write) {
+    if (r.status == "failed") return;
+    try {
+      write();
+    } catch (const WriteError& e) {
+      write_failed(e);
+    } catch (const std::exception& e) {
+      r.fail(e.what());
+    }
+  };
+  if (s.output.checkpoint_at_end) guarded([&] { r.checkpoint_file = o.checkpoints->write(world).string(); });
+  guarded([&] {
+    o.series->finish(world);
+    if (o.frames) o.frames->finish(world);
+  });
+  return r;
+}
+
+void summarise_run(nlohmann::json& summary, const MainOutcome& r, const StageReport& settle, const DemObservers& o,
+                   DemSimulation& sim, std::size_t n, double total_wall) {
+  World& world = sim.world();
+  // A stage that threw reports its steps but not the grains stepped: those of the start, then.
+  const double stepped = r.main.particle_steps > 0 ? r.main.particle_steps : static_cast<double>(r.main.steps) * n;
+  summary["status"] = r.status;
+  if (!r.failure.empty()) summary["failure"] = r.failure;
+  summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle.wall_seconds}};
+  summary["steps"] = world.clock.step;
+  summary["steps_this_run"] = r.main.steps;
+  summary["checkpoints_written"] = o.checkpoints->written();
+  if (!r.checkpoint_file.empty()) summary["checkpoint"] = r.checkpoint_file;
+  summary["simulated_time"] = world.clock.t;
+  summary["wall_seconds"] = r.main.wall_seconds;
+  summary["total_wall_seconds"] = total_wall;
+  summary["particle_steps_per_second"] = r.main.wall_seconds > 0 ? stepped / r.main.wall_seconds : 0.0;
+  summary["neighbor_rebuilds"] = world.resources.get<BroadphaseState>().rebuilds;
+  // Checks where some grain had moved past skin/2 but no pair missing from the list touched.
+  summary["neighbor_list_kept"] = world.resources.get<BroadphaseState>().cover.kept;
+  summary["frames"] = o.frames ? o.frames->frames() : 0;
+  summary["pictures"] = o.pictures ? o.pictures->pictures() : 0;
+  summary["final"] = final_row_json(world.resources.get<SeriesRow>());
+  if (const FlowState* f = world.resources.find<FlowState>()) summary["flow"] = flow_json(*f, world.grains, o.residence);
+  summary_counts_at_end(summary, {static_cast<std::int64_t>(world.grains.n_owned), 0});
+  summary["time_per_system"] = timings_json({&sim.step(), &o.schedule});
+}
+
+nlohmann::json opening_summary(const CliOptions& opt, const DemScene& s, const World& world, std::size_t n,
+                               const CheckpointReader* ckpt) {
+  nlohmann::json summary;
+  summary_opening(summary, opt, "spheres", {static_cast<std::int64_t>(n), 0}, 1, threads_in_use());
+  summary["grains"] = n;
+  summary["dt"] = s.dt;
+  summary["critical_period"] = s.critical.period;
+  summary["critical_term"] = s.critical.term;
+  summary["status"] = "running";
+  if (ckpt) summary["resumed_from"] = {{"checkpoint", ckpt->file().string()}, {"step", world.clock.step}, {"time", world.clock.t}};
+  return summary;
+}
+
+}  // namespace
+
 int run_dem_command(const CliOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
   const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
@@ -131,27 +300,19 @@ int run_dem_command(const CliOptions& opt) {
 
   DemSimulation sim(s);
   World& world = sim.world();
-  Schedule& step = sim.step();
   std::optional<CheckpointReader> ckpt;
   if (opt.resume) {
     ckpt.emplace(*opt.resume);
     sim.resume(*ckpt);
   }
+  const CheckpointReader* from = ckpt ? &*ckpt : nullptr;
   const std::size_t n = world.grains.n_owned;
   std::fprintf(stderr, "grainflow: %s: %zu grains, dt = %.3g s (%.3f of the critical period), %zu threads -> %s\n",
                s.file.string().c_str(), n, s.dt, s.dt / s.critical.period, threads_in_use(), out.string().c_str());
   if (ckpt)
     std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", ckpt->file().string().c_str(),
                  static_cast<long long>(world.clock.step), world.clock.t);
-
-  nlohmann::json summary;
-  summary_opening(summary, opt, "spheres", {static_cast<std::int64_t>(n), 0}, 1, threads_in_use());
-  summary["grains"] = n;
-  summary["dt"] = s.dt;
-  summary["critical_period"] = s.critical.period;
-  summary["critical_term"] = s.critical.term;
-  summary["status"] = "running";
-  if (ckpt) summary["resumed_from"] = {{"checkpoint", ckpt->file().string()}, {"step", world.clock.step}, {"time", world.clock.t}};
+  nlohmann::json summary = opening_summary(opt, s, world, n, from);
   write_summary_json(out / "summary.json", summary);
 
   // A resumed run continues the main stage; its settling was done by the run that wrote the checkpoint.
@@ -166,155 +327,27 @@ int run_dem_command(const CliOptions& opt) {
     std::fprintf(stderr, "grainflow: failed while settling\ngrainflow: error: %s\n", e.what());
     return 3;
   }
-  step.reset_timings();
-
-  Schedule observe;
-  world.resources.emplace<SeriesRow>();
-  SeriesSettings ss = scene_series_settings(s, out);
-  if (ckpt) {
-    ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");
-    ss.resume_time = world.clock.t;
-  }
-  SeriesOutput& series = observe.emplace<SeriesOutput>(ss);
-  FrameOutput* frames = nullptr;
-  if (s.output.frame_interval > 0) frames = &observe.emplace<FrameOutput>(out, s.output.frame_interval, s.output.fields);
-  PictureOutput* pictures = nullptr;
-  if (scene_draws_pictures(s)) pictures = &observe.emplace<PictureOutput>(scene_picture_settings(s, out));
-  ResidenceOutput* residence = nullptr;
-  if (!s.flow.outlets.empty()) {
-    std::optional<std::size_t> keep;
-    if (ckpt) keep = ckpt->value<std::uint64_t>("residence_output.rows");
-    residence = &observe.emplace<ResidenceOutput>(out / "residence.csv", keep);
-  }
-  LayerOutput* layers = nullptr;
-  if (s.layers) {
-    std::optional<std::size_t> keep;
-    if (ckpt) keep = ckpt->value<std::uint64_t>("layer_output.rows");
-    layers = &observe.emplace<LayerOutput>(out / "layers.csv", *s.layers, keep);
-  }
-  std::vector<const Checkpointable*> parts{&series};
-  if (layers) parts.push_back(layers);
-  if (frames) parts.push_back(frames);
-  if (pictures) parts.push_back(pictures);
-  if (residence) parts.push_back(residence);
-  CheckpointOutput& checkpoints = observe.emplace<CheckpointOutput>(
-      CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
-      [&s](CheckpointWriter& w, World& wd) { save_dem_state(w, wd, s); }, parts);
-  observe.build(world);
-  if (ckpt) {
-    series.restore(*ckpt);
-    if (frames) {
-      if (!ckpt->has("frame_output.next"))
-        ckpt->fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
-      frames->restore(*ckpt);
-    }
-    if (pictures) {
-      if (!ckpt->has("picture_output.next_angle"))
-        ckpt->fail("the run that wrote it drew no pictures",
-                   "resume without output.picture_angles and output.picture_interval, as that run had");
-      pictures->restore(*ckpt);
-    }
-    if (residence) residence->restore(*ckpt);
-    if (layers) layers->restore(*ckpt);
-    checkpoints.restore(*ckpt);
-  }
-
-  StageOptions so;
-  so.progress_seconds = opt.quiet ? 0.0 : 2.0;
-  so.label = "run";
-  // --steps and the scene's duration count the whole main stage, so a resumed run ends where the
-  // uninterrupted one would.
-  const std::int64_t total_steps = opt.steps ? *opt.steps : s.main_steps();
-  so.steps = std::max<std::int64_t>(0, total_steps - world.clock.step);
-  so.observe = &observe;
-  StageReport main;
-  std::string checkpoint_file;
-  std::string status = "completed";
-  std::string failure;
-  int rc = 0;
-  const auto run0 = std::chrono::steady_clock::now();
-  const auto fail_write = [&](const WriteError& e) {
-    status = "failed";
-    failure = e.what() + write_failure_fix(opt, out, ckpt || checkpoints.written() > 0);
-    rc = 3;
-  };
-  try {
-    main = run_stage(world, step, so);
-    if (main.interrupted) status = "interrupted";
-  } catch (const WriteError& e) {
-    fail_write(e);
-    main.steps = world.clock.step - (ckpt ? ckpt->value<std::int64_t>("clock.step") : 0);
-    main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
-  } catch (const std::exception& e) {
-    status = "failed";
-    failure = e.what();
-    main.steps = world.clock.step - (ckpt ? ckpt->value<std::int64_t>("clock.step") : 0);
-    main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
-    rc = 3;
-  }
-
-  if (status != "failed" && s.output.checkpoint_at_end) {
-    try {
-      checkpoint_file = checkpoints.write(world).string();
-    } catch (const WriteError& e) {
-      fail_write(e);
-    } catch (const std::exception& e) {
-      status = "failed";
-      failure = e.what();
-      rc = 3;
-    }
-  }
-  if (status != "failed") {
-    try {
-      series.finish(world);
-      if (frames) frames->finish(world);
-    } catch (const WriteError& e) {
-      fail_write(e);
-    } catch (const std::exception& e) {
-      status = "failed";
-      failure = e.what();
-      rc = 3;
-    }
-  }
-  // A stage that threw reports its steps but not the grains stepped: those of the start, then.
-  const double stepped = main.particle_steps > 0 ? main.particle_steps : static_cast<double>(main.steps) * n;
-  const double psps = main.wall_seconds > 0 ? stepped / main.wall_seconds : 0.0;
-  const auto& row = world.resources.get<SeriesRow>();
-  summary["status"] = status;
-  if (!failure.empty()) summary["failure"] = failure;
-  summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle.wall_seconds}};
-  summary["steps"] = world.clock.step;
-  summary["steps_this_run"] = main.steps;
-  summary["checkpoints_written"] = checkpoints.written();
-  if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
-  summary["simulated_time"] = world.clock.t;
-  summary["wall_seconds"] = main.wall_seconds;
-  summary["total_wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  summary["particle_steps_per_second"] = psps;
-  summary["neighbor_rebuilds"] = world.resources.get<BroadphaseState>().rebuilds;
-  // Checks where some grain had moved past skin/2 but no pair missing from the list touched.
-  summary["neighbor_list_kept"] = world.resources.get<BroadphaseState>().cover.kept;
-  summary["frames"] = frames ? frames->frames() : 0;
-  summary["pictures"] = pictures ? pictures->pictures() : 0;
-  summary["final"] = final_row_json(row);
-  if (const FlowState* f = world.resources.find<FlowState>()) summary["flow"] = flow_json(*f, world.grains, residence);
-  summary_counts_at_end(summary, {static_cast<std::int64_t>(world.grains.n_owned), 0});
-  summary["time_per_system"] = timings_json({&step, &observe});
+  sim.step().reset_timings();
+  DemObservers o;
+  add_observers(o, s, out, world, from);
+  MainOutcome r = step_main_stage(opt, s, sim, o, out, from);
+  summarise_run(summary, r, settle, o, sim, n,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
   try {
     write_final_state(out / "final_state.csv", world.grains, s);
     write_summary_json(out / "summary.json", summary);
   } catch (const WriteError& e) {
     // The earlier summary.json (status "running") and final state stay as they were.
-    if (failure.empty()) fail_write(e);
-    else failure += std::string("; then ") + e.what();
-    status = "failed";
+    if (r.failure.empty()) r.fail(e.what() + write_failure_fix(opt, out, ckpt || o.checkpoints->written() > 0));
+    else r.fail(r.failure + "; then " + e.what());
   }
   std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g particle-steps/s\n",
-               status.c_str(), static_cast<long long>(main.steps), world.clock.t, main.wall_seconds, psps);
-  if (!failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", failure.c_str());
-  else if (pictures && !pictures->last_picture().empty())
-    std::fprintf(stderr, "grainflow: picture of the drum: %s\n", pictures->last_picture().string().c_str());
-  return rc;
+               r.status.c_str(), static_cast<long long>(r.main.steps), world.clock.t, r.main.wall_seconds,
+               summary["particle_steps_per_second"].get<double>());
+  if (!r.failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", r.failure.c_str());
+  else if (o.pictures && !o.pictures->last_picture().empty())
+    std::fprintf(stderr, "grainflow: picture of the drum: %s\n", o.pictures->last_picture().string().c_str());
+  return r.rc;
 }
 
 }  // namespace gf
