@@ -664,6 +664,50 @@ void remember_subtree(SceneState& st, const toml::node& n, const detail::CliOrig
 }
 
 // Applies one "--set path=value" to the parsed file.
+// An override's path names a table the scene does not have (an override may add a key, not a table).
+[[noreturn]] void fail_missing_table(const std::string& set_text, const std::string& path, const std::string& shown,
+                                     const std::string& next_shown, const std::vector<PathSegment>& segs,
+                                     const PathSegment& seg, const toml::table& parent) {
+  std::string fix = "check the spelling";
+  const auto ks = table_keys(parent);
+  if (auto near = closest(seg.text, ks); !near.empty()) fix += " (did you mean '" + near + "'?)";
+  const std::string where = shown.empty() ? "the top level" : "[" + strip_indices(shown) + "]";
+  fix += ks.empty() ? "; " + where + " is empty" : "; " + where + " has " + quoted_list(ks);
+  override_error(set_text, path,
+                 "there is no table [" + strip_indices(next_shown) + "] in the scene to set '" + segs.back().text +
+                     "' in (an override may add a key, not a table)",
+                 fix);
+}
+
+// Where an override's value goes: the key `seg` of a table, or entry `index` of an array.
+struct OverrideSlot {
+  toml::table* table = nullptr;
+  toml::array* array = nullptr;
+  std::size_t index = 0;
+  toml::node* existing = nullptr;
+};
+
+// Replaces or adds the value; keeps the replaced value's file position so keys() stays in file order.
+void put_override_value(SceneState& st, const std::string& set_text, const std::string& value_text,
+                        toml::table& parsed, const toml::node* value, const PathSegment& seg, const OverrideSlot& at) {
+  detail::CliOrigin origin{set_text, {}};
+  if (at.existing) {
+    if (auto it = st.cli.find(at.existing); it != st.cli.end()) origin.file_pos = it->second.file_pos;
+    else origin.file_pos = at.existing->source().begin;
+    forget_subtree(st, *at.existing);
+  }
+  // A bare word replacing a string stays a string: `--set output.name=2024` must not turn the name into a number.
+  const bool as_text = !value || (at.existing && at.existing->is_string() && !value->is_string());
+  const auto put = [&](auto&& v) {
+    if (at.table) at.table->insert_or_assign(seg.text, std::forward<decltype(v)>(v));
+    else at.array->replace(at.array->cbegin() + std::ptrdiff_t(at.index), std::forward<decltype(v)>(v));
+  };
+  if (as_text) put(toml::value<std::string>(value_text));
+  else std::move(*parsed.get("v")).visit([&](auto&& v) { put(std::move(v)); });
+  const toml::node* added = at.table ? at.table->get(seg.text) : at.array->get(at.index);
+  remember_subtree(st, *added, origin);
+}
+
 void apply_override(SceneState& st, const std::string& set_text) {
   const auto eq = set_text.find('=');
   if (eq == std::string::npos)
@@ -691,26 +735,17 @@ void apply_override(SceneState& st, const std::string& set_text) {
   for (std::size_t i = 0; i < segs.size(); ++i) {
     const PathSegment& seg = segs[i];
     const bool last = i + 1 == segs.size();
-    toml::node* existing = nullptr;
-    toml::table* parent_table = cur->as_table();
-    toml::array* parent_array = cur->as_array();
-    std::size_t index = 0;
+    OverrideSlot at{cur->as_table(), cur->as_array()};
+    toml::table* parent_table = at.table;
+    toml::array* parent_array = at.array;
+    std::size_t& index = at.index;
+    toml::node*& existing = at.existing;
     std::string next_shown;
 
     if (parent_table && !seg.bracketed) {
       next_shown = join_path(shown, seg.text);
       existing = parent_table->get(seg.text);
-      if (!existing && !last) {
-        std::string fix = "check the spelling";
-        const auto ks = table_keys(*parent_table);
-        if (auto near = closest(seg.text, ks); !near.empty()) fix += " (did you mean '" + near + "'?)";
-        const std::string where = shown.empty() ? "the top level" : "[" + strip_indices(shown) + "]";
-        fix += ks.empty() ? "; " + where + " is empty" : "; " + where + " has " + quoted_list(ks);
-        override_error(set_text, path,
-                       "there is no table [" + strip_indices(next_shown) + "] in the scene to set '" +
-                           segs.back().text + "' in (an override may add a key, not a table)",
-                       fix);
-      }
+      if (!existing && !last) fail_missing_table(set_text, path, shown, next_shown, segs, seg, *parent_table);
     } else if (parent_array) {
       if (!parse_index(seg.text, index))
         override_error(set_text, path, "'" + shown + "' is an array, not a table",
@@ -738,23 +773,7 @@ void apply_override(SceneState& st, const std::string& set_text) {
       continue;
     }
 
-    // Replace or add the value; keep the replaced value's file position so keys() stays in file order.
-    detail::CliOrigin origin{set_text, {}};
-    if (existing) {
-      if (auto it = st.cli.find(existing); it != st.cli.end()) origin.file_pos = it->second.file_pos;
-      else origin.file_pos = existing->source().begin;
-      forget_subtree(st, *existing);
-    }
-    // A bare word replacing a string stays a string: `--set output.name=2024` must not turn the name into a number.
-    const bool as_text = !value || (existing && existing->is_string() && !value->is_string());
-    const auto put = [&](auto&& v) {
-      if (parent_table) parent_table->insert_or_assign(seg.text, std::forward<decltype(v)>(v));
-      else parent_array->replace(parent_array->cbegin() + std::ptrdiff_t(index), std::forward<decltype(v)>(v));
-    };
-    if (as_text) put(toml::value<std::string>(value_text));
-    else std::move(*parsed.get("v")).visit([&](auto&& v) { put(std::move(v)); });
-    const toml::node* added = parent_table ? parent_table->get(seg.text) : parent_array->get(index);
-    remember_subtree(st, *added, origin);
+    put_override_value(st, set_text, value_text, parsed, value, seg, at);
     return;
   }
 }

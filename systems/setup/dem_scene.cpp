@@ -391,12 +391,10 @@ std::int64_t DemScene::settle_steps() const { return static_cast<std::int64_t>(s
 
 DemScene load_dem_scene(const SceneDoc& doc) { return load_dem_scene(doc, DemLoadOptions{}); }
 
-DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
-  DemScene s;
-  s.file = doc.file();
-  const SceneNode root = doc.root();
+namespace {
 
-  const SceneNode run = root.table("run");
+// [run]'s step, seeds and gravity (its duration: read_duration, once the walls are known).
+void read_run(DemScene& s, const SceneNode& run, const DemLoadOptions& options) {
   s.dt = options.outer_dt ? *options.outer_dt : run.get_double("dt", Range::positive());
   s.dt_safety = run.get_double("dt_safety", 0.1, Range::open_closed(0, 1));
   s.allow_unstable_dt = run.get_bool("allow_unstable_dt", false);
@@ -406,9 +404,9 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
   const auto g = run.get_vec3("gravity", {0, -9.81, 0});
   require_acceleration(run, "gravity", g);
   s.gravity = {g[0], g[1], g[2]};
-  const bool with_bodies = scene_has_bodies(root);
-  if (with_bodies) require_body_scene(root);
+}
 
+void read_species(DemScene& s, const SceneNode& root, bool with_bodies) {
   for (const SceneNode& sp : root.tables("species")) {
     SpeciesSpec spec;
     spec.name = sp.get_string("name");
@@ -429,6 +427,63 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
               "add [[species]] with name, diameter (m) and density (kg/m^3)");
   if (s.species.size() > static_cast<std::size_t>(kMaxSpecies))
     root.fail("species", "more than " + std::to_string(kMaxSpecies) + " species", "merge species");
+}
+
+// run.duration, or run.end_angle over the first rotating wall's speed; then both stages' step counts.
+void read_duration(DemScene& s, const SceneNode& root, const SceneNode& run) {
+  const bool has_duration = run.has("duration"), has_angle = run.has("end_angle");
+  if (has_duration == has_angle)
+    run.fail("duration", "give exactly one of 'duration' (s) and 'end_angle' (rad of drum rotation)",
+             "e.g. duration = 2.0 or end_angle = 30.0");
+  if (has_duration) {
+    s.duration = run.get_double("duration", Range::non_negative());
+  } else {
+    s.end_angle = run.get_double("end_angle", Range::non_negative());
+    double omega = 0.0;
+    for (const Wall& w : s.walls)
+      if (w.omega != 0.0) {
+        omega = std::abs(w.omega);
+        break;
+      }
+    for (const MeshWall& w : s.mesh_walls.list)
+      if (omega == 0.0) omega = std::abs(w.omega);
+    if (omega == 0.0)
+      run.fail("end_angle", "no wall rotates, so a rotation angle does not define a duration",
+               "give duration (s) instead, or a wall with omega != 0");
+    s.duration = *s.end_angle / omega;
+  }
+  check_step_count(run, has_duration ? "duration" : "end_angle", s.duration, s.dt);
+  if (auto settle = root.maybe_table("settle")) check_step_count(*settle, "time", s.settle_time, s.dt);
+}
+
+// [output]'s times and frame fields, a grain scene's pictures, and what a binary mixture reports.
+void read_outputs(DemScene& s, const SceneNode& root, bool with_bodies) {
+  if (auto out = root.maybe_table("output")) {
+    read_output_times(*out, s.dt, s.output);
+    s.output.fields.velocity = out->get_bool("frame_velocity", true);
+    s.output.fields.angular_velocity = out->get_bool("frame_angular_velocity", true);
+    s.output.fields.force = out->get_bool("frame_force", false);
+    if (!with_bodies) read_pictures(s, *out);  // a body scene's pictures: read_bodies
+  }
+  // A binary mixture reports the segregation of its larger species (grains' tables only).
+  if (s.species.size() == 2 && !with_bodies) {
+    s.segregation_type = s.species[0].diameter >= s.species[1].diameter ? 0 : 1;
+    s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
+    for (const Wall& w : s.walls) s.pattern = s.pattern || w.kind == Wall::Kind::CylinderInner;
+  }
+}
+
+}  // namespace
+
+DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
+  DemScene s;
+  s.file = doc.file();
+  const SceneNode root = doc.root();
+  const SceneNode run = root.table("run");
+  read_run(s, run, options);
+  const bool with_bodies = scene_has_bodies(root);
+  if (with_bodies) require_body_scene(root);
+  read_species(s, root, with_bodies);
 
   const SceneNode ct = root.table("contact");
   s.law = ct.get_choice("model", law_names());
@@ -454,51 +509,13 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
     read_walls(s, root);
     read_periodic(s, root);
   }
-
   if (auto settle = root.maybe_table("settle")) s.settle_time = settle->get_double("time", Range::non_negative());
   if (!with_bodies) {
     read_fills(s, root);
     read_flow(s, root);
   }
-
-  const bool has_duration = run.has("duration"), has_angle = run.has("end_angle");
-  if (has_duration == has_angle)
-    run.fail("duration", "give exactly one of 'duration' (s) and 'end_angle' (rad of drum rotation)",
-             "e.g. duration = 2.0 or end_angle = 30.0");
-  if (has_duration) {
-    s.duration = run.get_double("duration", Range::non_negative());
-  } else {
-    s.end_angle = run.get_double("end_angle", Range::non_negative());
-    double omega = 0.0;
-    for (const Wall& w : s.walls)
-      if (w.omega != 0.0) {
-        omega = std::abs(w.omega);
-        break;
-      }
-    for (const MeshWall& w : s.mesh_walls.list)
-      if (omega == 0.0) omega = std::abs(w.omega);
-    if (omega == 0.0)
-      run.fail("end_angle", "no wall rotates, so a rotation angle does not define a duration",
-               "give duration (s) instead, or a wall with omega != 0");
-    s.duration = *s.end_angle / omega;
-  }
-  check_step_count(run, has_duration ? "duration" : "end_angle", s.duration, s.dt);
-  if (auto settle = root.maybe_table("settle")) check_step_count(*settle, "time", s.settle_time, s.dt);
-
-  if (auto out = root.maybe_table("output")) {
-    read_output_times(*out, s.dt, s.output);
-    s.output.fields.velocity = out->get_bool("frame_velocity", true);
-    s.output.fields.angular_velocity = out->get_bool("frame_angular_velocity", true);
-    s.output.fields.force = out->get_bool("frame_force", false);
-    if (!with_bodies) read_pictures(s, *out);  // a body scene's pictures: read_bodies
-  }
-
-  // A binary mixture reports the segregation of its larger species (grains' tables only).
-  if (s.species.size() == 2 && !with_bodies) {
-    s.segregation_type = s.species[0].diameter >= s.species[1].diameter ? 0 : 1;
-    s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
-    for (const Wall& w : s.walls) s.pattern = s.pattern || w.kind == Wall::Kind::CylinderInner;
-  }
+  read_duration(s, root, run);
+  read_outputs(s, root, with_bodies);
   if (!with_bodies) read_analysis(s, root);  // a body scene's [analysis]: read_bodies
   if (options.check_unused_keys) doc.check_all_used();
   return s;
