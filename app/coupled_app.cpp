@@ -26,6 +26,7 @@
 #include "systems/output/series_csv.hpp"
 #include "systems/output/summary_json.hpp"
 #include "app/commands.hpp"
+#include "app/run_outcome.hpp"
 #include "app/run_summary.hpp"
 #include "systems/setup/coupled_checkpoint.hpp"
 #include "systems/setup/coupled_simulation.hpp"
@@ -36,8 +37,6 @@ namespace gf {
 namespace {
 
 using WallClock = std::chrono::steady_clock;
-
-double seconds_since(WallClock::time_point t0) { return std::chrono::duration<double>(WallClock::now() - t0).count(); }
 
 void print_liquid_part(const CoupledScene& s, World& w) {
   const LiquidScene& l = s.liquid;
@@ -99,13 +98,6 @@ nlohmann::json start_summary(const CliOptions& opt, const CoupledScene& s, Coupl
   return j;
 }
 
-struct CoupledRun {
-  std::string status = "completed", failure;
-  int rc = 0;
-  std::int64_t steps = 0;
-  double wall = 0;
-};
-
 // series.csv: a row every `every` liquid steps, from step 0; a resumed run continues the file from the
 // rows its checkpoint counted.
 class CoupledSeries : public SystemBase<CoupledSeries>, public Checkpointable {
@@ -162,7 +154,7 @@ void add_observers(CoupledObservers& o, const std::filesystem::path& out, const 
   o.schedule.build(world);
 }
 
-void step_to(std::int64_t end, CoupledSimulation& sim, Schedule& observe, bool resumed, bool quiet, CoupledRun& r) {
+void step_to(std::int64_t end, CoupledSimulation& sim, Schedule& observe, bool resumed, bool quiet, RunOutcome& r) {
   World& w = sim.world();
   if (!resumed) sim.prime();
   const std::int64_t start = w.clock.step;
@@ -220,35 +212,21 @@ int run_coupled_command(const CliOptions& opt) {
   ensure_directory(out);
   std::fprintf(stderr, "grainflow: %s: liquid and %zu grains, dt = %.3g s with %d DEM sub-steps -> %s\n",
                s.file.string().c_str(), sim.world().grains.n_owned, s.liquid.dt, s.coupling.substeps, out.string().c_str());
-  if (ckpt)
-    std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", ckpt->file().string().c_str(),
-                 static_cast<long long>(sim.world().clock.step), sim.world().clock.t);
+  if (ckpt) say_resuming(*ckpt, sim.world().clock);
   nlohmann::json summary = start_summary(opt, s, sim);
-  if (ckpt)
-    summary["resumed_from"] = {{"checkpoint", ckpt->file().string()}, {"step", sim.world().clock.step}, {"time", sim.world().clock.t}};
+  if (ckpt) summary["resumed_from"] = resumed_from_json(*ckpt, sim.world().clock);
   write_summary_json(out / "summary.json", summary);
   CoupledObservers obs;
   add_observers(obs, out, s, sim.world(), from);
-  CoupledRun r;
-  std::string checkpoint_file;
+  RunOutcome r;
   const auto run0 = WallClock::now();
-  try {
+  const auto have_checkpoint = [&] { return ckpt.has_value() || obs.checkpoints->written() > 0; };
+  guarded(r, opt, out, have_checkpoint, [&] {
     step_to(opt.steps ? *opt.steps : s.steps(), sim, obs.schedule, ckpt.has_value(), opt.quiet, r);
-    if (s.liquid.output.checkpoint_at_end) checkpoint_file = obs.checkpoints->write(sim.world()).string();
-  } catch (const WriteError& e) {
-    r.status = "failed";
-    r.failure = e.what() + write_failure_fix(opt, out, ckpt.has_value() || obs.checkpoints->written() > 0);
-    r.rc = 3;
-  } catch (const std::exception& e) {
-    r.status = "failed";
-    r.failure = e.what();
-    r.rc = 3;
-  }
+    if (s.liquid.output.checkpoint_at_end) r.checkpoint_file = obs.checkpoints->write(sim.world()).string();
+  });
   r.wall = seconds_since(run0);
-  const auto cols = coupled_series_columns();
-  const auto last = sample_coupled(sim.world(), s.liquid);
-  nlohmann::json fin;
-  for (std::size_t c = 0; c < cols.size(); ++c) fin[cols[c]] = std::isfinite(last[c]) ? nlohmann::json(last[c]) : nlohmann::json();
+  const nlohmann::json fin = row_json(coupled_series_columns(), sample_coupled(sim.world(), s.liquid));
   summary["status"] = r.status;
   if (!r.failure.empty()) summary["failure"] = r.failure;
   summary["steps"] = sim.world().clock.step;
@@ -257,17 +235,21 @@ int run_coupled_command(const CliOptions& opt) {
   summary["wall_seconds"] = r.wall;
   summary["total_wall_seconds"] = seconds_since(wall0);
   summary["checkpoints_written"] = obs.checkpoints->written();
-  if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
+  if (!r.checkpoint_file.empty()) summary["checkpoint"] = r.checkpoint_file;
   summary["final"] = fin;
   summary_counts_at_end(summary, {static_cast<std::int64_t>(sim.world().grains.n_owned),
                                   static_cast<std::int64_t>(sim.world().tables.get<FluidNodes>().count(kFluid))});
   summary["time_per_system"] = timings_json({&sim.step()});
   summary["time_per_dem_system"] = timings_json({&sim.dem_substeps().inner()});
-  write_final_state(out / "final_state.csv", sim.world().grains, s.dem);
-  write_summary_json(out / "summary.json", summary);
-  std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall\n", r.status.c_str(),
-               static_cast<long long>(r.steps), sim.world().clock.t, r.wall);
-  if (!r.failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", r.failure.c_str());
+  try {
+    write_final_state(out / "final_state.csv", sim.world().grains, s.dem);
+    write_summary_json(out / "summary.json", summary);
+  } catch (const WriteError& e) {
+    // The earlier summary.json (status "running") stays as it was.
+    if (r.failure.empty()) r.fail(e.what() + write_failure_fix(opt, out, have_checkpoint()));
+    else r.fail_also(e.what());
+  }
+  say_done(r, sim.world().clock.t, "");
   return r.rc;
 }
 

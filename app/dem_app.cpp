@@ -20,6 +20,7 @@
 #include "systems/output/residence_csv.hpp"
 #include "systems/output/summary_json.hpp"
 #include "app/commands.hpp"
+#include "app/run_outcome.hpp"
 #include "app/run_summary.hpp"
 #include "app/dem_body_app.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
@@ -186,24 +187,11 @@ void add_observers(DemObservers& o, const DemScene& s, const std::filesystem::pa
   if (ckpt) restore_observers(o, *ckpt);
 }
 
-// How the main stage ended: its report, the status and failure, the checkpoint at the end, the exit status.
-struct MainOutcome {
-  StageReport main;
-  std::string status = "completed", failure, checkpoint_file;
-  int rc = 0;
-  void fail(std::string why) {
-    status = "failed";
-    failure = std::move(why);
-    rc = 3;
-  }
-};
-
 // The main stage with its observers, then the checkpoint at the end and the outputs' last writes; a
-// failure ends the stage and is recorded, the files written before kept.
-MainOutcome step_main_stage(const CliOptions& opt, const DemScene& s, DemSimulation& sim, DemObservers& o,
-                            const std::filesystem::path& out, const CheckpointReader* ckpt) {
+// failure ends the stage and is recorded in `r`, the files written before kept. Returns the stage's report.
+StageReport step_main_stage(const CliOptions& opt, const DemScene& s, DemSimulation& sim, DemObservers& o,
+                            const std::filesystem::path& out, const CheckpointReader* ckpt, RunOutcome& r) {
   World& world = sim.world();
-  MainOutcome r;
   StageOptions so;
   so.progress_seconds = opt.quiet ? 0.0 : 2.0;
   so.label = "run";
@@ -213,57 +201,43 @@ MainOutcome step_main_stage(const CliOptions& opt, const DemScene& s, DemSimulat
   so.steps = std::max<std::int64_t>(0, total_steps - world.clock.step);
   so.observe = &o.schedule;
   const auto run0 = std::chrono::steady_clock::now();
-  const auto write_failed = [&](const WriteError& e) {
-    r.fail(e.what() + write_failure_fix(opt, out, ckpt || o.checkpoints->written() > 0));
-  };
-  const auto stopped = [&] {  // a stage that threw: the steps it took, and its wall time
-    r.main.steps = world.clock.step - (ckpt ? ckpt->value<std::int64_t>("clock.step") : 0);
-    r.main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
-  };
-  try {
-    r.main = run_stage(world, sim.step(), so);
-    if (r.main.interrupted) r.status = "interrupted";
-  } catch (const WriteError& e) {
-    write_failed(e);
-    stopped();
-  } catch (const std::exception& e) {
-    r.fail(e.what());
-    stopped();
+  const auto have_checkpoint = [&] { return ckpt != nullptr || o.checkpoints->written() > 0; };
+  StageReport main;
+  guarded(r, opt, out, have_checkpoint, [&] {
+    main = run_stage(world, sim.step(), so);
+    if (main.interrupted) r.status = "interrupted";
+  });
+  if (r.failed()) {  // a stage that threw: the steps it took, and its wall time
+    main.steps = world.clock.step - (ckpt ? ckpt->value<std::int64_t>("clock.step") : 0);
+    main.wall_seconds = seconds_since(run0);
   }
-  const auto guarded = [&](auto&& write) {
-    if (r.status == "failed") return;
-    try {
-      write();
-    } catch (const WriteError& e) {
-      write_failed(e);
-    } catch (const std::exception& e) {
-      r.fail(e.what());
-    }
-  };
-  if (s.output.checkpoint_at_end) guarded([&] { r.checkpoint_file = o.checkpoints->write(world).string(); });
-  guarded([&] {
+  if (s.output.checkpoint_at_end)
+    guarded(r, opt, out, have_checkpoint, [&] { r.checkpoint_file = o.checkpoints->write(world).string(); });
+  guarded(r, opt, out, have_checkpoint, [&] {
     o.series->finish(world);
     if (o.frames) o.frames->finish(world);
   });
-  return r;
+  r.steps = main.steps;
+  r.wall = main.wall_seconds;
+  return main;
 }
 
-void summarise_run(nlohmann::json& summary, const MainOutcome& r, const StageReport& settle, const DemObservers& o,
-                   DemSimulation& sim, std::size_t n, double total_wall) {
+void summarise_run(nlohmann::json& summary, const RunOutcome& r, const StageReport& main, const StageReport& settle,
+                   const DemObservers& o, DemSimulation& sim, std::size_t n, double total_wall) {
   World& world = sim.world();
   // A stage that threw reports its steps but not the grains stepped: those of the start, then.
-  const double stepped = r.main.particle_steps > 0 ? r.main.particle_steps : static_cast<double>(r.main.steps) * n;
+  const double stepped = main.particle_steps > 0 ? main.particle_steps : static_cast<double>(main.steps) * n;
   summary["status"] = r.status;
   if (!r.failure.empty()) summary["failure"] = r.failure;
   summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle.wall_seconds}};
   summary["steps"] = world.clock.step;
-  summary["steps_this_run"] = r.main.steps;
+  summary["steps_this_run"] = main.steps;
   summary["checkpoints_written"] = o.checkpoints->written();
   if (!r.checkpoint_file.empty()) summary["checkpoint"] = r.checkpoint_file;
   summary["simulated_time"] = world.clock.t;
-  summary["wall_seconds"] = r.main.wall_seconds;
+  summary["wall_seconds"] = main.wall_seconds;
   summary["total_wall_seconds"] = total_wall;
-  summary["particle_steps_per_second"] = r.main.wall_seconds > 0 ? stepped / r.main.wall_seconds : 0.0;
+  summary["particle_steps_per_second"] = main.wall_seconds > 0 ? stepped / main.wall_seconds : 0.0;
   summary["neighbor_rebuilds"] = world.resources.get<BroadphaseState>().rebuilds;
   // Checks where some grain had moved past skin/2 but no pair missing from the list touched.
   summary["neighbor_list_kept"] = world.resources.get<BroadphaseState>().cover.kept;
@@ -284,7 +258,7 @@ nlohmann::json opening_summary(const CliOptions& opt, const DemScene& s, const W
   summary["critical_period"] = s.critical.period;
   summary["critical_term"] = s.critical.term;
   summary["status"] = "running";
-  if (ckpt) summary["resumed_from"] = {{"checkpoint", ckpt->file().string()}, {"step", world.clock.step}, {"time", world.clock.t}};
+  if (ckpt) summary["resumed_from"] = resumed_from_json(*ckpt, world.clock);
   return summary;
 }
 
@@ -309,9 +283,7 @@ int run_dem_command(const CliOptions& opt) {
   const std::size_t n = world.grains.n_owned;
   std::fprintf(stderr, "grainflow: %s: %zu grains, dt = %.3g s (%.3f of the critical period), %zu threads -> %s\n",
                s.file.string().c_str(), n, s.dt, s.dt / s.critical.period, threads_in_use(), out.string().c_str());
-  if (ckpt)
-    std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", ckpt->file().string().c_str(),
-                 static_cast<long long>(world.clock.step), world.clock.t);
+  if (ckpt) say_resuming(*ckpt, world.clock);
   nlohmann::json summary = opening_summary(opt, s, world, n, from);
   write_summary_json(out / "summary.json", summary);
 
@@ -330,9 +302,9 @@ int run_dem_command(const CliOptions& opt) {
   sim.step().reset_timings();
   DemObservers o;
   add_observers(o, s, out, world, from);
-  MainOutcome r = step_main_stage(opt, s, sim, o, out, from);
-  summarise_run(summary, r, settle, o, sim, n,
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
+  RunOutcome r;
+  const StageReport main = step_main_stage(opt, s, sim, o, out, from, r);
+  summarise_run(summary, r, main, settle, o, sim, n, seconds_since(wall0));
   try {
     write_final_state(out / "final_state.csv", world.grains, s);
     write_summary_json(out / "summary.json", summary);
@@ -341,11 +313,10 @@ int run_dem_command(const CliOptions& opt) {
     if (r.failure.empty()) r.fail(e.what() + write_failure_fix(opt, out, ckpt || o.checkpoints->written() > 0));
     else r.fail(r.failure + "; then " + e.what());
   }
-  std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g particle-steps/s\n",
-               r.status.c_str(), static_cast<long long>(r.main.steps), world.clock.t, r.main.wall_seconds,
-               summary["particle_steps_per_second"].get<double>());
-  if (!r.failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", r.failure.c_str());
-  else if (o.pictures && !o.pictures->last_picture().empty())
+  char rate[64];
+  std::snprintf(rate, sizeof rate, ": %.3g particle-steps/s", summary["particle_steps_per_second"].get<double>());
+  say_done(r, world.clock.t, rate);
+  if (r.failure.empty() && o.pictures && !o.pictures->last_picture().empty())
     std::fprintf(stderr, "grainflow: picture of the drum: %s\n", o.pictures->last_picture().string().c_str());
   return r.rc;
 }

@@ -1,5 +1,6 @@
 #include "app/dem_body_app.hpp"
 
+#include "app/run_outcome.hpp"
 #include "app/run_summary.hpp"
 
 #include <algorithm>
@@ -274,9 +275,8 @@ void start_body_run(BodyRun& run, const CliOptions& opt, const DemScene& s, cons
   summary["rim_critical_term"] = s.bodies->rim.term;
   summary["status"] = "running";
   if (run.ckpt) {
-    summary["resumed_from"] = {{"checkpoint", run.ckpt->file().string()}, {"step", world.clock.step}, {"time", world.clock.t}};
-    std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", run.ckpt->file().string().c_str(),
-                 static_cast<long long>(world.clock.step), world.clock.t);
+    summary["resumed_from"] = resumed_from_json(*run.ckpt, world.clock);
+    say_resuming(*run.ckpt, world.clock);
   }
   write_summary_json(run.out / "summary.json", summary);
 }
@@ -351,54 +351,39 @@ void make_body_observers(BodyRun& run, const DemScene& s) {
 
 // After the main stage, on the writer: the last checkpoint, the outputs closed, the final bed's
 // packing and repose, and the summary. Returns the exit status.
-int finish_body_run(BodyRun& run, const DemScene& s, const StageReport& settle, const StageReport& main,
-                    std::string status, std::string failure, std::chrono::steady_clock::time_point wall0) {
+int finish_body_run(const CliOptions& opt, BodyRun& run, const DemScene& s, const StageReport& settle,
+                    const StageReport& main, RunOutcome& r, std::chrono::steady_clock::time_point wall0) {
   World& world = run.sim->world();
-  int rc = status == "failed" ? 3 : 0;
-  auto fail = [&](const std::string& what) {
-    status = "failed";
-    failure = what;
-    rc = 3;
-  };
-  std::string checkpoint_file;
-  if (status != "failed" && s.output.checkpoint_at_end) {
-    try {
-      checkpoint_file = run.checkpoints->write(world).string();
-    } catch (const std::exception& e) {
-      fail(e.what());
-    }
-  }
-  if (status != "failed") {
-    try {
-      run.series->finish(world);
-      if (run.frames) run.frames->finish(world);
-    } catch (const std::exception& e) {
-      fail(e.what());
-    }
-  }
+  const auto have_checkpoint = [&] { return run.ckpt.has_value() || run.checkpoints->written() > 0; };
+  if (s.output.checkpoint_at_end)
+    guarded(r, opt, run.out, have_checkpoint, [&] { r.checkpoint_file = run.checkpoints->write(world).string(); });
+  guarded(r, opt, run.out, have_checkpoint, [&] {
+    run.series->finish(world);
+    if (run.frames) run.frames->finish(world);
+  });
   nlohmann::json packing, repose;
-  if (status != "failed") {
+  if (!r.failed()) {
     try {
       packing = final_packing(s, world, run.out);
       repose = final_repose(s, world);
     } catch (const std::exception& e) {
-      fail(std::string("the final packing or repose: ") + e.what());
+      r.fail(std::string("the final packing or repose: ") + e.what());
     }
   }
   const double bsps = main.wall_seconds > 0 ? static_cast<double>(main.steps) * run.counts.moving / main.wall_seconds : 0.0;
   const BodySeriesRow& row = world.resources.get<BodySeriesRow>();
   nlohmann::json& summary = run.summary;
-  summary["status"] = status;
-  if (!failure.empty()) summary["failure"] = failure;
+  summary["status"] = r.status;
+  if (!r.failure.empty()) summary["failure"] = r.failure;
   summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle.wall_seconds}};
   summary["steps"] = world.clock.step;
   summary["simulated_time"] = world.clock.t;
   summary["wall_seconds"] = main.wall_seconds;
-  summary["total_wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  summary["total_wall_seconds"] = seconds_since(wall0);
   summary["body_steps_per_second"] = bsps;
   summary["steps_this_run"] = main.steps;
   summary["checkpoints_written"] = run.checkpoints->written();
-  if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
+  if (!r.checkpoint_file.empty()) summary["checkpoint"] = r.checkpoint_file;
   summary["member_list_rebuilds"] = world.resources.get<BodyContactState>().rebuilds;
   summary["frames"] = run.frames ? run.frames->frames() : 0;
   summary["pictures"] = run.pictures ? run.pictures->pictures() : 0;
@@ -414,13 +399,21 @@ int finish_body_run(BodyRun& run, const DemScene& s, const StageReport& settle, 
   if (!repose.empty()) summary["repose"] = repose;
   summary_counts_at_end(summary, {static_cast<std::int64_t>(run.counts.moving + run.counts.fixed), 0});
   summary["time_per_system"] = timings_json({&run.sim->step(), &run.observe});
-  write_summary_json(run.out / "summary.json", summary);
-  std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g body-steps/s\n",
-               status.c_str(), static_cast<long long>(main.steps), world.clock.t, main.wall_seconds, bsps);
-  if (!failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", failure.c_str());
-  else if (run.pictures && !run.pictures->last_picture().empty())
+  try {
+    write_summary_json(run.out / "summary.json", summary);
+  } catch (const WriteError& e) {
+    // The earlier summary.json (status "running") stays as it was.
+    if (r.failure.empty()) r.fail(e.what() + write_failure_fix(opt, run.out, have_checkpoint()));
+    else r.fail_also(e.what());
+  }
+  r.steps = main.steps;
+  r.wall = main.wall_seconds;
+  char rate[64];
+  std::snprintf(rate, sizeof rate, ": %.3g body-steps/s", bsps);
+  say_done(r, world.clock.t, rate);
+  if (r.failure.empty() && run.pictures && !run.pictures->last_picture().empty())
     std::fprintf(stderr, "grainflow: last picture: %s\n", run.pictures->last_picture().string().c_str());
-  return rc;
+  return r.rc;
 }
 
 }  // namespace
@@ -459,20 +452,19 @@ int run_body_command(const CliOptions& opt, const DemScene& s, const BodyRunHook
   so.steps = std::max<std::int64_t>(0, (opt.steps ? *opt.steps : s.main_steps()) - world.clock.step);
   so.observe = hooks.writer ? &run.observe : nullptr;
   StageReport main;
-  std::string status = "completed", failure;
+  RunOutcome r;
   const std::int64_t first_step = world.clock.step;
   const auto run0 = std::chrono::steady_clock::now();
   try {
     main = run_stage(world, run.sim->step(), so);
-    if (main.interrupted) status = "interrupted";
+    if (main.interrupted) r.status = "interrupted";
   } catch (const std::exception& e) {
-    status = "failed";
-    failure = e.what();
+    r.fail(e.what());
     main.steps = world.clock.step - first_step;
-    main.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run0).count();
+    main.wall_seconds = seconds_since(run0);
   }
-  if (!hooks.writer) return status == "failed" ? 3 : 0;
-  return finish_body_run(run, s, settle, main, status, failure, wall0);
+  if (!hooks.writer) return r.rc;
+  return finish_body_run(opt, run, s, settle, main, r, wall0);
 }
 
 }  // namespace gf

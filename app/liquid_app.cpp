@@ -23,6 +23,7 @@
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/summary_json.hpp"
 #include "app/commands.hpp"
+#include "app/run_outcome.hpp"
 #include "app/run_summary.hpp"
 
 namespace gf {
@@ -30,10 +31,6 @@ namespace gf {
 namespace {
 
 using WallClock = std::chrono::steady_clock;
-
-double seconds_since(WallClock::time_point t0) {
-  return std::chrono::duration<double>(WallClock::now() - t0).count();
-}
 
 const char* geometry_name(LiquidGeometry::Kind k) {
   switch (k) {
@@ -75,18 +72,11 @@ nlohmann::json start_summary(const CliOptions& opt, const LiquidScene& s, Liquid
   j["cfl_at_load"] = s.cfl;
   j["diffusion_number"] = s.diffusion;
   j["status"] = "running";
-  if (ckpt) j["resumed_from"] = {{"checkpoint", ckpt->file().string()}, {"step", c.step}, {"time", c.t}};
+  if (ckpt) j["resumed_from"] = resumed_from_json(*ckpt, c);
   return j;
 }
 
 // What the stepping loop did.
-struct LiquidRun {
-  std::string status = "completed", failure;
-  int rc = 0;
-  std::int64_t steps = 0;  // this run's
-  double wall = 0;         // s, this run's stepping
-};
-
 // The outputs and the checkpoints, observing the state after each step (and the initial state of
 // a run that does not resume).
 struct LiquidObservers {
@@ -107,14 +97,8 @@ void add_observers(LiquidObservers& o, const std::filesystem::path& out, const L
 }
 
 void run_and_checkpoint(const CliOptions& opt, const std::filesystem::path& out, const LiquidScene& s,
-                        LiquidSimulation& sim, LiquidObservers& obs, bool resumed, LiquidRun& r,
-                        std::string& checkpoint_file) {
+                        LiquidSimulation& sim, LiquidObservers& obs, bool resumed, RunOutcome& r) {
   const auto run0 = WallClock::now();
-  const auto fail = [&](const std::string& why) {
-    r.status = "failed";
-    r.failure = why;
-    r.rc = 3;
-  };
   const std::int64_t start = sim.world().clock.step;
   StageOptions so;
   so.steps = std::max<std::int64_t>(0, (opt.steps ? *opt.steps : s.steps()) - start);
@@ -123,29 +107,21 @@ void run_and_checkpoint(const CliOptions& opt, const std::filesystem::path& out,
   so.progress_seconds = opt.quiet ? 0.0 : 2.0;
   const auto n_fluid = static_cast<double>(sim.nodes().count(kFluid));
   so.rows = [n_fluid](const World&) { return n_fluid; };
-  try {
+  guarded(r, opt, out, [&] { return resumed || obs.checkpoints->written() > 0; }, [&] {
     const StageReport rep = run_stage(sim.world(), sim.step(), so);
     if (rep.interrupted) r.status = "interrupted";
     r.wall = seconds_since(run0);
-    if (s.output.checkpoint_at_end) checkpoint_file = obs.checkpoints->write(sim.world()).string();
-  } catch (const WriteError& e) {
-    fail(e.what() + write_failure_fix(opt, out, resumed || obs.checkpoints->written() > 0));
-  } catch (const std::exception& e) {
-    fail(e.what());
-  }
+    if (s.output.checkpoint_at_end) r.checkpoint_file = obs.checkpoints->write(sim.world()).string();
+  });
   if (r.wall == 0) r.wall = seconds_since(run0);
   r.steps = sim.world().clock.step - start;  // the steps completed, also when one failed
 }
 
-void finish_summary(nlohmann::json& summary, LiquidSimulation& sim, const LiquidRun& r, const LiquidOutputs& outputs,
-                    const CheckpointOutput& checkpoints, const std::string& checkpoint_file) {
+void finish_summary(nlohmann::json& summary, LiquidSimulation& sim, const RunOutcome& r, const LiquidOutputs& outputs,
+                    const CheckpointOutput& checkpoints) {
   const World& world = sim.world();
   const double n_fluid = static_cast<double>(sim.nodes().count(kFluid));
-  const auto last = sample_liquid(sim.world(), sim.scene());
-  const auto cols = liquid_series_columns();
-  nlohmann::json fin;
-  for (std::size_t c = 0; c < cols.size(); ++c)
-    fin[cols[c]] = std::isfinite(last[c]) ? nlohmann::json(last[c]) : nlohmann::json();
+  const nlohmann::json fin = row_json(liquid_series_columns(), sample_liquid(sim.world(), sim.scene()));
   summary["status"] = r.status;
   if (!r.failure.empty()) summary["failure"] = r.failure;
   summary["steps"] = world.clock.step;
@@ -158,7 +134,7 @@ void finish_summary(nlohmann::json& summary, LiquidSimulation& sim, const Liquid
   summary["mean_ppe_iterations"] = d.ppe_solves > 0 ? d.ppe_iterations_total / static_cast<double>(d.ppe_solves) : 0.0;
   summary["frames"] = outputs.frames();
   summary["checkpoints_written"] = checkpoints.written();
-  if (!checkpoint_file.empty()) summary["checkpoint"] = checkpoint_file;
+  if (!r.checkpoint_file.empty()) summary["checkpoint"] = r.checkpoint_file;
   summary["final"] = fin;
   summary_counts_at_end(summary, {0, static_cast<std::int64_t>(n_fluid)});
   summary["time_per_system"] = timings_json({&sim.step()});
@@ -206,30 +182,26 @@ int run_liquid_command(const CliOptions& opt) {
   std::fprintf(stderr, "grainflow: %s: %zu fluid + %zu wall/dummy nodes, dt = %.3g s (CFL %.3g), %zu threads -> %s\n",
                s.file.string().c_str(), n_fluid, n_all - n_fluid, s.dt, s.cfl, threads_in_use(), out.string().c_str());
   if (ckpt)
-    std::fprintf(stderr, "grainflow: resuming from %s at step %lld (t = %.6g s)\n", ckpt->file().string().c_str(),
-                 static_cast<long long>(world.clock.step), world.clock.t);
+    say_resuming(*ckpt, world.clock);
   nlohmann::json summary = start_summary(opt, s, sim, from);
   write_summary_json(out / "summary.json", summary);
 
   LiquidObservers obs;
   add_observers(obs, out, s, world, from);
-  LiquidRun r;
-  std::string checkpoint_file;
-  run_and_checkpoint(opt, out, s, sim, obs, ckpt.has_value(), r, checkpoint_file);
-  finish_summary(summary, sim, r, *obs.outputs, *obs.checkpoints, checkpoint_file);
+  RunOutcome r;
+  run_and_checkpoint(opt, out, s, sim, obs, ckpt.has_value(), r);
+  finish_summary(summary, sim, r, *obs.outputs, *obs.checkpoints);
   summary["total_wall_seconds"] = seconds_since(wall0);
   try {
     write_summary_json(out / "summary.json", summary);
   } catch (const WriteError& e) {
     // The earlier summary.json (status "running") stays as it was.
-    r.failure += (r.failure.empty() ? "" : "; then ") + std::string(e.what());
-    r.status = "failed";
-    r.rc = 3;
+    r.fail_also(e.what());
   }
-  std::fprintf(stderr, "grainflow: %s after %lld steps (%.4g s simulated) in %.1f s wall: %.3g particle-steps/s\n",
-               r.status.c_str(), static_cast<long long>(r.steps), world.clock.t, r.wall,
-               r.wall > 0 ? static_cast<double>(r.steps) * static_cast<double>(n_fluid) / r.wall : 0.0);
-  if (!r.failure.empty()) std::fprintf(stderr, "grainflow: error: %s\n", r.failure.c_str());
+  char rate[64];
+  std::snprintf(rate, sizeof rate, ": %.3g particle-steps/s",
+                r.wall > 0 ? static_cast<double>(r.steps) * static_cast<double>(n_fluid) / r.wall : 0.0);
+  say_done(r, world.clock.t, rate);
   return r.rc;
 }
 
