@@ -7,6 +7,7 @@
 
 #include "engine/clock_checkpoint.hpp"
 #include "systems/broadphase/broadphase.hpp"
+#include "systems/broadphase/broadphase_checkpoint.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/setup/list_sections.hpp"
 #include "systems/walls/walls.hpp"
@@ -132,12 +133,7 @@ void save_dem_rows(CheckpointWriter& out, World& world, const DemScene& scene) {
   for (const RawColumn& c : gr.extras.raw_columns()) out.raw(x(k++), c.data, c.elem_size, c.size);
 
   auto& bp = world.resources.get<BroadphaseState>();
-  out.value("broadphase.skin", bp.skin);
-  out.value("broadphase.valid", bp.valid);
-  out.value("broadphase.force_rebuild", bp.force_rebuild);
-  out.value("broadphase.rebuilds", bp.rebuilds);
-  out.value("broadphase.checks", bp.checks);
-  out.value("broadphase.kept", bp.cover.kept);
+  save_broadphase(out, bp, "");
   out.value("walls.rotation_enabled", world.resources.get<Walls>().rotation_enabled);
   list_sections(out, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, "");
   const PeriodicImages& im = world.resources.get<PeriodicImages>();
@@ -201,12 +197,7 @@ void restore_dem_rows(const CheckpointReader& in, World& world, const DemScene& 
     gr.pending = {};
   }
 
-  bp.valid = in.value<bool>("broadphase.valid");
-  bp.force_rebuild = in.value<bool>("broadphase.force_rebuild");
-  bp.rebuilds = in.value<std::int64_t>("broadphase.rebuilds");
-  bp.checks = in.value<std::int64_t>("broadphase.checks");
-  // Checkpoints written before the list could be kept past skin/2 have no count of it: none.
-  bp.cover.kept = in.has("broadphase.kept") ? in.value<std::int64_t>("broadphase.kept") : 0;
+  restore_broadphase(in, bp, "");
   Walls& walls = world.resources.get<Walls>();
   walls.rotation_enabled = in.value<bool>("walls.rotation_enabled");
   walls.place(world.clock.t);

@@ -12,6 +12,7 @@
 
 #include "engine/mpi/rank_failure.hpp"
 #include "systems/broadphase/broadphase.hpp"
+#include "systems/broadphase/broadphase_checkpoint.hpp"
 #include "systems/setup/mpi/rank_simulation.hpp"
 #include "systems/decomposition/row_bytes.hpp"
 #include "systems/flow/flow_systems.hpp"
@@ -191,12 +192,7 @@ void RankSimulation::save(CheckpointWriter& out) {
   out.value("rank.grains.columns", static_cast<std::uint64_t>(cols.size()));
   for (std::size_t k = 0; k < cols.size(); ++k) out.raw(column_name(k), cols[k].data, cols[k].elem_size, cols[k].size);
   BroadphaseState& bp = w.resources.get<BroadphaseState>();
-  out.value("rank.broadphase.skin", bp.skin);
-  out.value("rank.broadphase.valid", bp.valid);
-  out.value("rank.broadphase.force_rebuild", bp.force_rebuild);
-  out.value("rank.broadphase.rebuilds", bp.rebuilds);
-  out.value("rank.broadphase.checks", bp.checks);
-  out.value("rank.broadphase.kept", bp.cover.kept);
+  save_broadphase(out, bp, "rank.");
   out.value("rank.walls.rotation_enabled", w.resources.get<Walls>().rotation_enabled);
   list_sections(out, w.resources.get<NeighborList>(), w.resources.get<PairHistory>(), bp, "rank.");
   save_ghosts(out, ghosts_);
@@ -222,11 +218,7 @@ void RankSimulation::restore(const CheckpointReader& in) {
   const std::vector<RawColumn> cols = raw_row_columns(g);
   for (std::size_t k = 0; k < cols.size(); ++k) in.copy_raw(column_name(k), cols[k].data, cols[k].elem_size, n);
   restore_clock(in, w);
-  bp.valid = in.value<bool>("rank.broadphase.valid");
-  bp.force_rebuild = in.value<bool>("rank.broadphase.force_rebuild");
-  bp.rebuilds = in.value<std::int64_t>("rank.broadphase.rebuilds");
-  bp.checks = in.value<std::int64_t>("rank.broadphase.checks");
-  bp.cover.kept = in.value<std::int64_t>("rank.broadphase.kept");
+  restore_broadphase(in, bp, "rank.");
   NeighborList& list = w.resources.get<NeighborList>();
   PairHistory& history = w.resources.get<PairHistory>();
   list_sections(in, list, history, bp, "rank.");
