@@ -43,6 +43,7 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "app/run_outcome.hpp"
 #include "app/run_summary.hpp"
 #include "engine/mpi/mpi_context.hpp"
 #include "engine/mpi/rank_failure.hpp"
@@ -57,9 +58,7 @@
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
+using gf::seconds_since;
 
 // The main stage's steps with the outputs, then the checkpoints, observing the start and every step
 // after it.
