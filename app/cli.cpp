@@ -26,7 +26,8 @@ std::string usage(std::string_view program) {
          "  --threads    1 to " + std::to_string(kMaxThreads) + " (default: all cores)\n"
          "  --steps      main-stage steps instead of the scene's duration\n"
          "  --set        override a scene key, e.g. --set run.dt=2e-5 --set fill.0.count.small=1000\n"
-         "  --resume     continue the run from this checkpoint (DIR/checkpoints/checkpoint.gfc)\n"
+         "  --resume     continue the run from this checkpoint (DIR/checkpoints/checkpoint.gfc; a run on several\n"
+         "               ranks: DIR/checkpoints/checkpoint_ranks.gfc)\n"
          "  --rebalance  on several MPI ranks: cut the ranks' boxes again where the costliest rank's grains cost\n"
          "               more than RATIO times the mean (default 1.25; 0: never; one process has one box)\n"
          "  --keys       list every key the scene's systems read (set or left at its default), one 'key: PATH' each\n";
