@@ -455,11 +455,15 @@ int run_body_command(const CliOptions& opt, const DemScene& s, const BodyRunHook
   RunOutcome r;
   const std::int64_t first_step = world.clock.step;
   const auto run0 = std::chrono::steady_clock::now();
-  try {
+  // Only the writer holds checkpoints; the other ranks' failures are the writer's to report.
+  const auto have_checkpoint = [&] {
+    return run.ckpt.has_value() || (run.checkpoints && run.checkpoints->written() > 0);
+  };
+  guarded(r, opt, run.out, have_checkpoint, [&] {
     main = run_stage(world, run.sim->step(), so);
     if (main.interrupted) r.status = "interrupted";
-  } catch (const std::exception& e) {
-    r.fail(e.what());
+  });
+  if (r.failed()) {
     main.steps = world.clock.step - first_step;
     main.wall_seconds = seconds_since(run0);
   }
