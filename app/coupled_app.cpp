@@ -5,18 +5,15 @@
 // Checkpoints (output.checkpoint_interval, and at the end unless output.checkpoint_at_end = false:
 // coupled_checkpoint.hpp) and `--resume` continuing series and frames bit for bit, as a liquid run's.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <memory>
-#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
-#include "engine/atomic_file.hpp"
-#include "app/cli.hpp"
-#include "engine/run_loop.hpp"
+#include "app/commands.hpp"
+#include "app/run_model.hpp"
+#include "app/run_outcome.hpp"
 #include "systems/coupling/coupled_observables.hpp"
 #include "systems/coupling/coupled_step.hpp"
 #include "systems/mps/fluid_nodes.hpp"
@@ -24,10 +21,6 @@
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
 #include "systems/output/series_csv.hpp"
-#include "systems/output/summary_json.hpp"
-#include "app/commands.hpp"
-#include "app/run_outcome.hpp"
-#include "app/run_summary.hpp"
 #include "systems/setup/coupled_checkpoint.hpp"
 #include "systems/setup/coupled_simulation.hpp"
 #include "systems/setup/final_state.hpp"
@@ -35,8 +28,6 @@
 namespace gf {
 
 namespace {
-
-using WallClock = std::chrono::steady_clock;
 
 void print_liquid_part(const CoupledScene& s, World& w) {
   const LiquidScene& l = s.liquid;
@@ -74,30 +65,6 @@ void print_coupling(const CoupledScene& s) {
                          : "not locally averaged (coupling.averaged = false: the liquid fills the grains' volume)");
 }
 
-nlohmann::json start_summary(const CliOptions& opt, const CoupledScene& s, CoupledSimulation& sim) {
-  nlohmann::json j;
-  summary_opening(j, opt, "coupled",
-                  {static_cast<std::int64_t>(sim.world().grains.n_owned),
-                   static_cast<std::int64_t>(sim.world().tables.get<FluidNodes>().count(kFluid))},
-                  1, threads_in_use());
-  j["fluid_nodes"] = sim.world().tables.get<FluidNodes>().count(kFluid);
-  j["grains"] = sim.world().grains.n_owned;
-  j["dt"] = s.liquid.dt;
-  j["dem_dt"] = s.dem.dt;
-  j["substeps"] = s.coupling.substeps;
-  j["substeps_computed"] = s.coupling.substeps_computed;
-  j["l0"] = s.liquid.params.k.l0;
-  j["smoothing_radius"] = s.coupling.smoothing_radius;
-  j["drag"] = drag_model_name(s.coupling.drag);
-  j["buoyancy"] = "archimedes";
-  j["modified_pressure"] = s.coupling.modified_pressure;
-  j["fixed_grains"] = s.coupling.fixed_grains;
-  j["share_with"] = s.coupling.fluid_nodes_only ? "fluid_nodes" : "all_nodes";
-  j["averaged"] = s.coupling.averaged;
-  j["status"] = "running";
-  return j;
-}
-
 // series.csv: a row every `every` liquid steps, from step 0; a resumed run continues the file from the
 // rows its checkpoint counted.
 class CoupledSeries : public SystemBase<CoupledSeries>, public Checkpointable {
@@ -124,52 +91,103 @@ class CoupledSeries : public SystemBase<CoupledSeries>, public Checkpointable {
   std::uint64_t rows_ = 0;
 };
 
-// The outputs and the checkpoints, observing the state after each step (and the initial state of a run
-// that does not resume).
-struct CoupledObservers {
-  Schedule schedule;
-  CheckpointOutput* checkpoints = nullptr;
-  LiquidScene frame_scene;  // the liquid's outputs: frames only (the coupled series takes its series' place)
+// An MPS liquid with DEM grains (CoupledSimulation), for the run skeleton (run_model.hpp).
+class CoupledModel final : public Model {
+ public:
+  explicit CoupledModel(CoupledScene s) : sim_(std::move(s)) {}
+
+  std::string_view kind() const override { return "coupled"; }
+  World& world() override { return sim_.world(); }
+  Schedule& step() override { return sim_.step(); }
+  RunCounts counts() override { return {grains(), fluid_nodes()}; }
+
+  void resume(const CheckpointReader& from) override { sim_.resume(from); }
+  std::string opening(std::size_t, int) override {
+    const CoupledScene& s = sim_.scene();
+    char line[256];
+    std::snprintf(line, sizeof line, "liquid and %lld grains, dt = %.3g s with %d DEM sub-steps",
+                  static_cast<long long>(grains()), s.liquid.dt, s.coupling.substeps);
+    return s.file.string() + ": " + line;
+  }
+  void open_summary(nlohmann::json& j) override;
+  // No settling: the first state's forces, then the main stage.
+  StageReport settle(double) override {
+    sim_.prime();
+    return {};
+  }
+  CheckpointOutput& observe(Schedule& observers, const std::filesystem::path& out,
+                            const CheckpointReader* from) override;
+
+  std::int64_t last_step() const override { return scene().steps(); }
+  bool checkpoint_at_end() const override { return scene().liquid.output.checkpoint_at_end; }
+  bool observe_resumed_start() const override { return false; }
+  // A step advances every liquid node and every grain once (the grains in k sub-steps).
+  double rows(const World& w) const override {
+    return static_cast<double>(w.grains.n_owned) + fluid_nodes_at_start_;
+  }
+
+  void close_summary(nlohmann::json& summary, const StageReport&) override {
+    summary["final"] = row_json(coupled_series_columns(), sample_coupled(sim_.world(), scene().liquid));
+    summary["time_per_dem_system"] = timings_json({&sim_.dem_substeps().inner()});
+  }
+  void write_final_files(const std::filesystem::path& out) override {
+    write_final_state(out / "final_state.csv", sim_.world().grains, scene().dem);
+  }
+
+ private:
+  const CoupledScene& scene() const { return *scene_; }
+  std::int64_t grains() { return static_cast<std::int64_t>(sim_.world().grains.n_owned); }
+  std::int64_t fluid_nodes() { return static_cast<std::int64_t>(sim_.world().tables.get<FluidNodes>().count(kFluid)); }
+
+  CoupledSimulation sim_;
+  const CoupledScene* scene_ = &sim_.scene();
+  double fluid_nodes_at_start_ = static_cast<double>(fluid_nodes());  // the liquid keeps its nodes
+  LiquidScene frame_scene_;  // the liquid's outputs: frames only (the coupled series takes its series' place)
 };
 
-void add_observers(CoupledObservers& o, const std::filesystem::path& out, const CoupledScene& s, World& world,
-                   const CheckpointReader* from) {
-  o.frame_scene = s.liquid;
-  o.frame_scene.output.series_interval = 0;
+void CoupledModel::open_summary(nlohmann::json& j) {
+  const CoupledScene& s = scene();
+  j["fluid_nodes"] = fluid_nodes();
+  j["grains"] = grains();
+  j["dt"] = s.liquid.dt;
+  j["dem_dt"] = s.dem.dt;
+  j["substeps"] = s.coupling.substeps;
+  j["substeps_computed"] = s.coupling.substeps_computed;
+  j["l0"] = s.liquid.params.k.l0;
+  j["smoothing_radius"] = s.coupling.smoothing_radius;
+  j["drag"] = drag_model_name(s.coupling.drag);
+  j["buoyancy"] = "archimedes";
+  j["modified_pressure"] = s.coupling.modified_pressure;
+  j["fixed_grains"] = s.coupling.fixed_grains;
+  j["share_with"] = s.coupling.fluid_nodes_only ? "fluid_nodes" : "all_nodes";
+  j["averaged"] = s.coupling.averaged;
+}
+
+// The outputs and the checkpoints, observing the state after each step (and the initial state of a run
+// that does not resume).
+CheckpointOutput& CoupledModel::observe(Schedule& observers, const std::filesystem::path& out,
+                                        const CheckpointReader* from) {
+  const CoupledScene& s = scene();
+  frame_scene_ = s.liquid;
+  frame_scene_.output.series_interval = 0;
   std::vector<const Checkpointable*> parts;
   if (s.liquid.output.frame_interval > 0) {
     if (from && !from->has("grain_frames.next"))
       from->fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
-    parts.push_back(&o.schedule.emplace<LiquidOutputs>(out / "liquid", o.frame_scene, from));
-    auto& grains = o.schedule.emplace<FrameOutput>(out / "grains", s.liquid.output.frame_interval, FrameFields{}, "grain_frames");
+    parts.push_back(&observers.emplace<LiquidOutputs>(out / "liquid", frame_scene_, from));
+    auto& grains = observers.emplace<FrameOutput>(out / "grains", s.liquid.output.frame_interval, FrameFields{}, "grain_frames");
     if (from) grains.restore(*from);
     parts.push_back(&grains);
   }
   const std::int64_t every = std::max<std::int64_t>(1, std::llround(s.liquid.output.series_interval / s.liquid.dt));
-  if (s.liquid.output.series_interval > 0) parts.push_back(&o.schedule.emplace<CoupledSeries>(out / "series.csv", s, every, from));
-  o.checkpoints = &o.schedule.emplace<CheckpointOutput>(
+  if (s.liquid.output.series_interval > 0)
+    parts.push_back(&observers.emplace<CoupledSeries>(out / "series.csv", s, every, from));
+  CheckpointOutput& checkpoints = observers.emplace<CheckpointOutput>(
       CheckpointSettings{out, s.liquid.output.checkpoint_interval, s.liquid.output.checkpoint_keep_all},
       [&s](CheckpointWriter& w, World& wd) { save_coupled_state(w, wd, s); }, parts);
-  if (from) o.checkpoints->restore(*from);
-  o.schedule.build(world);
-}
-
-void step_to(std::int64_t end, CoupledSimulation& sim, Schedule& observe, bool resumed, bool quiet, RunOutcome& r) {
-  World& w = sim.world();
-  if (!resumed) sim.prime();
-  const std::int64_t start = w.clock.step;
-  StageOptions so;
-  so.steps = std::max<std::int64_t>(0, end - start);
-  so.observe = &observe;
-  so.observe_start = !resumed;
-  so.progress_seconds = quiet ? 0.0 : 2.0;
-  try {
-    if (run_stage(w, sim.step(), so).interrupted) r.status = "interrupted";
-  } catch (...) {
-    r.steps = w.clock.step - start;
-    throw;
-  }
-  r.steps = w.clock.step - start;
+  if (from) checkpoints.restore(*from);
+  observers.build(sim_.world());
+  return checkpoints;
 }
 
 }  // namespace
@@ -199,58 +217,8 @@ int check_coupled_command(const CliOptions& opt) {
 }
 
 int run_coupled_command(const CliOptions& opt) {
-  const auto wall0 = WallClock::now();
-  CoupledSimulation sim(load_coupled_scene(SceneDoc::load(opt.scene, opt.overrides)));
-  const CoupledScene& s = sim.scene();
-  std::optional<CheckpointReader> ckpt;
-  if (opt.resume) {
-    ckpt.emplace(*opt.resume);
-    sim.resume(*ckpt);
-  }
-  const CheckpointReader* from = ckpt ? &*ckpt : nullptr;
-  const std::filesystem::path out = opt.out_dir();
-  ensure_directory(out);
-  std::fprintf(stderr, "grainflow: %s: liquid and %zu grains, dt = %.3g s with %d DEM sub-steps -> %s\n",
-               s.file.string().c_str(), sim.world().grains.n_owned, s.liquid.dt, s.coupling.substeps, out.string().c_str());
-  if (ckpt) say_resuming(*ckpt, sim.world().clock);
-  nlohmann::json summary = start_summary(opt, s, sim);
-  if (ckpt) summary["resumed_from"] = resumed_from_json(*ckpt, sim.world().clock);
-  write_summary_json(out / "summary.json", summary);
-  CoupledObservers obs;
-  add_observers(obs, out, s, sim.world(), from);
-  RunOutcome r;
-  const auto run0 = WallClock::now();
-  const auto have_checkpoint = [&] { return ckpt.has_value() || obs.checkpoints->written() > 0; };
-  guarded(r, opt, out, have_checkpoint, [&] {
-    step_to(opt.steps ? *opt.steps : s.steps(), sim, obs.schedule, ckpt.has_value(), opt.quiet, r);
-    if (s.liquid.output.checkpoint_at_end) r.checkpoint_file = obs.checkpoints->write(sim.world()).string();
-  });
-  r.wall = seconds_since(run0);
-  const nlohmann::json fin = row_json(coupled_series_columns(), sample_coupled(sim.world(), s.liquid));
-  summary["status"] = r.status;
-  if (!r.failure.empty()) summary["failure"] = r.failure;
-  summary["steps"] = sim.world().clock.step;
-  summary["steps_this_run"] = r.steps;
-  summary["simulated_time"] = sim.world().clock.t;
-  summary["wall_seconds"] = r.wall;
-  summary["total_wall_seconds"] = seconds_since(wall0);
-  summary["checkpoints_written"] = obs.checkpoints->written();
-  if (!r.checkpoint_file.empty()) summary["checkpoint"] = r.checkpoint_file;
-  summary["final"] = fin;
-  summary_counts_at_end(summary, {static_cast<std::int64_t>(sim.world().grains.n_owned),
-                                  static_cast<std::int64_t>(sim.world().tables.get<FluidNodes>().count(kFluid))});
-  summary["time_per_system"] = timings_json({&sim.step()});
-  summary["time_per_dem_system"] = timings_json({&sim.dem_substeps().inner()});
-  try {
-    write_final_state(out / "final_state.csv", sim.world().grains, s.dem);
-    write_summary_json(out / "summary.json", summary);
-  } catch (const WriteError& e) {
-    // The earlier summary.json (status "running") stays as it was.
-    if (r.failure.empty()) r.fail(e.what() + write_failure_fix(opt, out, have_checkpoint()));
-    else r.fail_also(e.what());
-  }
-  say_done(r, sim.world().clock.t, "");
-  return r.rc;
+  CoupledModel model(load_coupled_scene(SceneDoc::load(opt.scene, opt.overrides)));
+  return run_model(model, opt);
 }
 
 }  // namespace gf

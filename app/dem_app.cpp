@@ -1,29 +1,24 @@
 // `grainflow run` and `grainflow check` for DEM scenes.
 #include <algorithm>
-#include <chrono>
-#include <optional>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <string>
+
 #include <nlohmann/json.hpp>
 
-#include <tbb/global_control.h>
-
-#include "engine/atomic_file.hpp"
-#include "app/cli.hpp"
-#include "engine/run_loop.hpp"
+#include "app/commands.hpp"
+#include "app/dem_body_app.hpp"
+#include "app/run_model.hpp"
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/contact/laws.hpp"
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
-#include "systems/setup/dem_output_settings.hpp"
 #include "systems/output/layer_output.hpp"
 #include "systems/output/residence_csv.hpp"
 #include "systems/output/summary_json.hpp"
-#include "app/commands.hpp"
-#include "app/run_outcome.hpp"
-#include "app/run_summary.hpp"
-#include "app/dem_body_app.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
+#include "systems/setup/dem_output_settings.hpp"
 #include "systems/setup/dem_simulation.hpp"
 #include "systems/setup/final_state.hpp"
 #include "systems/setup/flow_scene.hpp"
@@ -127,7 +122,6 @@ namespace {
 // The observers of a grain run (series, frames, pictures, residence and layer files, checkpoints), each
 // restored from the checkpoint a run resumes.
 struct DemObservers {
-  Schedule schedule;
   SeriesOutput* series = nullptr;
   FrameOutput* frames = nullptr;
   PictureOutput* pictures = nullptr;
@@ -154,171 +148,110 @@ void restore_observers(DemObservers& o, const CheckpointReader& ckpt) {
   o.checkpoints->restore(ckpt);
 }
 
-void add_observers(DemObservers& o, const DemScene& s, const std::filesystem::path& out, World& world,
-                   const CheckpointReader* ckpt) {
+void add_observers(DemObservers& o, Schedule& schedule, const DemScene& s, const std::filesystem::path& out,
+                   World& world, const CheckpointReader* ckpt) {
   world.resources.emplace<SeriesRow>();
   SeriesSettings ss = scene_series_settings(s, out);
   if (ckpt) {
     ss.resume_rows = ckpt->value<std::uint64_t>("series_output.rows");
     ss.resume_time = world.clock.t;
   }
-  o.series = &o.schedule.emplace<SeriesOutput>(ss);
-  if (s.output.frame_interval > 0) o.frames = &o.schedule.emplace<FrameOutput>(out, s.output.frame_interval, s.output.fields);
-  if (scene_draws_pictures(s)) o.pictures = &o.schedule.emplace<PictureOutput>(scene_picture_settings(s, out));
+  o.series = &schedule.emplace<SeriesOutput>(ss);
+  if (s.output.frame_interval > 0) o.frames = &schedule.emplace<FrameOutput>(out, s.output.frame_interval, s.output.fields);
+  if (scene_draws_pictures(s)) o.pictures = &schedule.emplace<PictureOutput>(scene_picture_settings(s, out));
   if (!s.flow.outlets.empty()) {
     std::optional<std::size_t> keep;
     if (ckpt) keep = ckpt->value<std::uint64_t>("residence_output.rows");
-    o.residence = &o.schedule.emplace<ResidenceOutput>(out / "residence.csv", keep);
+    o.residence = &schedule.emplace<ResidenceOutput>(out / "residence.csv", keep);
   }
   if (s.layers) {
     std::optional<std::size_t> keep;
     if (ckpt) keep = ckpt->value<std::uint64_t>("layer_output.rows");
-    o.layers = &o.schedule.emplace<LayerOutput>(out / "layers.csv", *s.layers, keep);
+    o.layers = &schedule.emplace<LayerOutput>(out / "layers.csv", *s.layers, keep);
   }
   std::vector<const Checkpointable*> parts{o.series};
   if (o.layers) parts.push_back(o.layers);
   if (o.frames) parts.push_back(o.frames);
   if (o.pictures) parts.push_back(o.pictures);
   if (o.residence) parts.push_back(o.residence);
-  o.checkpoints = &o.schedule.emplace<CheckpointOutput>(
+  o.checkpoints = &schedule.emplace<CheckpointOutput>(
       CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
       [&s](CheckpointWriter& w, World& wd) { save_dem_state(w, wd, s); }, parts);
-  o.schedule.build(world);
+  schedule.build(world);
   if (ckpt) restore_observers(o, *ckpt);
 }
 
-// The main stage with its observers, then the checkpoint at the end and the outputs' last writes; a
-// failure ends the stage and is recorded in `r`, the files written before kept. Returns the stage's report.
-StageReport step_main_stage(const CliOptions& opt, const DemScene& s, DemSimulation& sim, DemObservers& o,
-                            const std::filesystem::path& out, const CheckpointReader* ckpt, RunOutcome& r) {
-  World& world = sim.world();
-  StageOptions so;
-  so.progress_seconds = opt.quiet ? 0.0 : 2.0;
-  so.label = "run";
-  // --steps and the scene's duration count the whole main stage, so a resumed run ends where the
-  // uninterrupted one would.
-  const std::int64_t total_steps = opt.steps ? *opt.steps : s.main_steps();
-  so.steps = std::max<std::int64_t>(0, total_steps - world.clock.step);
-  so.observe = &o.schedule;
-  const auto run0 = std::chrono::steady_clock::now();
-  const auto have_checkpoint = [&] { return ckpt != nullptr || o.checkpoints->written() > 0; };
-  StageReport main;
-  guarded(r, opt, out, have_checkpoint, [&] {
-    main = run_stage(world, sim.step(), so);
-    if (main.interrupted) r.status = "interrupted";
-  });
-  if (r.failed()) {  // a stage that threw: the steps it took, and its wall time
-    main.steps = world.clock.step - (ckpt ? ckpt->value<std::int64_t>("clock.step") : 0);
-    main.wall_seconds = seconds_since(run0);
+// Spheres on one process (DemSimulation), for the run skeleton (run_model.hpp).
+class SphereModel final : public Model {
+ public:
+  explicit SphereModel(const DemScene& s) : s_(s), sim_(s) {}
+
+  std::string_view kind() const override { return "spheres"; }
+  World& world() override { return sim_.world(); }
+  Schedule& step() override { return sim_.step(); }
+  RunCounts counts() override { return {static_cast<std::int64_t>(sim_.grains().n_owned), 0}; }
+
+  void resume(const CheckpointReader& from) override { sim_.resume(from); }
+  std::string opening(std::size_t threads, int) override {
+    char line[256];
+    std::snprintf(line, sizeof line, "%zu grains, dt = %.3g s (%.3f of the critical period), %zu threads",
+                  sim_.world().grains.n_owned, s_.dt, s_.dt / s_.critical.period, threads);
+    return s_.file.string() + ": " + line;
   }
-  if (s.output.checkpoint_at_end)
-    guarded(r, opt, out, have_checkpoint, [&] { r.checkpoint_file = o.checkpoints->write(world).string(); });
-  guarded(r, opt, out, have_checkpoint, [&] {
-    o.series->finish(world);
-    if (o.frames) o.frames->finish(world);
-  });
-  r.steps = main.steps;
-  r.wall = main.wall_seconds;
-  return main;
-}
+  void open_summary(nlohmann::json& summary) override {
+    summary["grains"] = sim_.world().grains.n_owned;
+    summary["dt"] = s_.dt;
+    summary["critical_period"] = s_.critical.period;
+    summary["critical_term"] = s_.critical.term;
+  }
+  StageReport settle(double progress_seconds) override { return sim_.settle(progress_seconds); }
+  CheckpointOutput& observe(Schedule& observers, const std::filesystem::path& out,
+                            const CheckpointReader* from) override {
+    add_observers(o_, observers, s_, out, sim_.world(), from);
+    return *o_.checkpoints;
+  }
 
-void summarise_run(nlohmann::json& summary, const RunOutcome& r, const StageReport& main, const StageReport& settle,
-                   const DemObservers& o, DemSimulation& sim, std::size_t n, double total_wall) {
-  World& world = sim.world();
-  // A stage that threw reports its steps but not the grains stepped: those of the start, then.
-  const double stepped = main.particle_steps > 0 ? main.particle_steps : static_cast<double>(main.steps) * n;
-  summary["status"] = r.status;
-  if (!r.failure.empty()) summary["failure"] = r.failure;
-  summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle.wall_seconds}};
-  summary["steps"] = world.clock.step;
-  summary["steps_this_run"] = main.steps;
-  summary["checkpoints_written"] = o.checkpoints->written();
-  if (!r.checkpoint_file.empty()) summary["checkpoint"] = r.checkpoint_file;
-  summary["simulated_time"] = world.clock.t;
-  summary["wall_seconds"] = main.wall_seconds;
-  summary["total_wall_seconds"] = total_wall;
-  summary["particle_steps_per_second"] = main.wall_seconds > 0 ? stepped / main.wall_seconds : 0.0;
-  summary["neighbor_rebuilds"] = world.resources.get<BroadphaseState>().rebuilds;
-  // Checks where some grain had moved past skin/2 but no pair missing from the list touched.
-  summary["neighbor_list_kept"] = world.resources.get<BroadphaseState>().cover.kept;
-  summary["frames"] = o.frames ? o.frames->frames() : 0;
-  summary["pictures"] = o.pictures ? o.pictures->pictures() : 0;
-  summary["final"] = final_row_json(world.resources.get<SeriesRow>());
-  if (const FlowState* f = world.resources.find<FlowState>()) summary["flow"] = flow_json(*f, world.grains, o.residence);
-  summary_counts_at_end(summary, {static_cast<std::int64_t>(world.grains.n_owned), 0});
-  summary["time_per_system"] = timings_json({&sim.step(), &o.schedule});
-}
+  std::int64_t last_step() const override { return s_.main_steps(); }
+  bool checkpoint_at_end() const override { return s_.output.checkpoint_at_end; }
+  double rows(const World& w) const override { return static_cast<double>(w.grains.n_owned); }
 
-nlohmann::json opening_summary(const CliOptions& opt, const DemScene& s, const World& world, std::size_t n,
-                               const CheckpointReader* ckpt) {
-  nlohmann::json summary;
-  summary_opening(summary, opt, "spheres", {static_cast<std::int64_t>(n), 0}, 1, threads_in_use());
-  summary["grains"] = n;
-  summary["dt"] = s.dt;
-  summary["critical_period"] = s.critical.period;
-  summary["critical_term"] = s.critical.term;
-  summary["status"] = "running";
-  if (ckpt) summary["resumed_from"] = resumed_from_json(*ckpt, world.clock);
-  return summary;
-}
+  void finish_outputs() override {
+    o_.series->finish(sim_.world());
+    if (o_.frames) o_.frames->finish(sim_.world());
+  }
+  void close_summary(nlohmann::json& summary, const StageReport&) override {
+    World& world = sim_.world();
+    const BroadphaseState& broadphase = world.resources.get<BroadphaseState>();
+    summary["neighbor_rebuilds"] = broadphase.rebuilds;
+    // Checks where some grain had moved past skin/2 but no pair missing from the list touched.
+    summary["neighbor_list_kept"] = broadphase.cover.kept;
+    summary["frames"] = o_.frames ? o_.frames->frames() : 0;
+    summary["pictures"] = o_.pictures ? o_.pictures->pictures() : 0;
+    summary["final"] = final_row_json(world.resources.get<SeriesRow>());
+    if (const FlowState* f = world.resources.find<FlowState>())
+      summary["flow"] = flow_json(*f, world.grains, o_.residence);
+  }
+  void write_final_files(const std::filesystem::path& out) override {
+    write_final_state(out / "final_state.csv", sim_.world().grains, s_);
+  }
+  std::string last_words() const override {
+    if (!o_.pictures || o_.pictures->last_picture().empty()) return "";
+    return "picture of the drum: " + o_.pictures->last_picture().string();
+  }
+
+ private:
+  const DemScene& s_;
+  DemSimulation sim_;
+  DemObservers o_;
+};
 
 }  // namespace
 
 int run_dem_command(const CliOptions& opt) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
-  const DemScene s = load_dem_scene(doc);
+  const DemScene s = load_dem_scene(SceneDoc::load(opt.scene, opt.overrides));
   if (s.bodies) return run_body_command(opt, s);
-  const std::filesystem::path out = opt.out_dir();
-  ensure_directory(out);
-
-  DemSimulation sim(s);
-  World& world = sim.world();
-  std::optional<CheckpointReader> ckpt;
-  if (opt.resume) {
-    ckpt.emplace(*opt.resume);
-    sim.resume(*ckpt);
-  }
-  const CheckpointReader* from = ckpt ? &*ckpt : nullptr;
-  const std::size_t n = world.grains.n_owned;
-  std::fprintf(stderr, "grainflow: %s: %zu grains, dt = %.3g s (%.3f of the critical period), %zu threads -> %s\n",
-               s.file.string().c_str(), n, s.dt, s.dt / s.critical.period, threads_in_use(), out.string().c_str());
-  if (ckpt) say_resuming(*ckpt, world.clock);
-  nlohmann::json summary = opening_summary(opt, s, world, n, from);
-  write_summary_json(out / "summary.json", summary);
-
-  // A resumed run continues the main stage; its settling was done by the run that wrote the checkpoint.
-  StageReport settle;
-  try {
-    if (!ckpt) settle = sim.settle(opt.quiet ? 0.0 : 2.0);
-  } catch (const StabilityError& e) {
-    summary["status"] = "failed";
-    summary["failure"] = std::string("while settling: ") + e.what();
-    summary["steps"] = 0;
-    write_summary_json(out / "summary.json", summary);
-    std::fprintf(stderr, "grainflow: failed while settling\ngrainflow: error: %s\n", e.what());
-    return 3;
-  }
-  sim.step().reset_timings();
-  DemObservers o;
-  add_observers(o, s, out, world, from);
-  RunOutcome r;
-  const StageReport main = step_main_stage(opt, s, sim, o, out, from, r);
-  summarise_run(summary, r, main, settle, o, sim, n, seconds_since(wall0));
-  try {
-    write_final_state(out / "final_state.csv", world.grains, s);
-    write_summary_json(out / "summary.json", summary);
-  } catch (const WriteError& e) {
-    // The earlier summary.json (status "running") and final state stay as they were.
-    if (r.failure.empty()) r.fail(e.what() + write_failure_fix(opt, out, ckpt || o.checkpoints->written() > 0));
-    else r.fail(r.failure + "; then " + e.what());
-  }
-  char rate[64];
-  std::snprintf(rate, sizeof rate, ": %.3g particle-steps/s", summary["particle_steps_per_second"].get<double>());
-  say_done(r, world.clock.t, rate);
-  if (r.failure.empty() && o.pictures && !o.pictures->last_picture().empty())
-    std::fprintf(stderr, "grainflow: picture of the drum: %s\n", o.pictures->last_picture().string().c_str());
-  return r.rc;
+  SphereModel model(s);
+  return run_model(model, opt);
 }
 
 }  // namespace gf

@@ -2,24 +2,22 @@
 
 #include "app/run_outcome.hpp"
 #include "app/run_summary.hpp"
+#include "app/run_model.hpp"
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <functional>
 #include <memory>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <numbers>
-#include <optional>
+#include <stdexcept>
 #include <string>
+
 #include <nlohmann/json.hpp>
 
-#include <tbb/global_control.h>
-
 #include "engine/atomic_file.hpp"
-#include "engine/run_loop.hpp"
 #include "systems/analysis/body_repose.hpp"
 #include "systems/analysis/packing.hpp"
 #include "systems/bodies/body_contact.hpp"
@@ -220,173 +218,163 @@ int check_body_command(const CliOptions& opt, const DemScene& s) {
 
 namespace {
 
-// One run of a body scene: the simulation, its checkpoint when resumed, the observers (on the
-// process that writes) and the summary.
-struct BodyRun {
-  std::filesystem::path out;
-  std::unique_ptr<DemSimulation> sim;
-  BodyCounts counts;
-  std::optional<CheckpointReader> ckpt;
-  nlohmann::json summary;
-  Schedule observe;
-  BodySeriesOutput* series = nullptr;
-  BodyFrameOutput* frames = nullptr;
-  BodyPictureOutput* pictures = nullptr;
-  CheckpointOutput* checkpoints = nullptr;
+// Composite bodies (DemSimulation with [[bodies]]), for the run skeleton (run_model.hpp).
+class BodyModel final : public Model {
+ public:
+  BodyModel(const DemScene& s, const std::function<void(World&)>& install) : s_(s), sim_(s) {
+    if (install) install(sim_.world());
+    counts_ = count_bodies(s, sim_.world());
+  }
+
+  std::string_view kind() const override { return "bodies"; }
+  World& world() override { return sim_.world(); }
+  Schedule& step() override { return sim_.step(); }
+  RunCounts counts() override { return {static_cast<std::int64_t>(counts_.moving + counts_.fixed), 0}; }
+
+  void resume(const CheckpointReader& from) override { restore_body_state(from, sim_.world(), s_); }
+  std::string opening(std::size_t threads, int ranks) override {
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "%zu moving and %zu fixed bodies (%zu members), dt = %.3g s (%.3f of the critical period), %zu threads%s",
+                  counts_.moving, counts_.fixed, counts_.members, s_.dt, s_.dt / s_.critical.period, threads,
+                  ranks > 1 ? (" on each of " + std::to_string(ranks) + " ranks").c_str() : "");
+    return s_.file.string() + ": " + line;
+  }
+  std::string warning() const override { return rim_warning(s_); }
+  void open_summary(nlohmann::json& summary) override;
+  StageReport settle(double progress_seconds) override { return sim_.settle(progress_seconds); }
+  CheckpointOutput& observe(Schedule& observers, const std::filesystem::path& out,
+                            const CheckpointReader* from) override;
+
+  std::int64_t last_step() const override { return s_.main_steps(); }
+  bool checkpoint_at_end() const override { return s_.output.checkpoint_at_end; }
+  double rows(const World&) const override { return static_cast<double>(counts_.moving); }  // body-steps
+  std::string_view rate_unit() const override { return "body-steps/s"; }
+
+  void finish_outputs() override {
+    series_->finish(sim_.world());
+    if (frames_) frames_->finish(sim_.world());
+  }
+  void final_results(const std::filesystem::path& out, nlohmann::json& summary) override {
+    try {
+      const nlohmann::json packing = final_packing(s_, sim_.world(), out);
+      const nlohmann::json repose = final_repose(s_, sim_.world());
+      if (!packing.is_null()) summary["packing"] = packing;
+      if (!repose.empty()) summary["repose"] = repose;
+    } catch (const WriteError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("the final packing or repose: ") + e.what());
+    }
+  }
+  void close_summary(nlohmann::json& summary, const StageReport& main) override;
+  std::string last_words() const override {
+    if (!pictures_ || pictures_->last_picture().empty()) return "";
+    return "last picture: " + pictures_->last_picture().string();
+  }
+
+ private:
+  void restore_observers(const CheckpointReader& from, CheckpointOutput& checkpoints);
+
+  const DemScene& s_;
+  DemSimulation sim_;
+  BodyCounts counts_;
+  BodySeriesOutput* series_ = nullptr;
+  BodyFrameOutput* frames_ = nullptr;
+  BodyPictureOutput* pictures_ = nullptr;
 };
 
-void together(const BodyRunHooks& hooks, const std::function<void()>& f) {
-  if (hooks.together) hooks.together(f);
-  else f();
-}
-
-// The simulation (restored from the checkpoint when resumed) and, on the writer, the output folder
-// and the summary's opening.
-void start_body_run(BodyRun& run, const CliOptions& opt, const DemScene& s, const BodyRunHooks& hooks) {
-  run.out = opt.out_dir();
-  if (hooks.writer) ensure_directory(run.out);
-  run.sim = std::make_unique<DemSimulation>(s);
-  World& world = run.sim->world();
-  if (hooks.install) hooks.install(world);
-  run.counts = count_bodies(s, world);
-  if (opt.resume) {
-    run.ckpt.emplace(*opt.resume);
-    restore_body_state(*run.ckpt, world, s);
-  }
-  if (!hooks.writer) return;
-  std::fprintf(stderr, "grainflow: %s: %zu moving and %zu fixed bodies (%zu members), dt = %.3g s (%.3f of the "
-               "critical period), %zu threads%s -> %s\n",
-               s.file.string().c_str(), run.counts.moving, run.counts.fixed, run.counts.members, s.dt,
-               s.dt / s.critical.period, threads_in_use(),
-               hooks.ranks > 1 ? (" on each of " + std::to_string(hooks.ranks) + " ranks").c_str() : "",
-               run.out.string().c_str());
-  if (!rim_warning(s).empty()) std::fprintf(stderr, "grainflow: warning: %s\n", rim_warning(s).c_str());
-  nlohmann::json& summary = run.summary;
-  summary_opening(summary, opt, "bodies", {static_cast<std::int64_t>(run.counts.moving + run.counts.fixed), 0},
-                  hooks.ranks, threads_in_use());
-  summary["bodies"] = {{"moving", run.counts.moving}, {"fixed", run.counts.fixed}, {"members", run.counts.members}};
-  for (const BodyShape& sh : s.bodies->shapes)
+void BodyModel::open_summary(nlohmann::json& summary) {
+  summary["bodies"] = {{"moving", counts_.moving}, {"fixed", counts_.fixed}, {"members", counts_.members}};
+  for (const BodyShape& sh : s_.bodies->shapes)
     summary["shapes"][sh.name] = {{"parts", sh.shape.parts.size()}, {"mass", sh.props.mass}, {"volume", sh.props.volume},
                                   {"moments", {sh.props.moments[0], sh.props.moments[1], sh.props.moments[2]}}};
-  summary["dt"] = s.dt;
-  summary["critical_period"] = s.critical.period;
-  summary["critical_term"] = s.critical.term;
-  summary["rim_critical_period"] = s.bodies->rim.period;
-  summary["rim_critical_term"] = s.bodies->rim.term;
-  summary["status"] = "running";
-  if (run.ckpt) {
-    summary["resumed_from"] = resumed_from_json(*run.ckpt, world.clock);
-    say_resuming(*run.ckpt, world.clock);
-  }
-  write_summary_json(run.out / "summary.json", summary);
+  summary["dt"] = s_.dt;
+  summary["critical_period"] = s_.critical.period;
+  summary["critical_term"] = s_.critical.term;
+  summary["rim_critical_period"] = s_.bodies->rim.period;
+  summary["rim_critical_term"] = s_.bodies->rim.term;
 }
 
 // The observers of the main stage, from the state at its start (layers, the remaining fraction's
 // denominator, the pictures' window); a resumed run takes them and the observers' state from its
 // checkpoint.
-void make_body_observers(BodyRun& run, const DemScene& s) {
-  World& world = run.sim->world();
+CheckpointOutput& BodyModel::observe(Schedule& observers, const std::filesystem::path& out,
+                                     const CheckpointReader* from) {
+  World& world = sim_.world();
   const Bodies& bodies = world.tables.get<Bodies>();
-  const BodyOutputSpec& bo = s.bodies->output;
+  const BodyOutputSpec& bo = s_.bodies->output;
   std::vector<int> layers;
   std::uint64_t initial_moving = 0;
   const double lowest = bo.has_sink ? bo.sink_height : std::numeric_limits<double>::quiet_NaN();
   BodyView view;
-  const std::optional<CheckpointReader>& ckpt = run.ckpt;
-  if (ckpt) {
-    ckpt->vector("body_run.layers", layers);
-    initial_moving = ckpt->value<std::uint64_t>("body_run.initial_moving");
-    view = ckpt->value<BodyView>("body_run.view");
-    if (layers.size() != bodies.n) ckpt->fail("its layers are not one per body", "resume with the scene of the run that wrote it");
+  if (from) {
+    from->vector("body_run.layers", layers);
+    initial_moving = from->value<std::uint64_t>("body_run.initial_moving");
+    view = from->value<BodyView>("body_run.view");
+    if (layers.size() != bodies.n) from->fail("its layers are not one per body", "resume with the scene of the run that wrote it");
   } else {
     layers = body_layers(bodies, world.resources.get<Gravity>());
     for (std::size_t i = 0; i < bodies.n; ++i) initial_moving += bodies.moving(i);
     view = body_view(bodies, world.tables.get<Members>(), bo.view_axis, bo.picture_size, lowest);
   }
-  Schedule& observe = run.observe;
   world.resources.emplace<BodySeriesRow>();
   BodySeriesSettings ss;
-  if (s.output.series_interval > 0) ss.csv = run.out / "series.csv";
-  ss.interval = s.output.series_interval > 0 ? s.output.series_interval : 1000 * s.dt;
+  if (s_.output.series_interval > 0) ss.csv = out / "series.csv";
+  ss.interval = s_.output.series_interval > 0 ? s_.output.series_interval : 1000 * s_.dt;
   ss.overlap_scale = bo.overlap_scale;
   if (bo.has_outlet) ss.outlet_height = bo.outlet_height;
   ss.initial_moving = initial_moving;
-  if (ckpt) ss.resume_rows = ckpt->value<std::uint64_t>("body_series_output.rows");
-  run.series = &observe.emplace<BodySeriesOutput>(ss);
-  if (s.output.frame_interval > 0)
-    run.frames = &observe.emplace<BodyFrameOutput>(run.out, s.output.frame_interval, frame_labels(*s.bodies), layers);
+  if (from) ss.resume_rows = from->value<std::uint64_t>("body_series_output.rows");
+  series_ = &observers.emplace<BodySeriesOutput>(ss);
+  if (s_.output.frame_interval > 0)
+    frames_ = &observers.emplace<BodyFrameOutput>(out, s_.output.frame_interval, frame_labels(*s_.bodies), layers);
   if (bo.picture_interval > 0) {
     std::string legend;
-    std::vector<Rgb> colours = picture_colours(s, layers, legend);
-    run.pictures = &observe.emplace<BodyPictureOutput>(run.out / "pictures", bo.picture_interval, view,
-                                                       std::move(colours), std::move(legend));
+    std::vector<Rgb> colours = picture_colours(s_, layers, legend);
+    pictures_ = &observers.emplace<BodyPictureOutput>(out / "pictures", bo.picture_interval, view, std::move(colours),
+                                                      std::move(legend));
   }
-  std::vector<const Checkpointable*> parts{run.series};
-  if (run.frames) parts.push_back(run.frames);
-  if (run.pictures) parts.push_back(run.pictures);
-  run.checkpoints = &observe.emplace<CheckpointOutput>(
-      CheckpointSettings{run.out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
-      [&s, layers, initial_moving, view](CheckpointWriter& w, World& wd) {
-        save_body_state(w, wd, s);
+  std::vector<const Checkpointable*> parts{series_};
+  if (frames_) parts.push_back(frames_);
+  if (pictures_) parts.push_back(pictures_);
+  CheckpointOutput& checkpoints = observers.emplace<CheckpointOutput>(
+      CheckpointSettings{out, s_.output.checkpoint_interval, s_.output.checkpoint_keep_all},
+      [this, layers, initial_moving, view](CheckpointWriter& w, World& wd) {
+        save_body_state(w, wd, s_);
         w.vector("body_run.layers", layers);
         w.value("body_run.initial_moving", initial_moving);
         w.value("body_run.view", view);
       },
       parts);
-  observe.build(world);
-  if (!ckpt) return;
-  run.series->restore(*ckpt);
-  if (run.frames) {
-    if (!ckpt->has("body_frame_output.next"))
-      ckpt->fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
-    run.frames->restore(*ckpt);
-  }
-  if (run.pictures) {
-    if (!ckpt->has("body_picture_output.next"))
-      ckpt->fail("the run that wrote it drew no pictures", "resume with output.picture_interval = 0, as that run had");
-    run.pictures->restore(*ckpt);
-  }
-  run.checkpoints->restore(*ckpt);
+  observers.build(world);
+  if (from) restore_observers(*from, checkpoints);
+  return checkpoints;
 }
 
-// After the main stage, on the writer: the last checkpoint, the outputs closed, the final bed's
-// packing and repose, and the summary. Returns the exit status.
-int finish_body_run(const CliOptions& opt, BodyRun& run, const DemScene& s, const StageReport& settle,
-                    const StageReport& main, RunOutcome& r, std::chrono::steady_clock::time_point wall0) {
-  World& world = run.sim->world();
-  const auto have_checkpoint = [&] { return run.ckpt.has_value() || run.checkpoints->written() > 0; };
-  if (s.output.checkpoint_at_end)
-    guarded(r, opt, run.out, have_checkpoint, [&] { r.checkpoint_file = run.checkpoints->write(world).string(); });
-  guarded(r, opt, run.out, have_checkpoint, [&] {
-    run.series->finish(world);
-    if (run.frames) run.frames->finish(world);
-  });
-  nlohmann::json packing, repose;
-  if (!r.failed()) {
-    try {
-      packing = final_packing(s, world, run.out);
-      repose = final_repose(s, world);
-    } catch (const std::exception& e) {
-      r.fail(std::string("the final packing or repose: ") + e.what());
-    }
+void BodyModel::restore_observers(const CheckpointReader& from, CheckpointOutput& checkpoints) {
+  series_->restore(from);
+  if (frames_) {
+    if (!from.has("body_frame_output.next"))
+      from.fail("the run that wrote it had no frames", "resume with output.frame_interval = 0, as that run had");
+    frames_->restore(from);
   }
-  const double bsps = main.wall_seconds > 0 ? static_cast<double>(main.steps) * run.counts.moving / main.wall_seconds : 0.0;
+  if (pictures_) {
+    if (!from.has("body_picture_output.next"))
+      from.fail("the run that wrote it drew no pictures", "resume with output.picture_interval = 0, as that run had");
+    pictures_->restore(from);
+  }
+  checkpoints.restore(from);
+}
+
+void BodyModel::close_summary(nlohmann::json& summary, const StageReport& main) {
+  World& world = sim_.world();
   const BodySeriesRow& row = world.resources.get<BodySeriesRow>();
-  nlohmann::json& summary = run.summary;
-  summary["status"] = r.status;
-  if (!r.failure.empty()) summary["failure"] = r.failure;
-  summary["settle"] = {{"steps", settle.steps}, {"wall_seconds", settle.wall_seconds}};
-  summary["steps"] = world.clock.step;
-  summary["simulated_time"] = world.clock.t;
-  summary["wall_seconds"] = main.wall_seconds;
-  summary["total_wall_seconds"] = seconds_since(wall0);
-  summary["body_steps_per_second"] = bsps;
-  summary["steps_this_run"] = main.steps;
-  summary["checkpoints_written"] = run.checkpoints->written();
-  if (!r.checkpoint_file.empty()) summary["checkpoint"] = r.checkpoint_file;
+  summary["body_steps_per_second"] =
+      main.wall_seconds > 0 ? static_cast<double>(main.steps) * static_cast<double>(counts_.moving) / main.wall_seconds : 0.0;
   summary["member_list_rebuilds"] = world.resources.get<BodyContactState>().rebuilds;
-  summary["frames"] = run.frames ? run.frames->frames() : 0;
-  summary["pictures"] = run.pictures ? run.pictures->pictures() : 0;
+  summary["frames"] = frames_ ? frames_->frames() : 0;
+  summary["pictures"] = pictures_ ? pictures_->pictures() : 0;
   summary["final"] = {{"time", row.time},
                       {"ke_translational", row.ke_translational},
                       {"ke_rotational", row.ke_rotational},
@@ -394,81 +382,17 @@ int finish_body_run(const CliOptions& opt, BodyRun& run, const DemScene& s, cons
                       {"wall_contacts", row.wall_contacts},
                       {"max_overlap_ratio", row.max_overlap_ratio},
                       {"moving", row.moving}};
-  if (s.bodies->output.has_outlet) summary["final"]["remaining_fraction"] = number_or_null(row.remaining_fraction);
-  if (!packing.is_null()) summary["packing"] = packing;
-  if (!repose.empty()) summary["repose"] = repose;
-  summary_counts_at_end(summary, {static_cast<std::int64_t>(run.counts.moving + run.counts.fixed), 0});
-  summary["time_per_system"] = timings_json({&run.sim->step(), &run.observe});
-  try {
-    write_summary_json(run.out / "summary.json", summary);
-  } catch (const WriteError& e) {
-    // The earlier summary.json (status "running") stays as it was.
-    if (r.failure.empty()) r.fail(e.what() + write_failure_fix(opt, run.out, have_checkpoint()));
-    else r.fail_also(e.what());
-  }
-  r.steps = main.steps;
-  r.wall = main.wall_seconds;
-  char rate[64];
-  std::snprintf(rate, sizeof rate, ": %.3g body-steps/s", bsps);
-  say_done(r, world.clock.t, rate);
-  if (r.failure.empty() && run.pictures && !run.pictures->last_picture().empty())
-    std::fprintf(stderr, "grainflow: last picture: %s\n", run.pictures->last_picture().string().c_str());
-  return r.rc;
+  if (s_.bodies->output.has_outlet) summary["final"]["remaining_fraction"] = number_or_null(row.remaining_fraction);
 }
 
 }  // namespace
 
 int run_body_command(const CliOptions& opt, const DemScene& s, const BodyRunHooks& hooks) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  BodyRun run;
-  together(hooks, [&] { start_body_run(run, opt, s, hooks); });
-  World& world = run.sim->world();
-  const bool progress = hooks.writer && !opt.quiet;
-
-  // A resumed run continues the main stage; its settling was done by the run that wrote the checkpoint.
-  StageReport settle;
-  try {
-    if (!run.ckpt) settle = run.sim->settle(progress ? 2.0 : 0.0);
-  } catch (const StabilityError& e) {
-    if (!hooks.writer) return 3;
-    run.summary["status"] = "failed";
-    run.summary["failure"] = std::string("while settling: ") + e.what();
-    run.summary["steps"] = 0;
-    write_summary_json(run.out / "summary.json", run.summary);
-    std::fprintf(stderr, "grainflow: failed while settling\ngrainflow: error: %s\n", e.what());
-    return 3;
-  }
-  run.sim->step().reset_timings();
-  together(hooks, [&] {
-    if (hooks.writer) make_body_observers(run, s);
-  });
-
-  StageOptions so;
-  so.progress_seconds = progress ? 2.0 : 0.0;
-  so.label = "run";
-  so.rows = [n = static_cast<double>(run.counts.moving)](const World&) { return n; };  // body-steps
-  // --steps and the scene's duration count the whole main stage, so a resumed run ends where the
-  // uninterrupted one would.
-  so.steps = std::max<std::int64_t>(0, (opt.steps ? *opt.steps : s.main_steps()) - world.clock.step);
-  so.observe = hooks.writer ? &run.observe : nullptr;
-  StageReport main;
-  RunOutcome r;
-  const std::int64_t first_step = world.clock.step;
-  const auto run0 = std::chrono::steady_clock::now();
-  // Only the writer holds checkpoints; the other ranks' failures are the writer's to report.
-  const auto have_checkpoint = [&] {
-    return run.ckpt.has_value() || (run.checkpoints && run.checkpoints->written() > 0);
-  };
-  guarded(r, opt, run.out, have_checkpoint, [&] {
-    main = run_stage(world, run.sim->step(), so);
-    if (main.interrupted) r.status = "interrupted";
-  });
-  if (r.failed()) {
-    main.steps = world.clock.step - first_step;
-    main.wall_seconds = seconds_since(run0);
-  }
-  if (!hooks.writer) return r.rc;
-  return finish_body_run(opt, run, s, settle, main, r, wall0);
+  const RunPlace place{hooks.writer, hooks.ranks, hooks.together};
+  std::unique_ptr<BodyModel> model;
+  if (hooks.together) hooks.together([&] { model = std::make_unique<BodyModel>(s, hooks.install); });
+  else model = std::make_unique<BodyModel>(s, hooks.install);
+  return run_model(*model, opt, place);
 }
 
 }  // namespace gf

@@ -3,34 +3,23 @@
 // and status "failed" when a stability detector stops the run, checkpoints in checkpoints/checkpoint.gfc
 // (output.checkpoint_interval, at the end unless output.checkpoint_at_end = false) and `--resume` continuing a
 // run bit-identically to the same end step.
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
-#include <tbb/global_control.h>
 
-#include "engine/atomic_file.hpp"
-#include "app/cli.hpp"
-#include "engine/run_loop.hpp"
+#include "app/commands.hpp"
+#include "app/run_model.hpp"
+#include "app/run_outcome.hpp"
 #include "systems/mps/liquid_checkpoint.hpp"
 #include "systems/mps/liquid_observables.hpp"
 #include "systems/mps/liquid_outputs.hpp"
 #include "systems/mps/liquid_simulation.hpp"
 #include "systems/output/checkpoint_output.hpp"
-#include "systems/output/summary_json.hpp"
-#include "app/commands.hpp"
-#include "app/run_outcome.hpp"
-#include "app/run_summary.hpp"
 
 namespace gf {
 
 namespace {
-
-using WallClock = std::chrono::steady_clock;
 
 const char* geometry_name(LiquidGeometry::Kind k) {
   switch (k) {
@@ -59,86 +48,64 @@ void print_outputs(const LiquidOutput& o) {
                 o.checkpoint_keep_all ? ", each also kept as checkpoint_<step>.gfc" : "");
 }
 
-nlohmann::json start_summary(const CliOptions& opt, const LiquidScene& s, LiquidSimulation& sim,
-                             const CheckpointReader* ckpt) {
-  const FluidNodes& f = sim.nodes();
-  const auto& c = sim.world().clock;
-  nlohmann::json j;
-  summary_opening(j, opt, "liquid", {0, static_cast<std::int64_t>(f.count(kFluid))}, 1, threads_in_use());
-  j["fluid_nodes"] = f.count(kFluid);
-  j["nodes"] = f.size();
-  j["dt"] = s.dt;
-  j["l0"] = s.params.k.l0;
-  j["cfl_at_load"] = s.cfl;
-  j["diffusion_number"] = s.diffusion;
-  j["status"] = "running";
-  if (ckpt) j["resumed_from"] = resumed_from_json(*ckpt, c);
-  return j;
-}
+// An MPS liquid (LiquidSimulation), for the run skeleton (run_model.hpp).
+class LiquidModel final : public Model {
+ public:
+  explicit LiquidModel(const LiquidScene& s) : s_(s), sim_(s) {}
 
-// What the stepping loop did.
-// The outputs and the checkpoints, observing the state after each step (and the initial state of
-// a run that does not resume).
-struct LiquidObservers {
-  Schedule schedule;
-  LiquidOutputs* outputs = nullptr;
-  CheckpointOutput* checkpoints = nullptr;
+  std::string_view kind() const override { return "liquid"; }
+  World& world() override { return sim_.world(); }
+  Schedule& step() override { return sim_.step(); }
+  RunCounts counts() override { return {0, static_cast<std::int64_t>(sim_.nodes().count(kFluid))}; }
+
+  void resume(const CheckpointReader& from) override { restore_liquid_state(from, sim_.world(), s_); }
+  std::string opening(std::size_t threads, int) override {
+    const std::size_t n_fluid = sim_.nodes().count(kFluid), n_all = sim_.nodes().size();
+    char line[256];
+    std::snprintf(line, sizeof line, "%zu fluid + %zu wall/dummy nodes, dt = %.3g s (CFL %.3g), %zu threads", n_fluid,
+                  n_all - n_fluid, s_.dt, s_.cfl, threads);
+    return s_.file.string() + ": " + line;
+  }
+  void open_summary(nlohmann::json& j) override {
+    j["fluid_nodes"] = sim_.nodes().count(kFluid);
+    j["nodes"] = sim_.nodes().size();
+    j["dt"] = s_.dt;
+    j["l0"] = s_.params.k.l0;
+    j["cfl_at_load"] = s_.cfl;
+    j["diffusion_number"] = s_.diffusion;
+  }
+  CheckpointOutput& observe(Schedule& observers, const std::filesystem::path& out,
+                            const CheckpointReader* from) override {
+    outputs_ = &observers.emplace<LiquidOutputs>(out, s_, from);
+    CheckpointOutput& checkpoints = observers.emplace<CheckpointOutput>(
+        CheckpointSettings{out, s_.output.checkpoint_interval, s_.output.checkpoint_keep_all},
+        [this](CheckpointWriter& w, World& world) { save_liquid_state(w, world, s_); },
+        std::vector<const Checkpointable*>{outputs_});
+    if (from) checkpoints.restore(*from);
+    observers.build(sim_.world());
+    return checkpoints;
+  }
+
+  std::int64_t last_step() const override { return s_.steps(); }
+  bool checkpoint_at_end() const override { return s_.output.checkpoint_at_end; }
+  // The liquid's first state was observed by the run that wrote the checkpoint.
+  bool observe_resumed_start() const override { return false; }
+  double rows(const World&) const override { return fluid_nodes_; }
+
+  void close_summary(nlohmann::json& summary, const StageReport& main) override {
+    summary["steps_per_second"] = main.wall_seconds > 0 ? static_cast<double>(main.steps) / main.wall_seconds : 0.0;
+    const LiquidDiagnostics& d = sim_.diagnostics();
+    summary["mean_ppe_iterations"] = d.ppe_solves > 0 ? d.ppe_iterations_total / static_cast<double>(d.ppe_solves) : 0.0;
+    summary["frames"] = outputs_->frames();
+    summary["final"] = row_json(liquid_series_columns(), sample_liquid(sim_.world(), sim_.scene()));
+  }
+
+ private:
+  const LiquidScene& s_;
+  LiquidSimulation sim_;
+  double fluid_nodes_ = static_cast<double>(sim_.nodes().count(kFluid));
+  LiquidOutputs* outputs_ = nullptr;
 };
-
-void add_observers(LiquidObservers& o, const std::filesystem::path& out, const LiquidScene& s, World& world,
-                   const CheckpointReader* from) {
-  o.outputs = &o.schedule.emplace<LiquidOutputs>(out, s, from);
-  o.checkpoints = &o.schedule.emplace<CheckpointOutput>(
-      CheckpointSettings{out, s.output.checkpoint_interval, s.output.checkpoint_keep_all},
-      [&s](CheckpointWriter& w, World& wd) { save_liquid_state(w, wd, s); },
-      std::vector<const Checkpointable*>{o.outputs});
-  if (from) o.checkpoints->restore(*from);
-  o.schedule.build(world);
-}
-
-void run_and_checkpoint(const CliOptions& opt, const std::filesystem::path& out, const LiquidScene& s,
-                        LiquidSimulation& sim, LiquidObservers& obs, bool resumed, RunOutcome& r) {
-  const auto run0 = WallClock::now();
-  const std::int64_t start = sim.world().clock.step;
-  StageOptions so;
-  so.steps = std::max<std::int64_t>(0, (opt.steps ? *opt.steps : s.steps()) - start);
-  so.observe = &obs.schedule;
-  so.observe_start = !resumed;
-  so.progress_seconds = opt.quiet ? 0.0 : 2.0;
-  const auto n_fluid = static_cast<double>(sim.nodes().count(kFluid));
-  so.rows = [n_fluid](const World&) { return n_fluid; };
-  guarded(r, opt, out, [&] { return resumed || obs.checkpoints->written() > 0; }, [&] {
-    const StageReport rep = run_stage(sim.world(), sim.step(), so);
-    if (rep.interrupted) r.status = "interrupted";
-    r.wall = seconds_since(run0);
-    if (s.output.checkpoint_at_end) r.checkpoint_file = obs.checkpoints->write(sim.world()).string();
-  });
-  if (r.wall == 0) r.wall = seconds_since(run0);
-  r.steps = sim.world().clock.step - start;  // the steps completed, also when one failed
-}
-
-void finish_summary(nlohmann::json& summary, LiquidSimulation& sim, const RunOutcome& r, const LiquidOutputs& outputs,
-                    const CheckpointOutput& checkpoints) {
-  const World& world = sim.world();
-  const double n_fluid = static_cast<double>(sim.nodes().count(kFluid));
-  const nlohmann::json fin = row_json(liquid_series_columns(), sample_liquid(sim.world(), sim.scene()));
-  summary["status"] = r.status;
-  if (!r.failure.empty()) summary["failure"] = r.failure;
-  summary["steps"] = world.clock.step;
-  summary["steps_this_run"] = r.steps;
-  summary["simulated_time"] = world.clock.t;
-  summary["wall_seconds"] = r.wall;
-  summary["steps_per_second"] = r.wall > 0 ? static_cast<double>(r.steps) / r.wall : 0.0;
-  summary["particle_steps_per_second"] = r.wall > 0 ? static_cast<double>(r.steps) * n_fluid / r.wall : 0.0;
-  const LiquidDiagnostics& d = sim.diagnostics();
-  summary["mean_ppe_iterations"] = d.ppe_solves > 0 ? d.ppe_iterations_total / static_cast<double>(d.ppe_solves) : 0.0;
-  summary["frames"] = outputs.frames();
-  summary["checkpoints_written"] = checkpoints.written();
-  if (!r.checkpoint_file.empty()) summary["checkpoint"] = r.checkpoint_file;
-  summary["final"] = fin;
-  summary_counts_at_end(summary, {0, static_cast<std::int64_t>(n_fluid)});
-  summary["time_per_system"] = timings_json({&sim.step()});
-}
 
 }  // namespace
 
@@ -166,43 +133,9 @@ int check_liquid_command(const CliOptions& opt) {
 }
 
 int run_liquid_command(const CliOptions& opt) {
-  const auto wall0 = WallClock::now();
   const LiquidScene s = load_liquid_scene(SceneDoc::load(opt.scene, opt.overrides));
-  const std::filesystem::path out = opt.out_dir();
-  ensure_directory(out);
-  LiquidSimulation sim(s);
-  World& world = sim.world();
-  std::optional<CheckpointReader> ckpt;
-  if (opt.resume) {
-    ckpt.emplace(*opt.resume);
-    restore_liquid_state(*ckpt, world, s);
-  }
-  const CheckpointReader* from = ckpt ? &*ckpt : nullptr;
-  const std::size_t n_fluid = sim.nodes().count(kFluid), n_all = sim.nodes().size();
-  std::fprintf(stderr, "grainflow: %s: %zu fluid + %zu wall/dummy nodes, dt = %.3g s (CFL %.3g), %zu threads -> %s\n",
-               s.file.string().c_str(), n_fluid, n_all - n_fluid, s.dt, s.cfl, threads_in_use(), out.string().c_str());
-  if (ckpt)
-    say_resuming(*ckpt, world.clock);
-  nlohmann::json summary = start_summary(opt, s, sim, from);
-  write_summary_json(out / "summary.json", summary);
-
-  LiquidObservers obs;
-  add_observers(obs, out, s, world, from);
-  RunOutcome r;
-  run_and_checkpoint(opt, out, s, sim, obs, ckpt.has_value(), r);
-  finish_summary(summary, sim, r, *obs.outputs, *obs.checkpoints);
-  summary["total_wall_seconds"] = seconds_since(wall0);
-  try {
-    write_summary_json(out / "summary.json", summary);
-  } catch (const WriteError& e) {
-    // The earlier summary.json (status "running") stays as it was.
-    r.fail_also(e.what());
-  }
-  char rate[64];
-  std::snprintf(rate, sizeof rate, ": %.3g particle-steps/s",
-                r.wall > 0 ? static_cast<double>(r.steps) * static_cast<double>(n_fluid) / r.wall : 0.0);
-  say_done(r, world.clock.t, rate);
-  return r.rc;
+  LiquidModel model(s);
+  return run_model(model, opt);
 }
 
 }  // namespace gf

@@ -1,0 +1,96 @@
+// One run skeleton for every model. `grainflow run` (and a body scene on grainflow_mpi's ranks) hands
+// a Model to run_model, which does what every run does, the same way for spheres, composite bodies,
+// liquid and liquid with grains:
+//   the output folder; --resume (the model restores its state, then its observers theirs); the
+//   opening line and summary.json's opening (status "running", written at once); the settling stage
+//   (a StabilityError there is a failed run, exit 3); the observers; the main stage up to the
+//   scene's end or --steps, stopped after the step in flight by SIGINT/SIGTERM; the checkpoint at
+//   the end; the outputs closed; the analyses of the final state; summary.json's end (status,
+//   steps, wall time, particle-steps/s, counts, the time per system with its fraction); the final
+//   files; the last line. Whatever a stage or a write throws is recorded (run_outcome.hpp) and the
+//   files written before are kept.
+// A model says only what is its own: what it steps, what its summary and opening line add, its
+// observers and checkpoint contents, and what it writes at the end.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "app/cli.hpp"
+#include "app/run_summary.hpp"
+#include "engine/checkpoint_file.hpp"
+#include "engine/run_loop.hpp"
+#include "engine/schedule.hpp"
+#include "engine/world.hpp"
+
+namespace gf {
+
+class CheckpointOutput;
+
+class Model {
+ public:
+  virtual ~Model() = default;
+
+  // ---- What it is.
+  virtual std::string_view kind() const = 0;  // summary.json "model": spheres, bodies, liquid, coupled
+  virtual World& world() = 0;
+  virtual Schedule& step() = 0;               // the step graph
+  virtual RunCounts counts() = 0;             // grains (or bodies) and liquid nodes now
+
+  // ---- The start.
+  virtual void resume(const CheckpointReader& from) = 0;
+  // The opening line after "grainflow: ": what is stepped, dt and the threads (the skeleton adds the folder).
+  virtual std::string opening(std::size_t threads, int ranks) = 0;
+  virtual std::string warning() const { return ""; }  // printed after the opening line when not empty
+  virtual void open_summary(nlohmann::json& summary) = 0;  // the model's own keys
+  // The settling stage before the main one, for a run that does not resume; a StabilityError fails the run.
+  virtual StageReport settle(double progress_seconds) {
+    (void)progress_seconds;
+    return {};
+  }
+  // The main stage's observers, added to `observers` and built there, their state taken from `from`
+  // when the run resumes; returns the checkpoint writer among them.
+  virtual CheckpointOutput& observe(Schedule& observers, const std::filesystem::path& out,
+                                    const CheckpointReader* from) = 0;
+
+  // ---- The main stage.
+  virtual std::int64_t last_step() const = 0;  // where the scene's main stage ends (--steps overrides)
+  virtual bool checkpoint_at_end() const = 0;
+  // Whether the observers see a resumed run's first state again (the run that wrote the checkpoint
+  // saw it already; the grains' observers skip what they wrote).
+  virtual bool observe_resumed_start() const { return true; }
+  // Rows one step advances, for particle-steps/s: grains owned, moving bodies, liquid nodes.
+  virtual double rows(const World& world) const = 0;
+  virtual std::string_view rate_unit() const { return "particle-steps/s"; }
+
+  // ---- The end.
+  virtual void finish_outputs() {}  // the outputs' last rows and indexes
+  // After a main stage that did not fail: the analyses of the final state, into the summary.
+  virtual void final_results(const std::filesystem::path& out, nlohmann::json& summary) {
+    (void)out;
+    (void)summary;
+  }
+  virtual void close_summary(nlohmann::json& summary, const StageReport& main) = 0;  // the model's own keys
+  virtual void write_final_files(const std::filesystem::path& out) { (void)out; }
+  virtual std::string last_words() const { return ""; }  // a line after the last one (the last picture)
+};
+
+// Where a run steps: on one process (the default), or on several that step one state together, of
+// which one writes every output. `together` runs a setup phase (which calls no collective) on this
+// process and shares its outcome: a failure on any process throws on every one.
+struct RunPlace {
+  bool writer = true;
+  int ranks = 1;
+  std::function<void(const std::function<void()>&)> together;
+};
+
+// Runs `model` as `opt` asks; returns the exit status (0; 3 for a failed run).
+int run_model(Model& model, const CliOptions& opt, const RunPlace& place = {});
+
+}  // namespace gf
