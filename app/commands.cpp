@@ -4,12 +4,18 @@
 
 namespace gf {
 
-std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path& out, bool have_checkpoint) {
-  const std::string again = "grainflow run " + opt.scene.string() + " --out " + out.string();
+std::string write_failure_fix(const std::string& command, const CliOptions& opt, const std::filesystem::path& out,
+                              const std::filesystem::path& checkpoint) {
+  const std::string again = command + " " + opt.scene.string() + " --out " + out.string();
   return ". Every file written before is complete. Fix: free space on the disk that holds '" + out.string() +
          "' (or write less: output.frame_interval, output.series_interval), then " +
-         (have_checkpoint ? "resume: " + again + " --resume " + (out / "checkpoints" / "checkpoint.gfc").string()
-                          : "run again (no checkpoint was written yet; output.checkpoint_interval sets how often one is)");
+         (!checkpoint.empty() ? "resume: " + again + " --resume " + checkpoint.string()
+                              : "run again (no checkpoint was written yet; output.checkpoint_interval sets how often one is)");
+}
+
+std::string write_failure_fix(const CliOptions& opt, const std::filesystem::path& out, bool have_checkpoint) {
+  return write_failure_fix("grainflow run", opt, out,
+                           have_checkpoint ? out / "checkpoints" / "checkpoint.gfc" : std::filesystem::path());
 }
 
 SceneModel scene_model(const SceneDoc& doc) {

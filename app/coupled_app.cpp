@@ -92,7 +92,7 @@ class CoupledSeries : public SystemBase<CoupledSeries>, public Checkpointable {
 };
 
 // An MPS liquid with DEM grains (CoupledSimulation), for the run skeleton (run_model.hpp).
-class CoupledModel final : public Model {
+class CoupledModel final : public ScheduledModel {
  public:
   explicit CoupledModel(CoupledScene s) : sim_(std::move(s)) {}
 
@@ -101,7 +101,7 @@ class CoupledModel final : public Model {
   Schedule& step() override { return sim_.step(); }
   RunCounts counts() override { return {grains(), fluid_nodes()}; }
 
-  void resume(const CheckpointReader& from) override { sim_.resume(from); }
+  void restore(const CheckpointReader& from) override { sim_.resume(from); }
   std::string opening(std::size_t, int) override {
     const CoupledScene& s = sim_.scene();
     char line[256];
@@ -115,8 +115,7 @@ class CoupledModel final : public Model {
     sim_.prime();
     return {};
   }
-  CheckpointOutput& observe(Schedule& observers, const std::filesystem::path& out,
-                            const CheckpointReader* from) override;
+  void observe(Schedule& observers, const std::filesystem::path& out, const CheckpointReader* from) override;
 
   std::int64_t last_step() const override { return scene().steps(); }
   bool checkpoint_at_end() const override { return scene().liquid.output.checkpoint_at_end; }
@@ -165,8 +164,7 @@ void CoupledModel::open_summary(nlohmann::json& j) {
 
 // The outputs and the checkpoints, observing the state after each step (and the initial state of a run
 // that does not resume).
-CheckpointOutput& CoupledModel::observe(Schedule& observers, const std::filesystem::path& out,
-                                        const CheckpointReader* from) {
+void CoupledModel::observe(Schedule& observers, const std::filesystem::path& out, const CheckpointReader* from) {
   const CoupledScene& s = scene();
   frame_scene_ = s.liquid;
   frame_scene_.output.series_interval = 0;
@@ -182,12 +180,11 @@ CheckpointOutput& CoupledModel::observe(Schedule& observers, const std::filesyst
   const std::int64_t every = std::max<std::int64_t>(1, std::llround(s.liquid.output.series_interval / s.liquid.dt));
   if (s.liquid.output.series_interval > 0)
     parts.push_back(&observers.emplace<CoupledSeries>(out / "series.csv", s, every, from));
-  CheckpointOutput& checkpoints = observers.emplace<CheckpointOutput>(
+  checkpoints_ = &observers.emplace<CheckpointOutput>(
       CheckpointSettings{out, s.liquid.output.checkpoint_interval, s.liquid.output.checkpoint_keep_all},
       [&s](CheckpointWriter& w, World& wd) { save_coupled_state(w, wd, s); }, parts);
-  if (from) checkpoints.restore(*from);
+  if (from) checkpoints_->restore(*from);
   observers.build(sim_.world());
-  return checkpoints;
 }
 
 }  // namespace

@@ -182,7 +182,7 @@ void add_observers(DemObservers& o, Schedule& schedule, const DemScene& s, const
 }
 
 // Spheres on one process (DemSimulation), for the run skeleton (run_model.hpp).
-class SphereModel final : public Model {
+class SphereModel final : public ScheduledModel {
  public:
   explicit SphereModel(const DemScene& s) : s_(s), sim_(s) {}
 
@@ -191,7 +191,7 @@ class SphereModel final : public Model {
   Schedule& step() override { return sim_.step(); }
   RunCounts counts() override { return {static_cast<std::int64_t>(sim_.grains().n_owned), 0}; }
 
-  void resume(const CheckpointReader& from) override { sim_.resume(from); }
+  void restore(const CheckpointReader& from) override { sim_.resume(from); }
   std::string opening(std::size_t threads, int) override {
     char line[256];
     std::snprintf(line, sizeof line, "%zu grains, dt = %.3g s (%.3f of the critical period), %zu threads",
@@ -205,10 +205,9 @@ class SphereModel final : public Model {
     summary["critical_term"] = s_.critical.term;
   }
   StageReport settle(double progress_seconds) override { return sim_.settle(progress_seconds); }
-  CheckpointOutput& observe(Schedule& observers, const std::filesystem::path& out,
-                            const CheckpointReader* from) override {
+  void observe(Schedule& observers, const std::filesystem::path& out, const CheckpointReader* from) override {
     add_observers(o_, observers, s_, out, sim_.world(), from);
-    return *o_.checkpoints;
+    checkpoints_ = o_.checkpoints;
   }
 
   std::int64_t last_step() const override { return s_.main_steps(); }

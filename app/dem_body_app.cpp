@@ -219,7 +219,7 @@ int check_body_command(const CliOptions& opt, const DemScene& s) {
 namespace {
 
 // Composite bodies (DemSimulation with [[bodies]]), for the run skeleton (run_model.hpp).
-class BodyModel final : public Model {
+class BodyModel final : public ScheduledModel {
  public:
   BodyModel(const DemScene& s, const std::function<void(World&)>& install) : s_(s), sim_(s) {
     if (install) install(sim_.world());
@@ -231,7 +231,7 @@ class BodyModel final : public Model {
   Schedule& step() override { return sim_.step(); }
   RunCounts counts() override { return {static_cast<std::int64_t>(counts_.moving + counts_.fixed), 0}; }
 
-  void resume(const CheckpointReader& from) override { restore_body_state(from, sim_.world(), s_); }
+  void restore(const CheckpointReader& from) override { restore_body_state(from, sim_.world(), s_); }
   std::string opening(std::size_t threads, int ranks) override {
     char line[320];
     std::snprintf(line, sizeof line,
@@ -243,13 +243,16 @@ class BodyModel final : public Model {
   std::string warning() const override { return rim_warning(s_); }
   void open_summary(nlohmann::json& summary) override;
   StageReport settle(double progress_seconds) override { return sim_.settle(progress_seconds); }
-  CheckpointOutput& observe(Schedule& observers, const std::filesystem::path& out,
-                            const CheckpointReader* from) override;
+  void observe(Schedule& observers, const std::filesystem::path& out, const CheckpointReader* from) override;
 
   std::int64_t last_step() const override { return s_.main_steps(); }
   bool checkpoint_at_end() const override { return s_.output.checkpoint_at_end; }
   double rows(const World&) const override { return static_cast<double>(counts_.moving); }  // body-steps
-  std::string_view rate_unit() const override { return "body-steps/s"; }
+  std::string rate(const nlohmann::json& summary) const override {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g body-steps/s", summary["body_steps_per_second"].get<double>());
+    return text;
+  }
 
   void finish_outputs() override {
     series_->finish(sim_.world());
@@ -274,7 +277,7 @@ class BodyModel final : public Model {
   }
 
  private:
-  void restore_observers(const CheckpointReader& from, CheckpointOutput& checkpoints);
+  void restore_observers(const CheckpointReader& from);
 
   const DemScene& s_;
   DemSimulation sim_;
@@ -299,8 +302,7 @@ void BodyModel::open_summary(nlohmann::json& summary) {
 // The observers of the main stage, from the state at its start (layers, the remaining fraction's
 // denominator, the pictures' window); a resumed run takes them and the observers' state from its
 // checkpoint.
-CheckpointOutput& BodyModel::observe(Schedule& observers, const std::filesystem::path& out,
-                                     const CheckpointReader* from) {
+void BodyModel::observe(Schedule& observers, const std::filesystem::path& out, const CheckpointReader* from) {
   World& world = sim_.world();
   const Bodies& bodies = world.tables.get<Bodies>();
   const BodyOutputSpec& bo = s_.bodies->output;
@@ -338,7 +340,7 @@ CheckpointOutput& BodyModel::observe(Schedule& observers, const std::filesystem:
   std::vector<const Checkpointable*> parts{series_};
   if (frames_) parts.push_back(frames_);
   if (pictures_) parts.push_back(pictures_);
-  CheckpointOutput& checkpoints = observers.emplace<CheckpointOutput>(
+  checkpoints_ = &observers.emplace<CheckpointOutput>(
       CheckpointSettings{out, s_.output.checkpoint_interval, s_.output.checkpoint_keep_all},
       [this, layers, initial_moving, view](CheckpointWriter& w, World& wd) {
         save_body_state(w, wd, s_);
@@ -348,11 +350,10 @@ CheckpointOutput& BodyModel::observe(Schedule& observers, const std::filesystem:
       },
       parts);
   observers.build(world);
-  if (from) restore_observers(*from, checkpoints);
-  return checkpoints;
+  if (from) restore_observers(*from);
 }
 
-void BodyModel::restore_observers(const CheckpointReader& from, CheckpointOutput& checkpoints) {
+void BodyModel::restore_observers(const CheckpointReader& from) {
   series_->restore(from);
   if (frames_) {
     if (!from.has("body_frame_output.next"))
@@ -364,7 +365,7 @@ void BodyModel::restore_observers(const CheckpointReader& from, CheckpointOutput
       from.fail("the run that wrote it drew no pictures", "resume with output.picture_interval = 0, as that run had");
     pictures_->restore(from);
   }
-  checkpoints.restore(from);
+  checkpoints_->restore(from);
 }
 
 void BodyModel::close_summary(nlohmann::json& summary, const StageReport& main) {
@@ -388,7 +389,11 @@ void BodyModel::close_summary(nlohmann::json& summary, const StageReport& main) 
 }  // namespace
 
 int run_body_command(const CliOptions& opt, const DemScene& s, const BodyRunHooks& hooks) {
-  const RunPlace place{hooks.writer, hooks.ranks, hooks.together};
+  RunPlace place;
+  place.writer = hooks.writer;
+  place.ranks = hooks.ranks;
+  place.together = hooks.together;
+  place.program = hooks.program;
   std::unique_ptr<BodyModel> model;
   if (hooks.together) hooks.together([&] { model = std::make_unique<BodyModel>(s, hooks.install); });
   else model = std::make_unique<BodyModel>(s, hooks.install);

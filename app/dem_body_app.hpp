@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 
 #include "app/cli.hpp"
 #include "engine/world.hpp"
@@ -24,6 +25,7 @@ struct BodyRunHooks {
   std::function<void(const std::function<void()>&)> together;
   bool writer = true;
   int ranks = 1;
+  std::string program = "grainflow";  // the name the lines it prints start with
 };
 
 int run_body_command(const CliOptions& opt, const DemScene& s, const BodyRunHooks& hooks = {});

@@ -49,7 +49,7 @@ void print_outputs(const LiquidOutput& o) {
 }
 
 // An MPS liquid (LiquidSimulation), for the run skeleton (run_model.hpp).
-class LiquidModel final : public Model {
+class LiquidModel final : public ScheduledModel {
  public:
   explicit LiquidModel(const LiquidScene& s) : s_(s), sim_(s) {}
 
@@ -58,7 +58,7 @@ class LiquidModel final : public Model {
   Schedule& step() override { return sim_.step(); }
   RunCounts counts() override { return {0, static_cast<std::int64_t>(sim_.nodes().count(kFluid))}; }
 
-  void resume(const CheckpointReader& from) override { restore_liquid_state(from, sim_.world(), s_); }
+  void restore(const CheckpointReader& from) override { restore_liquid_state(from, sim_.world(), s_); }
   std::string opening(std::size_t threads, int) override {
     const std::size_t n_fluid = sim_.nodes().count(kFluid), n_all = sim_.nodes().size();
     char line[256];
@@ -74,16 +74,14 @@ class LiquidModel final : public Model {
     j["cfl_at_load"] = s_.cfl;
     j["diffusion_number"] = s_.diffusion;
   }
-  CheckpointOutput& observe(Schedule& observers, const std::filesystem::path& out,
-                            const CheckpointReader* from) override {
+  void observe(Schedule& observers, const std::filesystem::path& out, const CheckpointReader* from) override {
     outputs_ = &observers.emplace<LiquidOutputs>(out, s_, from);
-    CheckpointOutput& checkpoints = observers.emplace<CheckpointOutput>(
+    checkpoints_ = &observers.emplace<CheckpointOutput>(
         CheckpointSettings{out, s_.output.checkpoint_interval, s_.output.checkpoint_keep_all},
         [this](CheckpointWriter& w, World& world) { save_liquid_state(w, world, s_); },
         std::vector<const Checkpointable*>{outputs_});
-    if (from) checkpoints.restore(*from);
+    if (from) checkpoints_->restore(*from);
     observers.build(sim_.world());
-    return checkpoints;
   }
 
   std::int64_t last_step() const override { return s_.steps(); }

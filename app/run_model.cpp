@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <optional>
+#include <utility>
 
 #include "app/commands.hpp"
 #include "app/run_outcome.hpp"
@@ -12,6 +12,32 @@
 #include "systems/output/summary_json.hpp"
 
 namespace gf {
+
+std::unique_ptr<CheckpointReader> Model::resume(const std::filesystem::path& file) {
+  auto from = std::make_unique<CheckpointReader>(file);
+  restore(*from);
+  return from;
+}
+
+std::filesystem::path Model::go_on_from(const std::filesystem::path& out, const CheckpointReader* resumed) const {
+  if (checkpoints_written() > 0) return out / "checkpoints" / "checkpoint.gfc";
+  return resumed ? resumed->file() : std::filesystem::path();
+}
+
+std::string Model::rate(const nlohmann::json& summary) const {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g particle-steps/s", summary["particle_steps_per_second"].get<double>());
+  return text;
+}
+
+std::filesystem::path ScheduledModel::write_checkpoint() { return checkpoints_->write(world()); }
+
+std::size_t ScheduledModel::checkpoints_written() const { return checkpoints_ ? checkpoints_->written() : 0; }
+
+std::string RunPlace::command() const {
+  if (program == "grainflow") return "grainflow run";
+  return "mpiexec -n " + std::to_string(ranks) + " " + program + " run";
+}
 
 namespace {
 
@@ -25,21 +51,27 @@ struct Run {
   const RunPlace& place;
   std::filesystem::path out;
   WallClock::time_point wall0 = WallClock::now();
-  std::optional<CheckpointReader> from;
+  std::unique_ptr<CheckpointReader> from;
   nlohmann::json summary;
   Schedule observers;
-  CheckpointOutput* checkpoints = nullptr;  // on the process that writes
   RunOutcome outcome;
   StageReport settle, main;
 
-  const CheckpointReader* resumed() const { return from ? &*from : nullptr; }
-  // Whether a checkpoint is on disk to go on from: this run's, or the one it resumed.
-  bool have_checkpoint() const { return from.has_value() || (checkpoints && checkpoints->written() > 0); }
+  std::filesystem::path go_on_from() const { return model.go_on_from(out, from.get()); }
   double progress_seconds() const { return place.writer && !opt.quiet ? 2.0 : 0.0; }
-  // Runs `body`, recording what it throws (run_outcome.hpp).
+  const char* program() const { return place.program.c_str(); }
+  // Runs `body` unless the run failed already, recording what it throws: a write that failed with
+  // how to go on, anything else with its message.
   template <class Body>
   void guard(Body&& body) {
-    guarded(outcome, opt, out, [this] { return have_checkpoint(); }, std::forward<Body>(body));
+    if (outcome.failed()) return;
+    try {
+      std::forward<Body>(body)();
+    } catch (const WriteError& e) {
+      outcome.fail(e.what() + write_failure_fix(place.command(), opt, out, go_on_from()));
+    } catch (const std::exception& e) {
+      outcome.fail(e.what());
+    }
   }
 };
 
@@ -48,23 +80,23 @@ void together(const RunPlace& place, const std::function<void()>& phase) {
   else phase();
 }
 
-// The folder, the resumed state, the opening line and summary.json's opening.
+// The folder and the resumed state.
 void open_run(Run& run) {
-  Model& m = run.model;
   if (run.place.writer) ensure_directory(run.out);
-  if (run.opt.resume) {
-    run.from.emplace(*run.opt.resume);
-    m.resume(*run.from);
-  }
-  if (!run.place.writer) return;
-  std::fprintf(stderr, "grainflow: %s -> %s\n", m.opening(threads_in_use(), run.place.ranks).c_str(),
+  if (run.opt.resume) run.from = run.model.resume(*run.opt.resume);
+}
+
+// The opening line and summary.json's opening, on the process that writes.
+void open_summary(Run& run, RunCounts at_start) {
+  Model& m = run.model;
+  std::fprintf(stderr, "%s: %s -> %s\n", run.program(), m.opening(threads_in_use(), run.place.ranks).c_str(),
                run.out.string().c_str());
-  if (const std::string w = m.warning(); !w.empty()) std::fprintf(stderr, "grainflow: warning: %s\n", w.c_str());
-  if (run.from) say_resuming(*run.from, m.world().clock);
-  summary_opening(run.summary, run.opt, m.kind(), m.counts(), run.place.ranks, threads_in_use());
+  if (const std::string w = m.warning(); !w.empty()) std::fprintf(stderr, "%s: warning: %s\n", run.program(), w.c_str());
+  if (run.opt.resume) say_resuming(run.place.program, *run.opt.resume, m.world().clock, m.resumed_note());
+  summary_opening(run.summary, run.opt, m.kind(), at_start, run.place.ranks, threads_in_use());
   m.open_summary(run.summary);
   run.summary["status"] = "running";
-  if (run.from) run.summary["resumed_from"] = resumed_from_json(*run.from, m.world().clock);
+  if (run.opt.resume) run.summary["resumed_from"] = resumed_from_json(*run.opt.resume, m.world().clock);
   write_summary_json(run.out / "summary.json", run.summary);
 }
 
@@ -80,7 +112,7 @@ bool settle_stage(Run& run) {
     run.summary["failure"] = std::string("while settling: ") + e.what();
     run.summary["steps"] = 0;
     write_summary_json(run.out / "summary.json", run.summary);
-    std::fprintf(stderr, "grainflow: failed while settling\ngrainflow: error: %s\n", e.what());
+    std::fprintf(stderr, "%s: failed while settling\n%s: error: %s\n", run.program(), run.program(), e.what());
     return false;
   }
   return true;
@@ -101,7 +133,7 @@ void main_stage(Run& run) {
   const std::int64_t first = world.clock.step;
   const auto run0 = WallClock::now();
   run.guard([&] {
-    run.main = run_stage(world, m.step(), so);
+    run.main = m.run(so);
     if (run.main.interrupted) run.outcome.status = "interrupted";
   });
   if (run.outcome.failed()) {  // a stage that threw: the steps it took, and its wall time
@@ -112,11 +144,10 @@ void main_stage(Run& run) {
   run.outcome.wall = run.main.wall_seconds;
 }
 
-// On the process that writes: the checkpoint at the end, the outputs closed, the final state's analyses.
+// The checkpoint at the end, the outputs closed, the final state's analyses.
 void end_outputs(Run& run) {
   Model& m = run.model;
-  if (m.checkpoint_at_end())
-    run.guard([&] { run.outcome.checkpoint_file = run.checkpoints->write(m.world()).string(); });
+  if (m.checkpoint_at_end()) run.guard([&] { run.outcome.checkpoint_file = m.write_checkpoint().string(); });
   run.guard([&] { m.finish_outputs(); });
   run.guard([&] { m.final_results(run.out, run.summary); });
 }
@@ -137,10 +168,13 @@ void close_summary(Run& run) {
   s["wall_seconds"] = main.wall_seconds;
   s["total_wall_seconds"] = seconds_since(run.wall0);
   s["particle_steps_per_second"] = main.wall_seconds > 0 ? stepped / main.wall_seconds : 0.0;
-  s["checkpoints_written"] = run.checkpoints->written();
+  s["checkpoints_written"] = m.checkpoints_written();
   if (!run.outcome.checkpoint_file.empty()) s["checkpoint"] = run.outcome.checkpoint_file;
   summary_counts_at_end(s, m.counts());
-  s["time_per_system"] = timings_json({&m.step(), &run.observers});
+  const std::vector<Schedule*> steps = m.schedules();
+  std::vector<const Schedule*> timed(steps.begin(), steps.end());
+  timed.push_back(&run.observers);
+  s["time_per_system"] = timings_json(timed);
   m.close_summary(s, main);
 }
 
@@ -151,35 +185,44 @@ void write_end(Run& run) {
     write_summary_json(run.out / "summary.json", run.summary);
   } catch (const WriteError& e) {
     RunOutcome& r = run.outcome;
-    if (r.failure.empty()) r.fail(e.what() + write_failure_fix(run.opt, run.out, run.have_checkpoint()));
+    if (r.failure.empty()) r.fail(e.what() + write_failure_fix(run.place.command(), run.opt, run.out, run.go_on_from()));
     else r.fail_also(e.what());
   }
 }
 
 void say_end(Run& run) {
-  const double rate = run.summary["particle_steps_per_second"].get<double>();
-  char line[96];
-  std::snprintf(line, sizeof line, ": %.3g %s", rate, std::string(run.model.rate_unit()).c_str());
-  say_done(run.outcome, run.model.world().clock.t, line);
-  if (run.outcome.failure.empty())
-    if (const std::string words = run.model.last_words(); !words.empty())
-      std::fprintf(stderr, "grainflow: %s\n", words.c_str());
+  say_done(run.place.program, run.outcome, run.model.world().clock.t, run.model.rate(run.summary));
+  if (!run.outcome.failure.empty()) return;
+  if (const std::string words = run.model.last_words(); !words.empty())
+    std::fprintf(stderr, "%s: %s\n", run.program(), words.c_str());
+  const std::filesystem::path from = run.go_on_from();
+  if (run.outcome.status == "interrupted" && !from.empty())
+    std::fprintf(stderr, "%s: stopped by a signal at step %lld; go on with: %s %s --out %s --resume %s\n",
+                 run.program(), static_cast<long long>(run.model.world().clock.step), run.place.command().c_str(),
+                 run.opt.scene.string().c_str(), run.out.string().c_str(), from.string().c_str());
 }
 
 }  // namespace
 
 int run_model(Model& model, const CliOptions& opt, const RunPlace& place) {
   Run run(model, opt, place);
+  const bool ends = place.writer || place.every_process_ends;  // this process takes part in the end
   together(place, [&] { open_run(run); });
-  if (!settle_stage(run)) return 3;
-  model.step().reset_timings();
+  RunCounts at_start;
+  if (ends) at_start = model.counts();  // collective on ranks
   together(place, [&] {
-    if (place.writer) run.checkpoints = &model.observe(run.observers, run.out, run.resumed());
+    if (place.writer) open_summary(run, at_start);
+  });
+  if (!settle_stage(run)) return 3;
+  for (Schedule* s : model.schedules()) s->reset_timings();
+  together(place, [&] {
+    if (ends) model.observe(run.observers, run.out, run.from.get());
   });
   main_stage(run);
-  if (!place.writer) return run.outcome.rc;  // the others' failures are the writer's to report
+  if (!ends) return run.outcome.rc;  // the others' failures are the writer's to report
   end_outputs(run);
   close_summary(run);
+  if (!place.writer) return run.outcome.rc;
   write_end(run);
   say_end(run);
   return run.outcome.rc;

@@ -9,6 +9,7 @@
 #include <exception>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -55,15 +56,16 @@ void guarded(RunOutcome& r, const CliOptions& opt, const std::filesystem::path& 
   }
 }
 
-// "grainflow: resuming from FILE at step N (t = T s)", and the summary's "resumed_from".
-void say_resuming(const CheckpointReader& from, const Clock& clock);
-nlohmann::json resumed_from_json(const CheckpointReader& from, const Clock& clock);
+// "PROGRAM: resuming from FILE at step N (t = T s)NOTE", and the summary's "resumed_from".
+void say_resuming(std::string_view program, const std::filesystem::path& file, const Clock& clock,
+                  const std::string& note);
+nlohmann::json resumed_from_json(const std::filesystem::path& file, const Clock& clock);
 
 // A sampled row as JSON by column name, null where a value is not finite.
 nlohmann::json row_json(const std::vector<std::string>& columns, const std::vector<double>& row);
 
-// "grainflow: STATUS after N steps (T s simulated) in W s wall[RATE]", then the failure if any.
-void say_done(const RunOutcome& r, double simulated, const std::string& rate);
+// "PROGRAM: STATUS after N steps (T s simulated) in W s wall: RATE", then the failure if any.
+void say_done(std::string_view program, const RunOutcome& r, double simulated, const std::string& rate);
 
 double seconds_since(std::chrono::steady_clock::time_point t0);
 

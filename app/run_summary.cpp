@@ -30,7 +30,7 @@ std::size_t threads_in_use() {
   return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
 }
 
-nlohmann::json timings_json(std::initializer_list<const Schedule*> schedules) {
+nlohmann::json timings_json(const std::vector<const Schedule*>& schedules) {
   double total = 0.0;
   for (const Schedule* s : schedules)
     for (const SystemTiming& t : s->timings()) total += t.seconds;

@@ -5,8 +5,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <initializer_list>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -34,6 +34,6 @@ std::size_t threads_in_use();
 
 // One entry per system of the schedules, in their order: name, seconds, calls and the fraction of
 // the schedules' summed time.
-nlohmann::json timings_json(std::initializer_list<const Schedule*> schedules);
+nlohmann::json timings_json(const std::vector<const Schedule*>& schedules);
 
 }  // namespace gf

@@ -24,6 +24,7 @@ int run_rank_body_command(const CliOptions& opt, const DemScene& s, const MpiCon
   BodyRunHooks hooks;
   hooks.writer = mpi.rank() == 0;
   hooks.ranks = mpi.size();
+  hooks.program = "grainflow_mpi";
   hooks.install = [&mpi](World& world) { world.resources.emplace<BodyContactSplit>(rank_contact_split(mpi)); };
   hooks.together = [&mpi](const std::function<void()>& f) { on_every_rank(mpi, f); };
   install_stop_agreement([&mpi](bool mine) { return mpi.max(mine ? 1.0 : 0.0) > 0.0; });

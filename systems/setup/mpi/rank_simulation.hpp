@@ -124,6 +124,8 @@ class RankSimulation {
   Grains& grains() { return sim_->grains(); }
   World& world() { return sim_->world(); }
   DemScene& scene() { return sim_->scene(); }
+  // The schedules a step runs (drift, contacts, kick; the exchanges between them are not systems).
+  std::vector<Schedule*> schedules() { return {drift_.get(), contacts_.get(), kick_.get()}; }
   const Rcb& rcb() const { return *rcb_; }
   const MpiContext& mpi() const { return *mpi_; }
   const RankCounters& counters() const { return counters_; }
