@@ -87,13 +87,9 @@ std::vector<Rgb> picture_colours(const DemScene& s, const std::vector<int>& laye
 
 // The outer edges of a shape: its cores' bounding box grown by the dilation radius on every side.
 std::array<double, 3> outer_edges(const ShapeSpec& shape) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const auto& part : shape.parts)
-    for (const Eigen::Vector3d& v : part) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-  return {hi.x() - lo.x() + 2 * shape.radius, hi.y() - lo.y() + 2 * shape.radius, hi.z() - lo.z() + 2 * shape.radius};
+  const ShapeBox b = core_box(shape);
+  return {b.hi.x() - b.lo.x() + 2 * shape.radius, b.hi.y() - b.lo.y() + 2 * shape.radius,
+          b.hi.z() - b.lo.z() + 2 * shape.radius};
 }
 
 // The packing of the final bed (systems/analysis/packing.hpp: bed_packing), sampled on voxels of a

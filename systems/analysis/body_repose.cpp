@@ -25,8 +25,7 @@ MemberTops member_tops(const Bodies& bodies, const Members& members, const V3<do
     if (!bodies.moving(members.body.row[m])) continue;
     const MemberShape shape = member_shape(bodies, members, m);
     if (!inside(spec, shape.bound_centre)) continue;
-    double top = -std::numeric_limits<double>::infinity();
-    for (std::size_t v = 0; v < shape.vertices(); ++v) top = std::max(top, u.dot(shape.vertex(v)));
+    const double top = u.dot(shape.support(u));
     t.x.push_back(shape.bound_centre.x());
     t.y.push_back(shape.bound_centre.y());
     t.z.push_back(shape.bound_centre.z());

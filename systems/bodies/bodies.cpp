@@ -1,5 +1,7 @@
 #include "systems/bodies/bodies.hpp"
 
+#include "systems/bodies/member_core.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -39,6 +41,11 @@ void check_member(const MemberRow& row) {
   for (const auto& v : row.vertices)
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
       throw std::invalid_argument("a member's core vertex is not finite");
+  if (row.kind != static_cast<std::uint8_t>(CoreKind::hull)) {
+    std::vector<double> x, y, z;
+    for (const auto& v : row.vertices) x.push_back(v[0]), y.push_back(v[1]), z.push_back(v[2]);
+    check_core({static_cast<CoreKind>(row.kind), x, y, z});
+  }
   if (!std::isfinite(row.radius) || row.radius < 0.0)
     throw std::invalid_argument("a member's dilation radius must be finite and not negative");
   if (row.vertices.size() > std::numeric_limits<std::uint32_t>::max())
@@ -90,8 +97,17 @@ std::size_t Members::push(const MemberRow& row) {
     vertices.x.push_back(v[0]), vertices.y.push_back(v[1]), vertices.z.push_back(v[2]);
     reach = std::max(reach, std::hypot(v[0] - c[0], v[1] - c[1], v[2] - c[2]));
   }
+  if (row.kind != static_cast<std::uint8_t>(CoreKind::hull)) {  // another kind bounds itself
+    const CoreView view{static_cast<CoreKind>(row.kind), std::span<const double>(vertices.x.data() + first, count),
+                        std::span<const double>(vertices.y.data() + first, count),
+                        std::span<const double>(vertices.z.data() + first, count)};
+    const Eigen::Vector3d centre = core_centre(view);
+    for (int k = 0; k < 3; ++k) c[k] = centre[k];
+    reach = core_reach(view, centre);
+  }
   body.row[i] = row.body;
   core.first[i] = static_cast<std::uint32_t>(first), core.count[i] = static_cast<std::uint32_t>(count);
+  core.kind[i] = row.kind;
   dilation.r[i] = row.radius;
   bound.cx[i] = c[0], bound.cy[i] = c[1], bound.cz[i] = c[2];
   bound.radius[i] = reach + row.radius;

@@ -114,10 +114,12 @@ struct MemberBody {
   Column<std::uint32_t> row;  // the body's row in Bodies
   auto columns() { return std::tie(row); }
 };
-// The core's vertices are CoreVertices' entries [first, first + count).
+// The core's points are CoreVertices' entries [first, first + count); what they mean is its kind's
+// (member_core.hpp: a hull's vertices, an ellipsoid's centre and semi-axis ends).
 struct MemberCore {
   Column<std::uint32_t> first, count;
-  auto columns() { return std::tie(first, count); }
+  Column<std::uint8_t> kind;  // CoreKind
+  auto columns() { return std::tie(first, count, kind); }
 };
 struct MemberDilation {
   ColumnD r;  // m, the sphere swept over the core
@@ -143,11 +145,12 @@ struct CoreVertices {
   std::size_t size() const { return x.size(); }
 };
 
-// One member, for Members::push: its body's row, its core's vertices in the body frame, and r.
+// One member, for Members::push: its body's row, its core's kind and points in the body frame, and r.
 struct MemberRow {
   std::uint32_t body = 0;
   std::vector<std::array<double, 3>> vertices;  // m, body frame, at least one
   double radius = 0;                            // m, >= 0
+  std::uint8_t kind = 0;                        // CoreKind: 0 a hull of the points
 };
 
 struct Members {
@@ -165,9 +168,10 @@ struct Members {
 
   std::size_t owned_rows() const { return n; }
   std::size_t rows() const { return n; }
-  // Appends a member (its vertices to CoreVertices, its bound computed); returns its row. The world
-  // centre is left zero until place_members. Throws std::invalid_argument for no vertices, a
-  // non-finite vertex or a negative or non-finite radius.
+  // Appends a member (its points to CoreVertices, its bound computed); returns its row. The world
+  // centre is left zero until place_members. Throws std::invalid_argument for no points, points
+  // that are not a core of their kind (a non-finite one, an ellipsoid's slanted axes, ...) or a
+  // negative or non-finite radius.
   std::size_t push(const MemberRow& row);
   std::size_t bytes();
 };

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <optional>
@@ -248,8 +249,40 @@ void check_letter(const LetterSize& z) {
 
 std::vector<DilatedPolyhedron> shape_members(const ShapeSpec& shape) {
   std::vector<DilatedPolyhedron> members;
-  for (const std::vector<Vector3d>& part : shape.parts) members.push_back({part, shape.radius});
+  for (std::size_t k = 0; k < shape.parts.size(); ++k) members.push_back({shape.parts[k], shape.radius, shape.kind(k)});
   return members;
+}
+
+ShapeBox core_box(const ShapeSpec& shape) {
+  ShapeBox b{Vector3d::Constant(std::numeric_limits<double>::infinity()),
+             Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+  for (std::size_t k = 0; k < shape.parts.size(); ++k) {
+    const CorePoints points(shape.parts[k], shape.kind(k));
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = std::min(b.lo[a], core_support(points.view(), -Vector3d::Unit(a))[a]);
+      b.hi[a] = std::max(b.hi[a], core_support(points.view(), Vector3d::Unit(a))[a]);
+    }
+  }
+  return b;
+}
+
+double shape_reach(const ShapeSpec& shape, const Vector3d& centre) {
+  double reach = 0.0;
+  for (std::size_t k = 0; k < shape.parts.size(); ++k)
+    reach = std::max(reach, core_reach(CorePoints(shape.parts[k], shape.kind(k)).view(), centre));
+  return reach + shape.radius;
+}
+
+ShapeSpec ellipsoid_shape(const Vector3d& semi_axes, double radius) {
+  require_radius(radius);
+  for (int a = 0; a < 3; ++a) {
+    require_length(semi_axes[a], "an ellipsoid's semi-axis");
+    if (!(semi_axes[a] > radius))
+      throw std::invalid_argument("an ellipsoid's semi-axes must exceed the radius r, which its core's are reduced by");
+  }
+  ShapeSpec s{{ellipsoid_core::points(semi_axes - Vector3d::Constant(radius))}, radius};
+  s.kinds = {CoreKind::ellipsoid};
+  return s;
 }
 
 ShapeSpec box_shape(const Vector3d& edges, double radius) {

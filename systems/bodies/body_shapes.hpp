@@ -28,12 +28,23 @@ namespace gf {
 inline constexpr std::size_t kMaxShapeParts = 64;
 
 struct ShapeSpec {
-  std::vector<std::vector<Eigen::Vector3d>> parts;  // m, shape frame; each core's vertices
+  std::vector<std::vector<Eigen::Vector3d>> parts;  // m, shape frame; each core's points
   double radius = 0;                                 // m, >= 0, shared by every part
+  std::vector<CoreKind> kinds = {};                  // each part's kind (member_core.hpp); none: all hulls
+
+  CoreKind kind(std::size_t part) const { return part < kinds.size() ? kinds[part] : CoreKind::hull; }
 };
 
 // The parts as members for voxel_mass_properties and body_frame_members.
 std::vector<DilatedPolyhedron> shape_members(const ShapeSpec& shape);
+
+// The box holding the shape's cores (m, shape frame; grown by the radius, it holds the shape), and the
+// largest distance from `centre` to a core (plus the radius, a sphere about `centre` holding the shape).
+struct ShapeBox {
+  Eigen::Vector3d lo, hi;
+};
+ShapeBox core_box(const ShapeSpec& shape);
+double shape_reach(const ShapeSpec& shape, const Eigen::Vector3d& centre);
 
 // ---- Primitives ----------------------------------------------------------------------------------
 // Each throws std::invalid_argument for a dimension that is not positive and finite, a negative or
@@ -49,6 +60,12 @@ ShapeSpec prism_shape(std::span<const Eigen::Vector2d> section, double length, d
 // A right prism over an equilateral triangle of edge `side`: centroid on the z axis, one corner on
 // +y, extruded along z over [-length/2, length/2].
 ShapeSpec triangular_prism_shape(double side, double length, double radius);
+
+// An ellipsoid of semi-axes (a, b, c) along x, y, z, centred on the origin: one member whose core is
+// the ellipsoid of semi-axes a - r, b - r, c - r (member_core.hpp), so the grain's extent along each
+// axis is the one given (with r = 0 the ellipsoid itself; with r > 0 its offset surface, rounder
+// than an ellipsoid where it is most curved). Throws std::invalid_argument for a semi-axis not above r.
+ShapeSpec ellipsoid_shape(const Eigen::Vector3d& semi_axes, double radius);
 
 // Spheres of radius `radius` (> 0) centred at `centres` (1 to kMaxShapeParts of them), each a
 // member with a point core: one centre is a sphere, several a clump (the multi-sphere

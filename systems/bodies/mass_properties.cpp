@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -149,7 +150,7 @@ namespace {
 
 // A member as the voxel loop reads it: its core and a sphere holding it (for a cheap rejection).
 struct MemberShape {
-  ConvexCore core;
+  std::unique_ptr<CoreSolid> core;
   double r;
   Vector3d centre;
   double bound2;  // squared radius of the bounding sphere
@@ -158,13 +159,27 @@ struct MemberShape {
 MemberShape member_shape(const DilatedPolyhedron& m) {
   if (!std::isfinite(m.radius) || m.radius < 0.0)
     throw std::invalid_argument("a member's dilation radius must be finite and not negative");
-  ConvexCore core(m.vertices);
-  Vector3d c = Vector3d::Zero();
-  for (const Vector3d& x : m.vertices) c += x / static_cast<double>(m.vertices.size());
-  double reach = 0.0;
-  for (const Vector3d& x : m.vertices) reach = std::max(reach, (x - c).norm());
-  const double bound = reach + m.radius;
+  const CorePoints points(m.vertices, m.kind);
+  if (m.kind != CoreKind::hull) check_core(points.view());
+  std::unique_ptr<CoreSolid> core = core_solid(points.view());
+  const Vector3d c = core_centre(points.view());
+  const double bound = core_reach(points.view(), c) + m.radius;
   return {std::move(core), m.radius, c, bound * bound * (1.0 + 1e-12)};
+}
+
+// The box holding a member's core: its points' for a hull, its support points along the axes for
+// another kind.
+void grow_box(const DilatedPolyhedron& m, Vector3d& lo, Vector3d& hi) {
+  const Vector3d r = Vector3d::Constant(m.radius);
+  if (m.kind == CoreKind::hull) {
+    for (const Vector3d& x : m.vertices) lo = lo.cwiseMin(x - r), hi = hi.cwiseMax(x + r);
+    return;
+  }
+  const CorePoints points(m.vertices, m.kind);
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::min(lo[a], core_support(points.view(), -Vector3d::Unit(a))[a] - m.radius);
+    hi[a] = std::max(hi[a], core_support(points.view(), Vector3d::Unit(a))[a] + m.radius);
+  }
 }
 
 // The union's voxels: n[k] cubes of edge h along each axis, centred on the bounding box's middle.
@@ -179,9 +194,7 @@ struct Grid {
 
 Grid make_grid(std::span<const DilatedPolyhedron> members, double h) {
   Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const DilatedPolyhedron& m : members)
-    for (const Vector3d& x : m.vertices)
-      lo = lo.cwiseMin(x - Vector3d::Constant(m.radius)), hi = hi.cwiseMax(x + Vector3d::Constant(m.radius));
+  for (const DilatedPolyhedron& m : members) grow_box(m, lo, hi);
   Grid g;
   g.h = h;
   g.mid = 0.5 * (lo + hi);
@@ -199,7 +212,7 @@ Grid make_grid(std::span<const DilatedPolyhedron> members, double h) {
 
 bool covered(const std::vector<MemberShape>& shapes, const Vector3d& p) {
   for (const MemberShape& s : shapes)
-    if ((p - s.centre).squaredNorm() <= s.bound2 && s.core.dilated_contains(p, s.r)) return true;
+    if ((p - s.centre).squaredNorm() <= s.bound2 && s.core->dilated_contains(p, s.r)) return true;
   return false;
 }
 
@@ -278,7 +291,7 @@ std::vector<MemberRow> body_frame_members(std::span<const DilatedPolyhedron> mem
                                           std::uint32_t body) {
   std::vector<MemberRow> rows;
   for (const DilatedPolyhedron& m : members) {
-    MemberRow row{body, {}, m.radius};
+    MemberRow row{body, {}, m.radius, static_cast<std::uint8_t>(m.kind)};
     for (const Vector3d& x : m.vertices) {
       const Vector3d b = props.axes.transpose() * (x - props.centre);
       row.vertices.push_back({b.x(), b.y(), b.z()});

@@ -9,7 +9,7 @@
 // The principal axes come from Eigen's SelfAdjointEigenSolver on the inertia tensor.
 //
 // Point-in-member test: the exact Euclidean distance from the voxel centre to the convex core is at
-// most r (ConvexCore). The core is given by its vertices only; its hull is found by brute force over
+// most r (its kind's CoreSolid, member_core.hpp; for a hull, ConvexCore). The core is given by its vertices only; its hull is found by brute force over
 // vertex triples (a triple spans a boundary triangle when no vertex lies strictly on both sides of
 // its plane): O(n^4) in the vertex count, which is negligible for the few-vertex cores of the
 // seed's shapes (prisms, boxes, blocks), and refused above kMaxCoreVertices.
@@ -25,15 +25,17 @@
 #include <Eigen/Geometry>
 
 #include "systems/bodies/bodies.hpp"
+#include "systems/bodies/member_core.hpp"
 
 namespace gf {
 
 inline constexpr std::size_t kMaxCoreVertices = 128;
 
-// One member of a composite: its core's vertices in the composite's own (input) frame, and r.
+// One member of a composite: its core's points in the composite's own (input) frame, and r.
 struct DilatedPolyhedron {
-  std::vector<Eigen::Vector3d> vertices;  // m, at least one
+  std::vector<Eigen::Vector3d> vertices;  // m, at least one: a hull's vertices, or the points of another kind
   double radius = 0;                      // m, >= 0
+  CoreKind kind = CoreKind::hull;         // what the points are (member_core.hpp)
 };
 
 // The convex hull of a set of vertices, with the exact distance from a point to it. Degenerate
@@ -86,6 +88,11 @@ struct MassProperties {
 // voxels centred on it. Throws std::invalid_argument for no members, rho or h not positive and
 // finite, or a grid of more than 2^31 voxels.
 MassProperties voxel_mass_properties(std::span<const DilatedPolyhedron> members, double rho, double h);
+
+// The mass properties of one ellipsoid with semi-axes (a, b, c) along x, y, z, centred on the origin,
+// at density rho, exact: volume 4/3 pi a b c, moments m (b^2 + c^2)/5, m (a^2 + c^2)/5, m (a^2 + b^2)/5
+// (ellipsoid_core.cpp). Throws std::invalid_argument for a semi-axis or rho not positive and finite.
+MassProperties ellipsoid_mass_properties(const Eigen::Vector3d& semi_axes, double rho);
 
 // The mass properties of one sphere of `radius` at density rho, exact (no voxel grid is needed): mass rho 4/3 pi r^3, every principal moment 2/5 m r^2, the axes the input frame's.
 MassProperties sphere_mass_properties(double radius, double rho);

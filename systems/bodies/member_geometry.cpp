@@ -51,15 +51,21 @@ std::size_t farthest_vertex(const MemberShape& s, const Vector3d& d) {
 
 Vector3d own_vertex(const MemberShape& s, std::size_t i) { return {s.x[i], s.y[i], s.z[i]}; }
 
+// The core's point farthest along d, own frame: a hull's vertex found inline (the contacts' hot
+// path), other kinds through their seam (member_core.hpp).
+Vector3d own_support(const MemberShape& s, const Vector3d& d) {
+  if (s.kind == CoreKind::hull) return own_vertex(s, farthest_vertex(s, d));
+  return core_support(s.core(), d);
+}
+
 // libccd's support callback: the core's point farthest along dir, in the pair frame.
-void core_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
+void scaled_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
   const auto& c = *static_cast<const ScaledCore*>(obj);
-  const std::size_t i = farthest_vertex(*c.shape, c.shape->rotation.transpose() * to_eigen(*dir));
-  *out = to_ccd(c.rotation * own_vertex(*c.shape, i) + c.offset);
+  *out = to_ccd(c.rotation * own_support(*c.shape, c.shape->rotation.transpose() * to_eigen(*dir)) + c.offset);
 }
 
 // libccd's centre callback (MPR's interior point).
-void core_centre(const void* obj, ccd_vec3_t* out) { *out = to_ccd(static_cast<const ScaledCore*>(obj)->centre); }
+void scaled_centre(const void* obj, ccd_vec3_t* out) { *out = to_ccd(static_cast<const ScaledCore*>(obj)->centre); }
 
 struct PairFrame {
   Vector3d origin;
@@ -81,8 +87,8 @@ ScaledCore scaled_core(const MemberShape& m, const PairFrame& f) {
 ccd_t ccd_settings() {
   ccd_t ccd;
   CCD_INIT(&ccd);
-  ccd.support1 = ccd.support2 = core_support;
-  ccd.center1 = ccd.center2 = core_centre;
+  ccd.support1 = ccd.support2 = scaled_support;
+  ccd.center1 = ccd.center2 = scaled_centre;
   ccd.max_iterations = kMemberMaxIterations;
   ccd.epa_tolerance = kMemberTolerance;
   ccd.mpr_tolerance = kMemberTolerance;
@@ -353,9 +359,11 @@ Penetration leave_edge(const ScaledCore& sa, const ScaledCore& sb, const ccd_t& 
 // foot: p_A - p_B = depth n. MPR's own depth, the distance to its last portal triangle, depends on
 // the path its portal took (which member comes first, round-off in the ties of the support), by up
 // to 54 um on millimetre grains; the face's does not.
+// A smooth core (not a hull) makes A - B smooth: no edge to leave, the descent's stop is the minimum.
 Penetration penetration(const ScaledCore& sa, const ScaledCore& sb, const ccd_t& ccd) {
   const Penetration p = settle(sa, sb, ccd, descend(sa, sb, ccd, mpr_direction(sa, sb, ccd)));
-  return p.on_face ? p : leave_edge(sa, sb, ccd, p);
+  const bool smooth = sa.shape->kind != CoreKind::hull || sb.shape->kind != CoreKind::hull;
+  return p.on_face || smooth ? p : leave_edge(sa, sb, ccd, p);
 }
 
 Vector3d mean_of(const MemberShape& m, auto&& keep) {
@@ -378,19 +386,17 @@ Vector3d depth_weighted(const MemberShape& m, const Vector3d& d, double base, do
 }
 
 MemberShape with_bound(MemberShape s) {
-  const Vector3d c = mean_of(s, [](std::size_t) { return true; });
-  double reach = 0;
-  for (std::size_t i = 0; i < s.vertices(); ++i) reach = std::max(reach, (own_vertex(s, i) - c).norm());
+  const Vector3d c = core_centre(s.core());
   s.bound_centre = s.origin + s.rotation * c;
-  s.bound_radius = reach + s.radius;
+  s.bound_radius = core_reach(s.core(), c) + s.radius;
   return s;
 }
 
 MemberShape shape_of(const CorePoints& core, double radius, const Vector3d& origin, const Matrix3d& rotation,
                      const Vector3d& com) {
-  if (core.x.empty() || core.y.size() != core.x.size() || core.z.size() != core.x.size())
-    throw std::invalid_argument("a member's core needs at least one vertex, with x, y and z of one length");
+  check_core(core.view());
   MemberShape s;
+  s.kind = core.kind;
   s.x = core.x, s.y = core.y, s.z = core.z;
   s.rotation = rotation, s.origin = origin, s.radius = radius, s.centre_of_mass = com;
   return with_bound(s);
@@ -400,13 +406,14 @@ MemberShape shape_of(const CorePoints& core, double radius, const Vector3d& orig
 
 Vector3d MemberShape::vertex(std::size_t i) const { return origin + rotation * own_vertex(*this, i); }
 
-CorePoints::CorePoints(std::span<const Vector3d> points) {
-  for (const Vector3d& p : points) x.push_back(p.x()), y.push_back(p.y()), z.push_back(p.z());
+Vector3d MemberShape::support(const Vector3d& d) const {
+  return origin + rotation * own_support(*this, rotation.transpose() * d);
 }
 
 MemberShape member_shape(const Bodies& bodies, const Members& members, std::size_t m) {
   const std::uint32_t b = members.body.row[m], first = members.core.first[m], count = members.core.count[m];
   MemberShape s;
+  s.kind = static_cast<CoreKind>(members.core.kind[m]);
   s.x = std::span<const double>(members.vertices.x.data() + first, count);
   s.y = std::span<const double>(members.vertices.y.data() + first, count);
   s.z = std::span<const double>(members.vertices.z.data() + first, count);
@@ -454,6 +461,63 @@ MemberContact member_sphere(const MemberShape& a, const Vector3d& centre, double
   return member_member(a, s);
 }
 
+namespace {
+
+// A smooth core meets a plane at its one lowest point (own-frame normal d, the frame origin's height base).
+MemberContact smooth_plane(const MemberShape& a, const Vector3d& d, double base, const Vector3d& normal) {
+  const Vector3d low = own_support(a, -d);
+  const double h = base + d.dot(low);
+  const Vector3d lowest = a.origin + a.rotation * low;
+  MemberContact c = finish(h < 0 ? MemberProximity::penetrating : MemberProximity::separated, -normal, h,
+                           lowest - 0.5 * h * normal, a.radius, 0.0, a.centre_of_mass, Vector3d::Zero());
+  c.arm_b = Vector3d::Zero();
+  return c;
+}
+
+// A smooth core's point farthest from the cylinder's axis, by ascent on support points: from the
+// radial direction u at point x, the support point along u is at least as far from the axis (its
+// radial component along u is at least x's). Ends when a step gains less than 1e-12 of the bound.
+Vector3d farthest_from_axis(const MemberShape& a, const Vector3d& point, const Vector3d& axis) {
+  const auto radial = [&](const Vector3d& x) {
+    const Vector3d d = x - point;
+    return Vector3d(d - d.dot(axis) * axis);
+  };
+  Vector3d out = radial(a.bound_centre);
+  if (!(out.norm() > 0)) out = axis.unitOrthogonal();
+  Vector3d x = a.support(out.normalized());
+  double rho = radial(x).norm();
+  for (unsigned long it = 0; it < kMemberMaxIterations; ++it) {
+    const Vector3d u = radial(x);
+    if (!(u.norm() > 0)) break;
+    const Vector3d next = a.support(u / u.norm());
+    const double r = radial(next).norm();
+    if (r <= rho + kMemberTolerance * a.bound_radius) {
+      if (r > rho) x = next;
+      break;
+    }
+    x = next, rho = r;
+  }
+  return x;
+}
+
+MemberContact smooth_cylinder(const MemberShape& a, const Vector3d& point, const Vector3d& axis, double radius) {
+  const Vector3d x = farthest_from_axis(a, point, axis);
+  const Vector3d d = x - point, out = d - d.dot(axis) * axis;
+  const double rho = out.norm(), depth = rho + a.radius - radius;
+  MemberContact c;
+  c.kind = rho > radius ? MemberProximity::penetrating : MemberProximity::separated;
+  c.delta = depth;
+  c.core_distance = a.radius - depth;
+  if (!(depth > 0) || !(rho > 0)) return c;
+  c.n = out / rho;
+  c.point = x + (a.radius - 0.5 * depth) * c.n;
+  c.arm_a = c.point - a.centre_of_mass;
+  c.arm_b = Vector3d::Zero();
+  return c;
+}
+
+}  // namespace
+
 MemberContact member_plane(const MemberShape& a, const Vector3d& point, const Vector3d& normal) {
   const double bound_height = normal.dot(a.bound_centre - point);
   if (bound_height >= a.bound_radius) {
@@ -463,6 +527,7 @@ MemberContact member_plane(const MemberShape& a, const Vector3d& point, const Ve
   }
   const Vector3d d = a.rotation.transpose() * normal;
   const double base = normal.dot(a.origin - point);
+  if (a.kind != CoreKind::hull) return smooth_plane(a, d, base, normal);
   const double low = d.dot(own_vertex(a, farthest_vertex(a, -d)));
   const double tie = kMemberTolerance * a.bound_radius;
   const auto tied = [&](std::size_t i) { return d.dot(own_vertex(a, i)) <= low + tie; };
@@ -491,6 +556,7 @@ MemberContact member_cylinder(const MemberShape& a, const Vector3d& point, const
     c.delta = centre + a.bound_radius - radius;
     return c;
   }
+  if (a.kind != CoreKind::hull) return smooth_cylinder(a, point, axis, radius);
   double deepest = -std::numeric_limits<double>::infinity(), farthest = 0, weight = 0;
   Vector3d at = Vector3d::Zero(), dir = Vector3d::Zero();
   for (std::size_t i = 0; i < a.vertices(); ++i) {

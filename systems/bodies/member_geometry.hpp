@@ -35,9 +35,9 @@
 // are then relative to the grains (kMemberTolerance of their size), as right for 1 mm as for 1 m.
 //
 // Spheres are members with a point core. A plane wall meets a member with the overlap of its lowest
-// vertex (the core's support point along -normal, the normal pointing out of the wall), pushing at the
-// mean of the vertices whose dilation spheres reach through the plane, each weighted by its own
-// overlap: a box resting flat on a floor is pushed at its face's centre, and a small tilt moves the
+// point (the core's support point along -normal, the normal pointing out of the wall). A hull is
+// pushed at the mean of the vertices whose dilation spheres reach through the plane, each weighted
+// by its own overlap (a smooth core, at its lowest point): a box resting flat on a floor is pushed at its face's centre, and a small tilt moves the
 // point towards the lower side (a restoring torque that grows with the tilt, instead of the lowest
 // corner's, which changes sides with the round-off). Apart, the vertices tied within the tolerance
 // are averaged.
@@ -53,6 +53,7 @@
 #include <Eigen/Core>
 
 #include "systems/bodies/bodies.hpp"
+#include "systems/bodies/member_core.hpp"
 #include "systems/contact/contact_law.hpp"
 
 namespace gf {
@@ -65,11 +66,13 @@ inline constexpr double kMemberTolerance = 1e-12;
 // converge in well under 30.
 inline constexpr unsigned long kMemberMaxIterations = 100;
 
-// A member as the geometry reads it: its core's vertices in a frame of its own (three spans of
-// equal length, structure of arrays like the Members table's CoreVertices), that frame's pose in the
-// world, r, its body's centre of mass and a bounding sphere. Built by the functions below.
+// A member as the geometry reads it: its core's kind and points in a frame of its own (three spans
+// of equal length, structure of arrays like the Members table's CoreVertices; member_core.hpp), that
+// frame's pose in the world, r, its body's centre of mass and a bounding sphere. Built by the
+// functions below.
 struct MemberShape {
-  std::span<const double> x, y, z;                             // m, the core's vertices, own frame
+  CoreKind kind = CoreKind::hull;
+  std::span<const double> x, y, z;                             // m, the core's points, own frame
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();      // own frame -> world
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();            // m, world: the own frame's origin
   double radius = 0;                                           // m, dilation r
@@ -78,22 +81,19 @@ struct MemberShape {
   double bound_radius = 0;                                     // m, holds the whole dilated member
 
   std::size_t vertices() const { return x.size(); }
-  Eigen::Vector3d vertex(std::size_t i) const;  // m, world
-};
-
-// Core vertices owned in structure-of-arrays form, for shapes given by a list of points.
-struct CorePoints {
-  std::vector<double> x, y, z;
-  CorePoints() = default;
-  explicit CorePoints(std::span<const Eigen::Vector3d> points);
+  Eigen::Vector3d vertex(std::size_t i) const;  // m, world: the core's point i
+  CoreView core() const { return {kind, x, y, z}; }
+  // m, world: the core's point farthest along the world direction d.
+  Eigen::Vector3d support(const Eigen::Vector3d& d) const;
 };
 
 // Member row `m` of the tables at its body's current pose (body frame = own frame, its origin the
 // centre of mass). Reads the body's position and orientation, not MemberCentre.
 MemberShape member_shape(const Bodies& bodies, const Members& members, std::size_t m);
 // A core given in a body frame at pose (origin = the body's centre of mass, rotation body -> world).
-// The bound is computed from the vertices (their mean and farthest one, plus r). The shape views
-// `core`'s arrays, so `core` must outlive it (likewise the tables for member_shape).
+// The bound is the core's (core_centre and core_reach, plus r). The shape views `core`'s arrays, so
+// `core` must outlive it (likewise the tables for member_shape). Throws std::invalid_argument for
+// points that are not a core of their kind (check_core).
 MemberShape posed_member(const CorePoints& core, double radius, const Eigen::Vector3d& origin,
                          const Eigen::Matrix3d& rotation);
 // A core given by world-frame vertices, of a body whose centre of mass is `centre_of_mass`.
@@ -127,7 +127,7 @@ MemberContact member_member(const MemberShape& a, const MemberShape& b);
 // A member and a sphere (a point core at `centre` with radius `radius`, its own centre of mass).
 MemberContact member_sphere(const MemberShape& a, const Eigen::Vector3d& centre, double radius);
 // A member and a plane wall through `point` whose unit normal `normal` points out of the wall, to
-// the side the grains are on. n = -normal; delta = r - h, h the height of the core's lowest vertex
+// the side the grains are on. n = -normal; delta = r - h, h the height of the core's lowest point
 // above the plane; the point is midway between the member's surface and the plane.
 MemberContact member_plane(const MemberShape& a, const Eigen::Vector3d& point, const Eigen::Vector3d& normal);
 // A member inside a cylinder wall (a drum's mantle) of `radius` about the axis through `point` along
@@ -136,7 +136,11 @@ MemberContact member_plane(const MemberShape& a, const Eigen::Vector3d& point, c
 // vertex). n is the outward radial direction averaged over the vertices through the wall, weighted
 // by their depth, and the point their depth-weighted mean, each midway between the member's surface
 // and the wall along its own radial direction: a face resting across the curved wall, touching it
-// along two edges, is pushed at its middle, as member_plane pushes a face lying on a floor.
+// along two edges, is pushed at its middle, as member_plane pushes a face lying on a floor. A smooth
+// core's point farthest from the axis is found by ascent on its support points (each step's radial
+// direction at the last point gives the next point, which is no nearer the axis), exact to 1e-12 of
+// the member's size where the wall's radius is larger than the member, as a drum's is; the force acts
+// there.
 MemberContact member_cylinder(const MemberShape& a, const Eigen::Vector3d& point, const Eigen::Vector3d& axis,
                               double radius);
 

@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <limits>
 #include <numeric>
+#include <span>
 #include <stdexcept>
+
+#include "systems/bodies/member_core.hpp"
 
 namespace gf {
 
@@ -146,8 +149,16 @@ Image render_body_picture(const Bodies& bodies, const Members& members, const st
     const Eigen::Vector3d x(bodies.pos.x[b], bodies.pos.y[b], bodies.pos.z[b]);
     pts.clear();
     const std::uint32_t first = members.core.first[m], count = members.core.count[m];
-    for (std::uint32_t k = first; k < first + count; ++k)
-      pts.push_back(to_px(x + q * Eigen::Vector3d(members.vertices.x[k], members.vertices.y[k], members.vertices.z[k])));
+    if (members.core.kind[m] == static_cast<std::uint8_t>(CoreKind::hull)) {
+      for (std::uint32_t k = first; k < first + count; ++k)
+        pts.push_back(to_px(x + q * Eigen::Vector3d(members.vertices.x[k], members.vertices.y[k], members.vertices.z[k])));
+    } else {  // a smooth core: points on its surface
+      const CoreView core{static_cast<CoreKind>(members.core.kind[m]),
+                          std::span<const double>(members.vertices.x.data() + first, count),
+                          std::span<const double>(members.vertices.y.data() + first, count),
+                          std::span<const double>(members.vertices.z.data() + first, count)};
+      for (const Eigen::Vector3d& v : core_outline(core)) pts.push_back(to_px(x + q * v));
+    }
     const std::vector<P2> hull = convex_hull(pts);
     const double rp = members.dilation.r[m] * px_per_m;
     // Further members darker, so depth reads in a pile of one colour; a darker rim outlines each.

@@ -46,6 +46,7 @@ ShapeSpec build_shape(const SceneNode& t, const std::string& kind, double r) {
     return up_down_cone_shape(c, r);
   }
   if (kind == "sphere") return spheres_shape(std::array{Eigen::Vector3d::Zero().eval()}, r);
+  if (kind == "ellipsoid") return ellipsoid_shape(to_e(t.get_vec3("semi_axes")), r);
   if (kind == "spheres") {
     std::vector<Eigen::Vector3d> centres;
     for (const auto& c : t.get_vec3_list("centres")) centres.push_back(to_e(c));
@@ -69,17 +70,8 @@ ShapeSpec build_shape(const SceneNode& t, const std::string& kind, double r) {
 }
 
 double smallest_edge(const ShapeSpec& shape) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const auto& part : shape.parts)
-    for (const Eigen::Vector3d& v : part) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-  return (hi - lo).minCoeff() + 2.0 * shape.radius;
-}
-
-double bound_radius(const ShapeSpec& shape, const Eigen::Vector3d& centre) {
-  double b = 0.0;
-  for (const auto& part : shape.parts)
-    for (const Eigen::Vector3d& v : part) b = std::max(b, (v - centre).norm());
-  return b + shape.radius;
+  const ShapeBox b = core_box(shape);
+  return (b.hi - b.lo).minCoeff() + 2.0 * shape.radius;
 }
 
 BodyShape read_shape(const DemScene& s, const SceneNode& t) {
@@ -87,7 +79,7 @@ BodyShape read_shape(const DemScene& s, const SceneNode& t) {
   out.name = t.get_string("name");
   out.line = t.line();
   const std::string kind =
-      t.get_choice("kind", {"box", "triangular_prism", "up_down_cone", "letter", "file", "sphere", "spheres"});
+      t.get_choice("kind", {"box", "triangular_prism", "up_down_cone", "letter", "file", "sphere", "spheres", "ellipsoid"});
   const bool round = kind == "sphere" || kind == "spheres";
   const double r = t.get_double("radius", round ? Range::open_closed(0, 100) : Range::closed(0, 100));
   if (s.law == "hertz_mindlin" && r == 0.0)
@@ -104,6 +96,12 @@ BodyShape read_shape(const DemScene& s, const SceneNode& t) {
     out.bound = r;
     return out;
   }
+  if (kind == "ellipsoid" && r == 0.0) {  // exact: no grid
+    if (t.has("grid")) t.fail("grid", "a sharp ellipsoid's mass properties are exact, not counted on a grid", "remove grid");
+    out.props = ellipsoid_mass_properties(to_e(t.get_vec3("semi_axes")), rho);
+    out.bound = shape_reach(out.shape, out.props.centre);
+    return out;
+  }
   const double h = t.get_double("grid", 0.1 * smallest_edge(out.shape), Range::positive());
   try {
     out.props = voxel_mass_properties(shape_members(out.shape), rho, h);
@@ -113,7 +111,7 @@ BodyShape read_shape(const DemScene& s, const SceneNode& t) {
   if (out.props.voxels < 8)
     t.fail("grid", "only " + std::to_string(out.props.voxels) + " voxels lie inside the shape",
            "give a grid edge (m) well below the shape's smallest dimension");
-  out.bound = bound_radius(out.shape, out.props.centre);
+  out.bound = shape_reach(out.shape, out.props.centre);
   return out;
 }
 
