@@ -15,6 +15,7 @@
 #include "systems/fill/random_fill.hpp"
 #include "systems/fill/state_csv.hpp"
 #include "systems/setup/flow_scene.hpp"
+#include "systems/setup/scene_fields.hpp"
 #include "systems/walls/contact_systems.hpp"
 #include "systems/walls/mesh_wall_scene.hpp"
 #include "systems/walls/wall_contact.hpp"
@@ -209,9 +210,9 @@ Region read_region(const SceneNode& f, const Gravity& g) {
     const std::array<double, 3> up =
         glen > 0 ? std::array<double, 3>{-g.x / glen, -g.y / glen, -g.z / glen} : std::array<double, 3>{0, 1, 0};
     const Vec3d axis = unit_vector(r, "axis", {0, 0, 1}, true);
-    region = Region::cylinder(r.get_vec3("center"), {axis.x, axis.y, axis.z}, r.get_double("radius", Range::positive()),
-                              r.get_double("length", Range::positive()),
-                              r.get_double("max_height", std::numeric_limits<double>::infinity(), Range::any()), up);
+    region = Region::cylinder(r.get_vec3("center"), {axis.x, axis.y, axis.z},
+                              read_number(r, kRegionFields.field("radius")), read_number(r, kRegionFields.field("length")),
+                              read_number(r, kRegionFields.field("max_height")), up);
   }
   if (const std::string why = region.problem(); !why.empty()) r.fail("shape", why, "correct the region's geometry");
   return region;
@@ -509,7 +510,7 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
     read_walls(s, root);
     read_periodic(s, root);
   }
-  if (auto settle = root.maybe_table("settle")) s.settle_time = settle->get_double("time", Range::non_negative());
+  if (auto settle = root.maybe_table("settle")) s.settle_time = read_number(*settle, kSettleFields.field("time"));
   if (!with_bodies) {
     read_fills(s, root);
     read_flow(s, root);

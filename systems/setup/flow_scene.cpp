@@ -5,12 +5,14 @@
 #include <limits>
 #include <string>
 
+#include "systems/setup/scene_fields.hpp"
+
 namespace gf {
 
 namespace {
 
-double read_interval(const SceneNode& node, const DemScene& s) {
-  const double dt = node.get_double("interval", 0.01, Range::positive());
+double read_interval(const SceneNode& node, const DemScene& s, const FieldTable& fields) {
+  const double dt = read_number(node, fields.field("interval"));
   if (dt < s.dt) node.fail("interval", "shorter than the time step", "use at least run.dt (" + short_number(s.dt) + " s)");
   return dt;
 }
@@ -18,13 +20,13 @@ double read_interval(const SceneNode& node, const DemScene& s) {
 FeedSpec read_feed(const DemScene& s, const SceneNode& f, std::size_t index) {
   FeedSpec spec;
   spec.region = read_fill_region(f, s.gravity);
-  spec.mass_rate = f.get_double("mass_rate", Range::open_closed(0, 1e6));
+  spec.mass_rate = read_number(f, kFeedFields.field("mass_rate"));
   const SceneNode fr = f.table("fractions");
   double sum = 0.0;
   for (const std::string& name : fr.keys()) {
     const std::int32_t k = species_index(s, fr, name, name);
     const SpeciesSpec& sp = s.species[k];
-    const double frac = fr.get_double(name, Range::closed(0, 1));
+    const double frac = fr.get_double(name, kFeedFields.field("fractions.<species>").range);
     spec.species.push_back({k, 0.5 * sp.diameter, sp.mass, sp.rotates ? 1.0 / sp.inertia : 0.0, frac});
     sum += frac;
   }
@@ -33,10 +35,10 @@ FeedSpec read_feed(const DemScene& s, const SceneNode& f, std::size_t index) {
     f.fail("fractions", "the mass fractions sum to " + short_number(sum) + ", not 1", "make them sum to 1");
   for (FeedSpecies& sp : spec.species) sp.fraction /= sum;  // exactly 1 for start_feed's check
   spec.velocity = f.get_vec3("velocity", {0, 0, 0});
-  spec.start = f.get_double("start", 0.0, Range::non_negative());
-  spec.stop = f.get_double("stop", std::numeric_limits<double>::infinity(), Range::positive());
+  spec.start = read_number(f, kFeedFields.field("start"));
+  spec.stop = read_number(f, kFeedFields.field("stop"));
   if (!(spec.stop > spec.start)) f.fail("stop", "the feed stops before it starts", "give stop > start");
-  spec.interval = read_interval(f, s);
+  spec.interval = read_interval(f, s, kFeedFields);
   // One event places its grains one by one; a debt of millions per event is a typo, not a feed.
   double per_event = 0.0;
   for (const FeedSpecies& sp : spec.species) per_event += spec.mass_rate * sp.fraction * spec.interval / sp.mass;
@@ -58,7 +60,7 @@ void read_flow(DemScene& s, const SceneNode& root) {
   for (const SceneNode& o : root.tables("outlet")) {
     OutletSpec spec;
     spec.region = read_fill_region(o, s.gravity);
-    spec.interval = read_interval(o, s);
+    spec.interval = read_interval(o, s, kOutletFields);
     s.flow.outlets.push_back(spec);
   }
 }

@@ -1,0 +1,62 @@
+#include "engine/field_table.hpp"
+
+#include <stdexcept>
+
+namespace gf {
+
+namespace {
+
+bool is_number(const Field& f) {
+  return f.range.lo != kAnyNumber.lo || f.range.hi != kAnyNumber.hi || f.range.lo_open != kAnyNumber.lo_open ||
+         f.range.hi_open != kAnyNumber.hi_open;
+}
+
+// One row's cells appended piece by piece (GCC 12 misreads long chains of string + string_view).
+void row(const Field& f, std::string_view prefix, std::string& out) {
+  out.append("| `").append(prefix).append(f.key).append("` | ");
+  out.append(f.unit.empty() ? std::string_view("—") : f.unit).append(" | ");
+  if (is_number(f)) {
+    out.append(f.range.describe());
+    if (!f.values.empty()) out.append(" ").append(f.values);
+  } else {
+    out.append(f.values.empty() ? std::string_view("any number") : f.values);
+  }
+  out.append(" | ");
+  if (!f.default_text.empty()) out.append(f.default_text);
+  else if (!std::isnan(f.fallback)) out.append(short_number(f.fallback));
+  else out.append("required");
+  out.append(" | ").append(f.meaning).append(" |\n");
+}
+
+void rows(const FieldTable& t, const std::string& prefix, std::string& out) {
+  for (const Field& f : t.fields) {
+    if (f.include) {
+      std::string deeper = prefix;
+      deeper.append(f.key);
+      rows(*f.include, deeper, out);
+    } else {
+      row(f, prefix, out);
+    }
+  }
+}
+
+}  // namespace
+
+const Field& FieldTable::field(std::string_view key) const {
+  for (const Field& f : fields)
+    if (f.key == key) return f;
+  throw std::logic_error("the key table of " + std::string(section) + " has no key '" + std::string(key) + "'");
+}
+
+std::string FieldTable::markdown() const {
+  std::string out = "| key | unit | range | default | meaning |\n|---|---|---|---|---|\n";
+  rows(*this, "", out);
+  return out;
+}
+
+double read_number(const SceneNode& t, const Field& f) {
+  if (std::isnan(f.fallback)) return t.get_double(f.key, f.range);
+  return t.get_double(f.key, f.fallback, f.range);
+}
+
+}  // namespace gf

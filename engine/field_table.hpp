@@ -1,0 +1,51 @@
+// A section's keys as a table: each key with its unit, the values it accepts, its default and its
+// meaning. The section's reader reads its numbers through the table (the range checked and the
+// default taken are the table's), and the manual's key reference is generated from the same tables
+// (tests/scene_fields_test.cpp fails when a page's table differs), so the reader and the reference
+// cannot drift apart.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "engine/scene.hpp"
+
+namespace gf {
+
+struct FieldTable;
+
+inline constexpr Range kAnyNumber{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                                  true, true};
+inline constexpr double kNoDefault = std::numeric_limits<double>::quiet_NaN();
+
+struct Field {
+  std::string_view key;
+  std::string_view unit;               // empty: none ("—" in the reference)
+  Range range = kAnyNumber;            // a number's accepted interval, as the reader checks it
+  std::string_view values;             // the accepted values in words where they are not a number's interval
+                                       // ("`box`, `cylinder`", "three numbers"), or, starting with "and", a
+                                       // further condition after the interval ("and ≥ `run.dt`")
+  double fallback = kNoDefault;        // a number's default; NaN: none, or the words of `default_text`
+  std::string_view default_text;       // the default in words; empty with no fallback: "required"
+  std::string_view meaning;
+  const FieldTable* include = nullptr;  // a sub-table whose keys follow `key` as a prefix ("region.")
+};
+
+struct FieldTable {
+  std::string_view section;  // as the manual's heading names it: "[[feed]]"
+  std::string_view page;     // the manual page that holds its reference: "mixers.md"
+  std::span<const Field> fields;
+
+  // The field named `key`; std::logic_error for a key the table lacks (a reader's mistake).
+  const Field& field(std::string_view key) const;
+  // The reference: the header, the rule and a row per key, sub-tables expanded in place.
+  std::string markdown() const;
+};
+
+// A number through its field: required, or with the field's default when the field has one.
+double read_number(const SceneNode& t, const Field& f);
+
+}  // namespace gf

@@ -1,0 +1,58 @@
+#include "systems/setup/scene_fields.hpp"
+
+#include <limits>
+
+namespace gf {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr Range kPositive{0, kInf, true, true};
+constexpr Range kNonNegative{0, kInf, false, true};
+
+const Field kRegion[] = {
+    {"shape", "", kAnyNumber, "`\"box\"` or `\"cylinder\"`", kNoDefault, "", "the region's shape"},
+    {"lo", "m", kAnyNumber, "three numbers, each below `hi`'s", kNoDefault, "required for a box", "the box's lower corner"},
+    {"hi", "m", kAnyNumber, "three numbers, each above `lo`'s", kNoDefault, "required for a box", "the box's upper corner"},
+    {"center", "m", kAnyNumber, "three numbers", kNoDefault, "required for a cylinder", "the cylinder's centre"},
+    {"axis", "", kAnyNumber, "non-zero vector", kNoDefault, "[0, 0, 1]", "the cylinder's axis direction"},
+    {"radius", "m", kPositive, "", kNoDefault, "required for a cylinder", "the cylinder's radius"},
+    {"length", "m", kPositive, "", kNoDefault, "required for a cylinder", "the cylinder's length, half to each side of the centre"},
+    {"max_height", "m", kAnyNumber, "any number; cylinders only", kInf, "no limit",
+     "keeps the part whose height above the centre (against gravity) is at most this"},
+};
+
+const Field kFeed[] = {
+    {"mass_rate", "kg/s", {0, 1e6, true, false}, "", kNoDefault, "",
+     "mass fed per second, all species together; one event may place at most 1,000,000 grains (mass_rate × interval / "
+     "grain mass)"},
+    {"fractions.<species>", "", {0, 1, false, false}, "and summing to 1 (within 1e-6)", kNoDefault, "",
+     "inline table of species name = mass fraction, e.g. `{ sand = 0.7, salt = 0.3 }`; at least one species"},
+    {"region.", "", kAnyNumber, "", kNoDefault, "", "", &kRegionFields},
+    {"velocity", "m/s", kAnyNumber, "three numbers", kNoDefault, "[0, 0, 0]", "velocity of a new grain"},
+    {"start", "s", kNonNegative, "", 0.0, "", "time of the first feed event"},
+    {"stop", "s", kPositive, "and > `start`", kInf, "no end", "no events after this time"},
+    {"interval", "s", kPositive, "and ≥ `run.dt`", 0.01, "", "time between feed events"},
+    {"seed", "", kAnyNumber, "0 to 2^63 − 1", kNoDefault, "`run.seed` + 1000 + the feed's index",
+     "seed of the placement generator"},
+};
+
+const Field kOutlet[] = {
+    {"region.", "", kAnyNumber, "", kNoDefault, "", "", &kRegionFields},
+    {"interval", "s", kPositive, "and ≥ `run.dt`", 0.01, "", "time between checks"},
+};
+
+const Field kSettle[] = {
+    {"time", "s", kNonNegative, "and at most 1e15 steps", kNoDefault, "", "simulated time of settling"},
+};
+
+}  // namespace
+
+const FieldTable kRegionFields{"region", "", kRegion};
+const FieldTable kFeedFields{"[[feed]]", "mixers.md", kFeed};
+const FieldTable kOutletFields{"[[outlet]]", "mixers.md", kOutlet};
+const FieldTable kSettleFields{"[settle]", "scene-files.md", kSettle};
+
+std::vector<const FieldTable*> scene_field_tables() { return {&kSettleFields, &kFeedFields, &kOutletFields}; }
+
+}  // namespace gf

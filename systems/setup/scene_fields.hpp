@@ -1,0 +1,19 @@
+// The key tables of the scene sections whose readers read through them (engine/field_table.hpp): the
+// reference in the manual is generated from these (tests/scene_fields_test.cpp).
+#pragma once
+
+#include <vector>
+
+#include "engine/field_table.hpp"
+
+namespace gf {
+
+extern const FieldTable kRegionFields;  // a fill's, feed's, outlet's or bodies' `region` inline table
+extern const FieldTable kFeedFields;    // [[feed]]
+extern const FieldTable kOutletFields;  // [[outlet]]
+extern const FieldTable kSettleFields;  // [settle]
+
+// Every table with a manual page, in the order the manual gives them.
+std::vector<const FieldTable*> scene_field_tables();
+
+}  // namespace gf
