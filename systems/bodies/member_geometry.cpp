@@ -58,10 +58,17 @@ Vector3d own_support(const MemberShape& s, const Vector3d& d) {
   return core_support(s.core(), d);
 }
 
-// libccd's support callback: the core's point farthest along dir, in the pair frame.
-void scaled_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
+// libccd's support callbacks: the core's point farthest along dir, in the pair frame; a hull's found
+// inline, the hot path of every contact between members, any other kind's through its seam.
+void hull_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
   const auto& c = *static_cast<const ScaledCore*>(obj);
-  *out = to_ccd(c.rotation * own_support(*c.shape, c.shape->rotation.transpose() * to_eigen(*dir)) + c.offset);
+  const std::size_t i = farthest_vertex(*c.shape, c.shape->rotation.transpose() * to_eigen(*dir));
+  *out = to_ccd(c.rotation * own_vertex(*c.shape, i) + c.offset);
+}
+
+void seam_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
+  const auto& c = *static_cast<const ScaledCore*>(obj);
+  *out = to_ccd(c.rotation * core_support(c.shape->core(), c.shape->rotation.transpose() * to_eigen(*dir)) + c.offset);
 }
 
 // libccd's centre callback (MPR's interior point).
@@ -84,10 +91,11 @@ ScaledCore scaled_core(const MemberShape& m, const PairFrame& f) {
 
 // The libccd settings for both GJK (here) and MPR: tolerances relative to the pair's size, explicit
 // iteration caps. epa_tolerance is set for completeness; EPA is not called.
-ccd_t ccd_settings() {
+ccd_t ccd_settings(const MemberShape& a, const MemberShape& b) {
   ccd_t ccd;
   CCD_INIT(&ccd);
-  ccd.support1 = ccd.support2 = scaled_support;
+  ccd.support1 = a.kind == CoreKind::hull ? hull_support : seam_support;
+  ccd.support2 = b.kind == CoreKind::hull ? hull_support : seam_support;
   ccd.center1 = ccd.center2 = scaled_centre;
   ccd.max_iterations = kMemberMaxIterations;
   ccd.epa_tolerance = kMemberTolerance;
@@ -438,7 +446,7 @@ MemberContact member_member(const MemberShape& a, const MemberShape& b) {
   if (centres >= a.bound_radius + b.bound_radius) return apart(a, b, centres);
   const PairFrame f = pair_frame(a, b);
   const ScaledCore sa = scaled_core(a, f), sb = scaled_core(b, f);
-  const ccd_t ccd = ccd_settings();
+  const ccd_t ccd = ccd_settings(a, b);
   const GjkResult g = gjk_distance(&sa, &sb, ccd);
   if (!g.overlap) {
     const double d = g.v.norm();
