@@ -59,7 +59,7 @@ TEST_CASE("ellipsoid core: the support point is on the surface and reaches the c
   CHECK(gf::core_reach(e.view(), c) == Approx(0.003).epsilon(1e-12));
 }
 
-TEST_CASE("ellipsoid core: the closest point meets the surface along its normal; inside is distance 0") {
+TEST_CASE("ellipsoid core: the closest point meets the surface along its normal, and inside is distance 0") {
   const Vector3d axes(0.004, 0.0025, 0.001);
   const Matrix3d r = turn(-1.1, {0, 1, 1});
   const gf::CorePoints e = ellipsoid(axes, r);

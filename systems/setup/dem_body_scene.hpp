@@ -6,7 +6,9 @@
 //               (path of an .obj or .stl, relative to the scene), "sphere" (a point dilated by
 //               radius: a sphere, with exact mass properties and no grid), "spheres" (centres =
 //               [[x, y, z], ...]: a clump of spheres of that radius, overlapping or not, the
-//               multi-sphere approximation of a shape); radius (dilation, m, >= 0; > 0 under
+//               multi-sphere approximation of a shape), "ellipsoid" (semi_axes = [a, b, c], the grain's
+//               outer ones: a smooth core, member_core.hpp; exact mass properties and no grid when radius
+//               is 0); radius (dilation, m, >= 0; > 0 under
 //               hertz_mindlin); density (kg/m^3); grid (voxel edge of the mass properties, m, default a
 //               tenth of the shape's smallest bounding-box edge); under hertz_mindlin also
 //               youngs_modulus and poisson_ratio, the same for every shape (one material for all bodies).

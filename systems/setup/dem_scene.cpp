@@ -228,7 +228,7 @@ void read_fills(DemScene& s, const SceneNode& root) {
     FillSpec spec;
     spec.line = f.line();
     spec.where = "fill[" + std::to_string(index) + "]";
-    const std::string kind = f.get_choice("kind", {"random", "file"});
+    const std::string kind = f.get_choice(kFillFields.field("kind").key, {"random", "file"});
     if (kind == "random") {
       spec.kind = FillSpec::Kind::Random;
       spec.region = read_region(f, s.gravity);
@@ -244,9 +244,10 @@ void read_fills(DemScene& s, const SceneNode& root) {
         const std::int32_t sp = species_index(s, m, name, name);
         std::size_t n;
         if (by_count) {
-          n = static_cast<std::size_t>(m.get_int(name, 0, 100000000));
+          const Range counts = kFillFields.field("count.<species>").range;
+          n = static_cast<std::size_t>(m.get_int(name, static_cast<std::int64_t>(counts.lo), static_cast<std::int64_t>(counts.hi)));
         } else {
-          const double frac = m.get_double(name, Range::open_closed(0, 0.74));
+          const double frac = m.get_double(name, kFillFields.field("volume_fraction.<species>").range);
           n = count_for_volume_fraction(spec.region, frac, 0.5 * s.species[sp].diameter);
         }
         spec.counts.emplace_back(sp, n);

@@ -19,7 +19,21 @@ const Field kRegion[] = {
     {"radius", "m", kPositive, "", kNoDefault, "required for a cylinder", "the cylinder's radius"},
     {"length", "m", kPositive, "", kNoDefault, "required for a cylinder", "the cylinder's length, half to each side of the centre"},
     {"max_height", "m", kAnyNumber, "any number; cylinders only", kInf, "no limit",
-     "keeps the part whose height above the centre (against gravity) is at most this"},
+     "keeps the part whose height above the centre (against gravity) is at most this (0: the lower half)"},
+};
+
+const Field kFill[] = {
+    {"kind", "", kAnyNumber, "`\"random\"`, `\"file\"`", kNoDefault, "", "random placement in a region, or a state file"},
+    {"region.", "", kAnyNumber, "", kNoDefault, "", "", &kRegionFields},
+    {"count.<species>", "", {0, 1e8, false, false}, "(integers)", kNoDefault, "required, or `volume_fraction`",
+     "grains of that species; give exactly one of `count` and `volume_fraction`"},
+    {"volume_fraction.<species>", "", {0, 0.74, true, false}, "", kNoDefault, "required, or `count`",
+     "solid volume fraction of that species in the region"},
+    {"seed", "", kAnyNumber, "integer ≥ 0", kNoDefault, "`run.seed` + the fill's index", "random seed of the placement"},
+    {"path", "", kAnyNumber, "path of a CSV file", kNoDefault, "required (file)",
+     "the state file, relative to the scene file"},
+    {"types.<type>", "", kAnyNumber, "a species name", kNoDefault, "required (file), at least one",
+     "maps the file's integer `type` column to a species, e.g. `types = { 1 = \"small\", 2 = \"large\" }`"},
 };
 
 const Field kFeed[] = {
@@ -49,10 +63,13 @@ const Field kSettle[] = {
 }  // namespace
 
 const FieldTable kRegionFields{"region", "", kRegion};
+const FieldTable kFillFields{"[[fill]]", "scene-files.md", kFill};
 const FieldTable kFeedFields{"[[feed]]", "mixers.md", kFeed};
 const FieldTable kOutletFields{"[[outlet]]", "mixers.md", kOutlet};
 const FieldTable kSettleFields{"[settle]", "scene-files.md", kSettle};
 
-std::vector<const FieldTable*> scene_field_tables() { return {&kSettleFields, &kFeedFields, &kOutletFields}; }
+std::vector<const FieldTable*> scene_field_tables() {
+  return {&kFillFields, &kSettleFields, &kFeedFields, &kOutletFields};
+}
 
 }  // namespace gf

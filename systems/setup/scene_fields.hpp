@@ -9,6 +9,7 @@
 namespace gf {
 
 extern const FieldTable kRegionFields;  // a fill's, feed's, outlet's or bodies' `region` inline table
+extern const FieldTable kFillFields;    // [[fill]]
 extern const FieldTable kFeedFields;    // [[feed]]
 extern const FieldTable kOutletFields;  // [[outlet]]
 extern const FieldTable kSettleFields;  // [settle]
