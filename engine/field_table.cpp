@@ -59,4 +59,10 @@ double read_number(const SceneNode& t, const Field& f) {
   return t.get_double(f.key, f.fallback, f.range);
 }
 
+std::int64_t read_integer(const SceneNode& t, const Field& f) {
+  const auto lo = static_cast<std::int64_t>(f.range.lo), hi = static_cast<std::int64_t>(f.range.hi);
+  if (std::isnan(f.fallback)) return t.get_int(f.key, lo, hi);
+  return t.get_int(f.key, static_cast<std::int64_t>(f.fallback), lo, hi);
+}
+
 }  // namespace gf

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <string>
@@ -47,5 +48,7 @@ struct FieldTable {
 
 // A number through its field: required, or with the field's default when the field has one.
 double read_number(const SceneNode& t, const Field& f);
+// An integer through its field, its range's bounds inclusive.
+std::int64_t read_integer(const SceneNode& t, const Field& f);
 
 }  // namespace gf

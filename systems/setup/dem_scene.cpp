@@ -336,11 +336,12 @@ void read_layers(DemScene& s, const SceneNode& n) {
     n.fail("distances", "give between 1 and 10,000 distances from the inlet", "e.g. distances = [0.05, 0.1, 0.15]");
   double largest = 0.0;
   for (const SpeciesSpec& sp : s.species) largest = std::max(largest, sp.diameter);
-  l.thickness = n.get_double("thickness", largest, Range::open_closed(0, 1e3));
-  l.cell = n.get_double("cell", Range::open_closed(0, 1e3));
-  l.min_grains = static_cast<int>(n.get_int("min_grains", 5, 1, 1000000));
-  l.interval = n.get_double("interval", Range::positive());
-  l.pool = static_cast<int>(n.get_int("pool", 1, 1, 1000000));
+  const FieldTable& t = kLayersFields;
+  l.thickness = n.get_double("thickness", largest, t.field("thickness").range);
+  l.cell = read_number(n, t.field("cell"));
+  l.min_grains = static_cast<int>(read_integer(n, t.field("min_grains")));
+  l.interval = read_number(n, t.field("interval"));
+  l.pool = static_cast<int>(read_integer(n, t.field("pool")));
   if (l.interval < s.dt) n.fail("interval", "shorter than the time step", "use at least run.dt");
   s.layers = l;
 }

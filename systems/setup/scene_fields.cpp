@@ -56,6 +56,19 @@ const Field kOutlet[] = {
     {"interval", "s", kPositive, "and ≥ `run.dt`", 0.01, "", "time between checks"},
 };
 
+const Field kLayers[] = {
+    {"inlet", "m", kAnyNumber, "three numbers", kNoDefault, "", "the point from which distances are measured"},
+    {"axis", "", kAnyNumber, "non-zero vector", kNoDefault, "[1, 0, 0]", "direction from the inlet along the mixer"},
+    {"distances", "m", kAnyNumber, "1 to 10,000 numbers", kNoDefault, "", "distances L of the layers from the inlet"},
+    {"thickness", "m", {0, 1e3, true, false}, "", kNoDefault, "the largest species diameter",
+     "thickness of a layer (the seed's choice is the default)"},
+    {"cell", "m", {0, 1e3, true, false}, "", kNoDefault, "", "edge of the square sample cells in a layer"},
+    {"min_grains", "", {1, 1e6, false, false}, "(integers)", 5, "",
+     "cells with fewer grains (visits, over the pool) are left out"},
+    {"interval", "s", kPositive, "and ≥ `run.dt`", kNoDefault, "", "time between samples"},
+    {"pool", "", {1, 1e6, false, false}, "(integers)", 1, "", "samples pooled per row of `layers.csv`"},
+};
+
 const Field kSettle[] = {
     {"time", "s", kNonNegative, "and at most 1e15 steps", kNoDefault, "", "simulated time of settling"},
 };
@@ -67,9 +80,10 @@ const FieldTable kFillFields{"[[fill]]", "scene-files.md", kFill};
 const FieldTable kFeedFields{"[[feed]]", "mixers.md", kFeed};
 const FieldTable kOutletFields{"[[outlet]]", "mixers.md", kOutlet};
 const FieldTable kSettleFields{"[settle]", "scene-files.md", kSettle};
+const FieldTable kLayersFields{"[analysis.layers]", "mixers.md", kLayers};
 
 std::vector<const FieldTable*> scene_field_tables() {
-  return {&kFillFields, &kSettleFields, &kFeedFields, &kOutletFields};
+  return {&kFillFields, &kSettleFields, &kFeedFields, &kOutletFields, &kLayersFields};
 }
 
 }  // namespace gf

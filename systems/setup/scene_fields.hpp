@@ -13,6 +13,7 @@ extern const FieldTable kFillFields;    // [[fill]]
 extern const FieldTable kFeedFields;    // [[feed]]
 extern const FieldTable kOutletFields;  // [[outlet]]
 extern const FieldTable kSettleFields;  // [settle]
+extern const FieldTable kLayersFields;  // [analysis.layers]
 
 // Every table with a manual page, in the order the manual gives them.
 std::vector<const FieldTable*> scene_field_tables();
