@@ -1,5 +1,6 @@
 #include "engine/field_table.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace gf {
@@ -63,6 +64,25 @@ std::int64_t read_integer(const SceneNode& t, const Field& f) {
   const auto lo = static_cast<std::int64_t>(f.range.lo), hi = static_cast<std::int64_t>(f.range.hi);
   if (std::isnan(f.fallback)) return t.get_int(f.key, lo, hi);
   return t.get_int(f.key, static_cast<std::int64_t>(f.fallback), lo, hi);
+}
+
+bool read_bool(const SceneNode& t, const Field& f) {
+  if (f.default_text.empty()) return t.get_bool(f.key);
+  if (f.default_text != "true" && f.default_text != "false")
+    throw std::logic_error("the key '" + std::string(f.key) + "' reads true or false but defaults to '" +
+                           std::string(f.default_text) + "'");
+  return t.get_bool(f.key, f.default_text == "true");
+}
+
+std::string read_choice(const SceneNode& t, const Field& f, std::vector<std::string> choices) {
+  if (f.default_text.empty()) return t.get_choice(f.key, std::move(choices));
+  std::string_view d = f.default_text;
+  if (d.size() < 4 || d.substr(0, 2) != "`\"" || d.substr(d.size() - 2) != "\"`")
+    throw std::logic_error("the key '" + std::string(f.key) + "' reads a choice but defaults to '" + std::string(d) + "'");
+  std::string fallback(d.substr(2, d.size() - 4));
+  if (std::find(choices.begin(), choices.end(), fallback) == choices.end())
+    throw std::logic_error("the key '" + std::string(f.key) + "' defaults to '" + fallback + "', not one of its choices");
+  return t.get_choice(f.key, std::move(choices), std::move(fallback));
 }
 
 }  // namespace gf

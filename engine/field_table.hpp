@@ -11,6 +11,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "engine/scene.hpp"
 
@@ -50,5 +51,10 @@ struct FieldTable {
 double read_number(const SceneNode& t, const Field& f);
 // An integer through its field, its range's bounds inclusive.
 std::int64_t read_integer(const SceneNode& t, const Field& f);
+// true or false through its field: required, or the field's `default_text` ("true" or "false").
+bool read_bool(const SceneNode& t, const Field& f);
+// One of `choices` through its field: required, or the field's `default_text` (a choice written
+// `"name"` in backticks, as the reference shows it).
+std::string read_choice(const SceneNode& t, const Field& f, std::vector<std::string> choices);
 
 }  // namespace gf

@@ -13,6 +13,8 @@
 
 #include "engine/field_table.hpp"
 #include "engine/scene.hpp"
+#include "systems/mps/liquid_fields.hpp"
+#include "systems/setup/body_fields.hpp"
 #include "systems/setup/scene_fields.hpp"
 
 namespace {
@@ -43,12 +45,19 @@ Span table_under(const std::string& page, std::string_view section) {
   return s;
 }
 
+std::vector<const gf::FieldTable*> all_tables() {
+  std::vector<const gf::FieldTable*> all = gf::scene_field_tables();
+  for (const auto* t : gf::body_field_tables()) all.push_back(t);
+  for (const auto* t : gf::liquid_field_tables()) all.push_back(t);
+  return all;
+}
+
 }  // namespace
 
 TEST_CASE("scene_fields: the manual's key tables are the ones the readers read through") {
   const std::filesystem::path manual = std::filesystem::path(GRAINFLOW_SOURCE_DIR) / "docs" / "manual";
   const bool write = std::getenv("GRAINFLOW_WRITE_KEYS") != nullptr;
-  for (const gf::FieldTable* t : gf::scene_field_tables()) {
+  for (const gf::FieldTable* t : all_tables()) {
     INFO("section " << t->section << " on " << t->page << " (GRAINFLOW_WRITE_KEYS=1 writes the generated table)");
     const std::filesystem::path file = manual / std::string(t->page);
     std::string page = read_text(file);
