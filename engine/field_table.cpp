@@ -16,9 +16,12 @@ bool is_number(const Field& f) {
 void row(const Field& f, std::string_view prefix, std::string& out) {
   out.append("| `").append(prefix).append(f.key).append("` | ");
   out.append(f.unit.empty() ? std::string_view("—") : f.unit).append(" | ");
-  if (is_number(f)) {
+  const bool adds = f.values.empty() || f.values.starts_with("and ") || f.values.starts_with("(");
+  if (is_number(f) && adds) {
     out.append(f.range.describe());
     if (!f.values.empty()) out.append(" ").append(f.values);
+  } else if (is_number(f)) {
+    out.append(f.values);  // the interval in words, where they say more than the interval
   } else {
     out.append(f.values.empty() ? std::string_view("any number") : f.values);
   }
@@ -58,6 +61,11 @@ std::string FieldTable::markdown() const {
 double read_number(const SceneNode& t, const Field& f) {
   if (std::isnan(f.fallback)) return t.get_double(f.key, f.range);
   return t.get_double(f.key, f.fallback, f.range);
+}
+
+double read_number(const SceneNode& t, const Field& f, const double* inherited) {
+  if (inherited) return t.get_double(f.key, *inherited, f.range);
+  return read_number(t, f);
 }
 
 std::int64_t read_integer(const SceneNode& t, const Field& f) {

@@ -21,6 +21,9 @@ struct FieldTable;
 
 inline constexpr Range kAnyNumber{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                                   true, true};
+inline constexpr Range kPositiveNumber{0, std::numeric_limits<double>::infinity(), true, true};      // > 0
+inline constexpr Range kNonNegativeNumber{0, std::numeric_limits<double>::infinity(), false, true};  // >= 0
+inline constexpr Range kFraction{0, 1, false, false};                                                 // [0, 1]
 inline constexpr double kNoDefault = std::numeric_limits<double>::quiet_NaN();
 
 struct Field {
@@ -28,8 +31,9 @@ struct Field {
   std::string_view unit;               // empty: none ("—" in the reference)
   Range range = kAnyNumber;            // a number's accepted interval, as the reader checks it
   std::string_view values;             // the accepted values in words where they are not a number's interval
-                                       // ("`box`, `cylinder`", "three numbers"), or, starting with "and", a
-                                       // further condition after the interval ("and ≥ `run.dt`")
+                                       // ("`box`, `cylinder`", "three numbers"); starting with "and" or "(",
+                                       // a further condition after the interval ("and ≥ `run.dt`"); for a
+                                       // number, other words replace the interval's ("0, or ≥ `run.dt`")
   double fallback = kNoDefault;        // a number's default; NaN: none, or the words of `default_text`
   std::string_view default_text;       // the default in words; empty with no fallback: "required"
   std::string_view meaning;
@@ -49,6 +53,9 @@ struct FieldTable {
 
 // A number through its field: required, or with the field's default when the field has one.
 double read_number(const SceneNode& t, const Field& f);
+// A number through its field that falls back on `inherited` where one is given (an override table's
+// key defaults to the value it overrides) and otherwise on the field's default.
+double read_number(const SceneNode& t, const Field& f, const double* inherited);
 // An integer through its field, its range's bounds inclusive.
 std::int64_t read_integer(const SceneNode& t, const Field& f);
 // true or false through its field: required, or the field's `default_text` ("true" or "false").

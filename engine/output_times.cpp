@@ -4,12 +4,30 @@
 
 namespace gf {
 
+namespace {
+
+const Field kOutputTimes[] = {
+    {"series_interval", "s", kNonNegativeNumber, "0, or ≥ `run.dt`", 0.0, "", "one `series.csv` row per interval; 0: no series"},
+    {"frame_interval", "s", kNonNegativeNumber, "0, or ≥ `run.dt`", 0.0, "", "one frame per interval; 0: no frames"},
+    {"checkpoint_interval", "s", kNonNegativeNumber, "0, or ≥ `run.dt`", 0.0, "",
+     "a checkpoint every interval; 0: only at the end"},
+    {"checkpoint_keep_all", "", kAnyNumber, "true, false", kNoDefault, "false",
+     "keep every checkpoint as `checkpoint_<step>.gfc`, not only the last"},
+    {"checkpoint_at_end", "", kAnyNumber, "true, false", kNoDefault, "true",
+     "write a checkpoint at the end (also when interrupted)"},
+};
+
+}  // namespace
+
+const FieldTable kOutputTimesFields{"[output] times", "", kOutputTimes};
+
 void read_output_times(const SceneNode& out, double dt, OutputTimes& o) {
-  o.series_interval = out.get_double("series_interval", 0.0, Range::non_negative());
-  o.frame_interval = out.get_double("frame_interval", 0.0, Range::non_negative());
-  o.checkpoint_interval = out.get_double("checkpoint_interval", 0.0, Range::non_negative());
-  o.checkpoint_keep_all = out.get_bool("checkpoint_keep_all", false);
-  o.checkpoint_at_end = out.get_bool("checkpoint_at_end", true);
+  const FieldTable& t = kOutputTimesFields;
+  o.series_interval = read_number(out, t.field("series_interval"));
+  o.frame_interval = read_number(out, t.field("frame_interval"));
+  o.checkpoint_interval = read_number(out, t.field("checkpoint_interval"));
+  o.checkpoint_keep_all = read_bool(out, t.field("checkpoint_keep_all"));
+  o.checkpoint_at_end = read_bool(out, t.field("checkpoint_at_end"));
   if (o.series_interval > 0 && o.series_interval < dt)
     out.fail("series_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no series");
   if (o.frame_interval > 0 && o.frame_interval < dt)

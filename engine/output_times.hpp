@@ -1,9 +1,12 @@
 // When a run writes its outputs: the [output] keys that DEM, body, liquid and coupled scenes share.
 #pragma once
 
+#include "engine/field_table.hpp"
+
 namespace gf {
 
-class SceneNode;
+// The keys below, as a table the model's [output] tables include.
+extern const FieldTable kOutputTimesFields;
 
 struct OutputTimes {
   double series_interval = 0;      // s, 0: no series

@@ -7,7 +7,8 @@ Runs `grainflow check SCENE --keys` on every shipped scene (scenes/**/*.toml) an
 tests/keys/, which take the branches no shipped scene takes (pair and wall overrides of each law, periodic
 y, cylinder regions, a liquid's solver table, ...); check lists each key the
 scene's systems asked for, set in the file or left at its default, and reads the key tables of
-docs/manual/*.md (a heading "### `[section]`" followed by a table whose first column is "key"). Fails when
+docs/manual/*.md (a heading "### `[section]`", or "### `[section] model = ...`" for one law's keys, followed by a
+table whose first column is "key"; a section's tables together list its keys). Fails when
   - a key some scene's readers accept is in no table of its section (undocumented), or
   - a table lists a key that no scene's readers ask for (documented but not read: a stale row, or a branch
     of a reader that no scene takes; then add a scene to tests/keys/ that takes it).
@@ -19,7 +20,7 @@ import re
 import subprocess
 import sys
 
-HEADING = re.compile(r"^### `(\[\[?)([A-Za-z0-9_.]+)(\]\]?)`\s*$")
+HEADING = re.compile(r"^### `(\[\[?)([A-Za-z0-9_.]+)(\]\]?)( [^`]*)?`\s*$")  # "[contact] model = ..." too
 ROW = re.compile(r"^\|\s*`([^`]+)`\s*\|")
 
 

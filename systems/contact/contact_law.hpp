@@ -2,7 +2,9 @@
 // contact law declares. A law is one header: a struct with
 //   name, title                 its scene name (`[contact] model = ...`) and a line for `grainflow check`
 //   Material                    what a species states for it (read_material, from a [[species]] table)
-//   Params, read_params         what a scene states per species pair and against walls
+//   Params, read_params         what a scene states per species pair and against walls, read through
+//   fields (wall_fields)        its key table (engine/field_table.hpp), from which the manual's
+//                               reference is generated; wall_fields where [contact.wall] differs
 //   kConstants, constants()     the per type-pair constants a kernel reads (computed once, at load)
 //   history                     the per-contact history component: its name and the names of its
 //                               doubles (at most kMaxHistory); the broadphase and the checkpoint carry

@@ -29,6 +29,7 @@
 #include <numbers>
 #include <vector>
 
+#include "engine/field_table.hpp"
 #include "engine/scene.hpp"
 #include "systems/contact/contact_law.hpp"
 #include "systems/contact/tangential_spring.hpp"
@@ -36,7 +37,37 @@
 
 namespace gf {
 
+// The law's keys in [contact]; [contact.wall] and [[contact.pair]] take the same keys, each defaulting
+// to the [contact] value, and [contact.wall] the wall's material besides. A species' material is
+// read from its [[species]] table.
+inline constexpr Field kHertzMindlinRows[] = {
+    {"restitution", "", {0, 1, true, false}, "", kNoDefault, "", "coefficient of restitution e"},
+    {"friction", "", kNonNegativeNumber, "", kNoDefault, "",
+     "sliding friction coefficient μ: the tangential force is capped at μ times the normal force"},
+    {"rolling_friction", "", kNonNegativeNumber, "", 0.0, "",
+     "μ_r: the constant rolling torque μ_r times the normal force times the radius"},
+    {"impact_speed", "m/s", kPositiveNumber, "", 1.0, "",
+     "the speed at which the Hertz contact time of the critical step is computed"},
+};
+inline constexpr FieldTable kHertzMindlinFields{"[contact] model = \"hertz_mindlin\"", "scene-files.md", kHertzMindlinRows};
+inline constexpr Field kHertzMaterialRows[] = {
+    {"youngs_modulus", "Pa", kPositiveNumber, "", kNoDefault, "required with `hertz_mindlin`",
+     "Young's modulus (read only by the Hertz–Mindlin law)"},
+    {"poisson_ratio", "", {-0.99, 0.5, false, false}, "", kNoDefault, "required with `hertz_mindlin`",
+     "Poisson's ratio (read only by the Hertz–Mindlin law)"},
+};
+inline constexpr FieldTable kHertzMaterialFields{"[[species]] material", "", kHertzMaterialRows};
+inline constexpr Field kHertzWallRows[] = {
+    {"youngs_modulus", "Pa", kPositiveNumber, "", kNoDefault, "rigid wall",
+     "the wall's Young's modulus; give it with `poisson_ratio`, or neither for a rigid wall"},
+    {"poisson_ratio", "", {-0.99, 0.5, false, false}, "", kNoDefault, "rigid wall",
+     "the wall's Poisson's ratio, with `youngs_modulus`"},
+};
+inline constexpr FieldTable kHertzWallFields{"[contact.wall] model = \"hertz_mindlin\"", "scene-files.md", kHertzWallRows};
+
 struct HertzMindlin {
+  static constexpr const FieldTable* fields = &kHertzMindlinFields;
+  static constexpr const FieldTable* wall_fields = &kHertzWallFields;
   static constexpr std::string_view name = "hertz_mindlin";
   static constexpr std::string_view title = "Hertz-Mindlin no-slip (seed 001)";
 
@@ -45,8 +76,8 @@ struct HertzMindlin {
     double poisson_ratio = 0.0;
   };
   static Material read_material(const SceneNode& species) {
-    return {species.get_double("youngs_modulus", Range::positive()),
-            species.get_double("poisson_ratio", Range::closed(-0.99, 0.5))};
+    return {read_number(species, kHertzMaterialFields.field("youngs_modulus")),
+            read_number(species, kHertzMaterialFields.field("poisson_ratio"))};
   }
 
   struct Params {
@@ -57,16 +88,14 @@ struct HertzMindlin {
     Material wall;               // the wall's material, in [contact.wall]
   };
   static Params read_params(const SceneNode& node, const Params* base, bool wall) {
-    Params p;
+    const FieldTable& t = *fields;
     const bool b = base != nullptr;
-    auto num = [&](std::string_view key, double fallback, Range r) {
-      return b ? node.get_double(key, fallback, r) : node.get_double(key, r);
-    };
+    Params p;
     // e = 0 would make beta -1 exactly and the damping critical; the model's beta(e) is meant for e > 0.
-    p.restitution = num("restitution", b ? base->restitution : 0, Range::open_closed(0, 1));
-    p.friction = num("friction", b ? base->friction : 0, Range::non_negative());
-    p.rolling_friction = node.get_double("rolling_friction", b ? base->rolling_friction : 0.0, Range::non_negative());
-    p.impact_speed = node.get_double("impact_speed", b ? base->impact_speed : 1.0, Range::positive());
+    p.restitution = read_number(node, t.field("restitution"), b ? &base->restitution : nullptr);
+    p.friction = read_number(node, t.field("friction"), b ? &base->friction : nullptr);
+    p.rolling_friction = read_number(node, t.field("rolling_friction"), b ? &base->rolling_friction : nullptr);
+    p.impact_speed = read_number(node, t.field("impact_speed"), b ? &base->impact_speed : nullptr);
     if (wall) {
       // A rigid wall has no Poisson ratio to give: the two keys come together or not at all.
       if (node.has("youngs_modulus") != node.has("poisson_ratio"))
@@ -74,8 +103,8 @@ struct HertzMindlin {
                   "a wall's material needs both youngs_modulus and poisson_ratio",
                   "give both (Pa, and a ratio in [-0.99, 0.5]), or neither for a rigid wall");
       if (node.has("youngs_modulus")) {
-        p.wall.youngs_modulus = node.get_double("youngs_modulus", Range::positive());
-        p.wall.poisson_ratio = node.get_double("poisson_ratio", Range::closed(-0.99, 0.5));
+        p.wall.youngs_modulus = read_number(node, wall_fields->field("youngs_modulus"));
+        p.wall.poisson_ratio = read_number(node, wall_fields->field("poisson_ratio"));
       }
     }
     return p;

@@ -1,10 +1,11 @@
 // The contact laws a scene can name in `[contact] model`. Adding a law: its header (see
-// contact_law.hpp for what it declares), its test, and its name in this list.
+// contact_law.hpp for what it declares, its key table among it), its test, and its name in this list.
 #pragma once
 
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 #include "systems/contact/hertz_mindlin.hpp"
 #include "systems/contact/linear_spring_dashpot.hpp"
@@ -54,5 +55,18 @@ std::vector<std::string> law_names_in(LawList<L...>) {
   return {std::string(L::name)...};
 }
 inline std::vector<std::string> law_names() { return law_names_in(ContactLaws{}); }
+
+// Every law's key tables ([contact], then [contact.wall] where a law has its own), for the manual.
+template <class... L>
+std::vector<const FieldTable*> law_field_tables_in(LawList<L...>) {
+  std::vector<const FieldTable*> out;
+  auto add = [&]<class Law>() {
+    out.push_back(Law::fields);
+    if constexpr (requires { Law::wall_fields; }) out.push_back(Law::wall_fields);
+  };
+  (add.template operator()<L>(), ...);
+  return out;
+}
+inline std::vector<const FieldTable*> law_field_tables() { return law_field_tables_in(ContactLaws{}); }
 
 }  // namespace gf

@@ -25,6 +25,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/field_table.hpp"
 #include "engine/scene.hpp"
 #include "systems/contact/contact_law.hpp"
 #include "systems/contact/tangential_spring.hpp"
@@ -62,7 +63,25 @@ inline double collision_period(double m_eff, double k, double e) {
   return 2.0 * std::sqrt(std::numbers::pi * std::numbers::pi + l * l) * std::sqrt(m_eff / k);
 }
 
+// The law's keys in [contact]; [contact.wall] and [[contact.pair]] take the same keys, each defaulting
+// to the [contact] value.
+inline constexpr Field kLinearSpringDashpotRows[] = {
+    {"kn", "N/m", kPositiveNumber, "", kNoDefault, "", "normal spring"},
+    {"kt", "N/m", kNonNegativeNumber, "", kNoDefault, "", "tangential spring"},
+    {"en", "", kFraction, "", kNoDefault, "", "normal restitution"},
+    {"et", "", kFraction, "", kNoDefault, "", "tangential restitution"},
+    {"friction", "", kNonNegativeNumber, "", kNoDefault, "",
+     "sliding friction coefficient f_s: the tangential force is capped at f_s times the normal force"},
+    {"kr", "N m/rad", kNonNegativeNumber, "", 0.0, "", "rolling spring (0: none)"},
+    {"er", "", kFraction, "", kNoDefault, "`en`", "rolling restitution"},
+    {"rolling_friction", "m", kNonNegativeNumber, "", 0.0, "",
+     "f_r: the rolling torque is capped at f_r times the normal force"},
+};
+inline constexpr FieldTable kLinearSpringDashpotFields{"[contact] model = \"linear_spring_dashpot\"", "scene-files.md",
+                                                       kLinearSpringDashpotRows};
+
 struct LinearSpringDashpot {
+  static constexpr const FieldTable* fields = &kLinearSpringDashpotFields;
   static constexpr std::string_view name = "linear_spring_dashpot";
   static constexpr std::string_view title = "linear spring-dashpot-slider (seed 000 Table 1)";
 
@@ -83,19 +102,19 @@ struct LinearSpringDashpot {
   };
   // `base` is the [contact] table's values when reading an override ([contact.wall], [[contact.pair]]).
   static Params read_params(const SceneNode& node, const Params* base, bool /*wall*/) {
-    Params p;
-    const bool b = base != nullptr;
-    auto num = [&](std::string_view key, double fallback, Range r) {
-      return b ? node.get_double(key, fallback, r) : node.get_double(key, r);
+    const FieldTable& t = *fields;
+    auto num = [&](std::string_view key, const double* inherited) {
+      return read_number(node, t.field(key), inherited);
     };
-    p.kn = num("kn", b ? base->kn : 0, Range::positive());
-    p.kt = num("kt", b ? base->kt : 0, Range::non_negative());
-    p.en = num("en", b ? base->en : 0, Range::closed(0, 1));
-    p.et = num("et", b ? base->et : 0, Range::closed(0, 1));
-    p.friction = num("friction", b ? base->friction : 0, Range::non_negative());
-    p.kr = node.get_double("kr", b ? base->kr : 0.0, Range::non_negative());
-    p.er = node.get_double("er", b ? base->er : p.en, Range::closed(0, 1));
-    p.rolling_friction = node.get_double("rolling_friction", b ? base->rolling_friction : 0.0, Range::non_negative());
+    Params p;
+    p.kn = num("kn", base ? &base->kn : nullptr);
+    p.kt = num("kt", base ? &base->kt : nullptr);
+    p.en = num("en", base ? &base->en : nullptr);
+    p.et = num("et", base ? &base->et : nullptr);
+    p.friction = num("friction", base ? &base->friction : nullptr);
+    p.kr = num("kr", base ? &base->kr : nullptr);
+    p.er = read_number(node, t.field("er"), base ? &base->er : &p.en);
+    p.rolling_friction = num("rolling_friction", base ? &base->rolling_friction : nullptr);
     return p;
   }
 

@@ -50,13 +50,40 @@
 #include <numbers>
 #include <vector>
 
+#include "engine/field_table.hpp"
 #include "engine/scene.hpp"
 #include "systems/contact/contact_law.hpp"
 #include "systems/contact/vec3.hpp"
 
 namespace gf {
 
+// The law's keys in [contact]; [[contact.pair]] takes the same keys, each defaulting to the [contact]
+// value. [contact.wall] has its own coefficients, whose defaults are the published wall values, not
+// [contact]'s.
+inline constexpr Field kRepresentativeVolumeRows[] = {
+    {"kd", "", kPositiveNumber, "", 0.25, "", "decay length k_d of the force amplitude, in units of R*"},
+    {"kr", "", kNonNegativeNumber, "", 15.0, "",
+     "approach factor k_r: the approach force is (1 + k_r) times the separation force"},
+    {"kp", "", kNonNegativeNumber, "", 0.15, "", "friction coefficient k_p"},
+    {"cutoff", "", {0, 0.5, true, false}, "", 0.001, "", "the amplitude A_c below which no force acts"},
+    {"slip_speed", "m/s", kNonNegativeNumber, "", 0.01, "",
+     "friction regularisation v_e (0: the unit vector of the published law)"},
+};
+inline constexpr FieldTable kRepresentativeVolumeFields{"[contact] model = \"representative_volume\"", "scene-files.md",
+                                                        kRepresentativeVolumeRows};
+inline constexpr Field kRepresentativeVolumeWallRows[] = {
+    {"kd", "", kPositiveNumber, "", 0.2, "", "the wall's k_d^u"},
+    {"kr", "", kNonNegativeNumber, "", 10.0, "", "the wall's approach factor k_r^u"},
+    {"kp", "", kNonNegativeNumber, "", 0.1, "", "the wall's friction k_p^u"},
+    {"cutoff", "", {0, 0.5, true, false}, "", kNoDefault, "`[contact]`'s", "as in `[contact]`"},
+    {"slip_speed", "m/s", kNonNegativeNumber, "", kNoDefault, "`[contact]`'s", "as in `[contact]`"},
+};
+inline constexpr FieldTable kRepresentativeVolumeWallFields{"[contact.wall] model = \"representative_volume\"",
+                                                            "scene-files.md", kRepresentativeVolumeWallRows};
+
 struct RepresentativeVolume {
+  static constexpr const FieldTable* fields = &kRepresentativeVolumeFields;
+  static constexpr const FieldTable* wall_fields = &kRepresentativeVolumeWallFields;
   static constexpr std::string_view name = "representative_volume";
   static constexpr std::string_view title = "representative volumes, no rotation (seed 004)";
 
@@ -70,21 +97,31 @@ struct RepresentativeVolume {
     double kp;  // friction (k_p)
   };
   struct Params {
-    Coefficients pair{0.25, 15.0, 0.15};  // between model particles
-    Coefficients wall{0.2, 10.0, 0.1};    // against walls (k_d^u, k_r^u, k_p^u)
-    double cutoff = 1e-3;                 // A_c: the amplitude below which nothing acts
-    double slip_speed = 0.01;             // v_e, m/s: friction regularisation (0: the paper's unit vector)
+    // The published values, as the key tables give them: between model particles, and against walls
+    // (k_d^u, k_r^u, k_p^u).
+    Coefficients pair{kRepresentativeVolumeRows[0].fallback, kRepresentativeVolumeRows[1].fallback,
+                      kRepresentativeVolumeRows[2].fallback};
+    Coefficients wall{kRepresentativeVolumeWallRows[0].fallback, kRepresentativeVolumeWallRows[1].fallback,
+                      kRepresentativeVolumeWallRows[2].fallback};
+    double cutoff = kRepresentativeVolumeRows[3].fallback;      // A_c: the amplitude below which nothing acts
+    double slip_speed = kRepresentativeVolumeRows[4].fallback;  // v_e, m/s: friction regularisation (0: the paper's unit vector)
   };
   // `base`: the [contact] values when reading [contact.wall] (wall: its coefficients) or [[contact.pair]].
+  // The coefficients not given take the table's defaults ([contact] and [contact.wall]) or the
+  // [contact] values ([[contact.pair]]).
   static Params read_params(const SceneNode& node, const Params* base, bool wall) {
     Params p = base ? *base : Params{};
+    const FieldTable& t = wall ? *wall_fields : *fields;
     Coefficients& c = wall ? p.wall : p.pair;
-    c.kd = node.get_double("kd", c.kd, Range::positive());
-    c.kr = node.get_double("kr", c.kr, Range::non_negative());
-    c.kp = node.get_double("kp", c.kp, Range::non_negative());
-    p.cutoff = node.get_double("cutoff", p.cutoff, Range{0.0, 0.5, true, false});
-    p.slip_speed = node.get_double("slip_speed", p.slip_speed, Range::non_negative());
+    c = read_coefficients(node, t, base && !wall ? &c : nullptr);
+    p.cutoff = read_number(node, t.field("cutoff"), base ? &base->cutoff : nullptr);
+    p.slip_speed = read_number(node, t.field("slip_speed"), base ? &base->slip_speed : nullptr);
     return p;
+  }
+  static Coefficients read_coefficients(const SceneNode& node, const FieldTable& t, const Coefficients* inherited) {
+    return {read_number(node, t.field("kd"), inherited ? &inherited->kd : nullptr),
+            read_number(node, t.field("kr"), inherited ? &inherited->kr : nullptr),
+            read_number(node, t.field("kp"), inherited ? &inherited->kp : nullptr)};
   }
 
   // What else the scene must be: model particles do not rotate, and |g| sets the force scale.

@@ -16,6 +16,7 @@
 #include "systems/fill/state_csv.hpp"
 #include "systems/setup/flow_scene.hpp"
 #include "systems/setup/scene_fields.hpp"
+#include "systems/walls/wall_fields.hpp"
 #include "systems/walls/contact_systems.hpp"
 #include "systems/walls/mesh_wall_scene.hpp"
 #include "systems/walls/wall_contact.hpp"
@@ -56,7 +57,8 @@ void read_contacts(DemScene& s, const SceneNode& root, const SceneNode& ct) {
   const auto wall = ct.maybe_table("wall");
   std::vector<Params> pw(n, wall ? Law::read_params(*wall, &base, true) : base);
   for (const SceneNode& pr : ct.tables("pair")) {
-    const std::string a = pr.get_string("species_a"), b = pr.get_string("species_b");
+    const std::string a = pr.get_string(kContactPairFields.field("species_a").key);
+    const std::string b = pr.get_string(kContactPairFields.field("species_b").key);
     const std::int32_t ia = species_index(s, pr, "species_a", a), ib = species_index(s, pr, "species_b", b);
     const Params p = Law::read_params(pr, &base, false);
     pp[ia * n + ib] = p;
@@ -87,7 +89,8 @@ void read_periodic(DemScene& s, const SceneNode& root) {
   if (!node) return;
   double dmax = 0.0;
   for (const SpeciesSpec& sp : s.species) dmax = std::max(dmax, sp.diameter);
-  const char* names[3] = {"x", "y", "z"};
+  const std::string_view names[3] = {kPeriodicFields.field("x").key, kPeriodicFields.field("y").key,
+                                     kPeriodicFields.field("z").key};
   for (int d = 0; d < 3; ++d) {
     if (!node->has(names[d])) continue;
     const std::vector<double> v = node->get_doubles(names[d]);
@@ -121,9 +124,10 @@ void add_mesh_wall(DemScene& s, const SceneNode& w, const std::string& name) {
 }
 
 void read_walls(DemScene& s, const SceneNode& root) {
+  const FieldTable& t = kWallFields;
   for (const SceneNode& w : root.tables("wall")) {
-    const std::string type = w.get_choice("type", {"plane", "box", "cylinder", "drum", "mesh"});
-    const std::string name = w.get_string("name", type);
+    const std::string type = read_choice(w, t.field("type"), {"plane", "box", "cylinder", "drum", "mesh"});
+    const std::string name = w.get_string(t.field("name").key, type);
     if (type == "mesh") {
       add_mesh_wall(s, w, name);
       continue;
@@ -132,15 +136,15 @@ void read_walls(DemScene& s, const SceneNode& root) {
       Wall p;
       p.kind = Wall::Kind::Plane;
       p.name = name;
-      p.point = to_v(w.get_vec3("point"));
-      p.normal = unit_vector(w, "normal", {0, 0, 1}, true);
-      p.omega = w.get_double("omega", 0.0, Range::any());
-      p.rot_point = to_v(w.get_vec3("rotation_point", {p.point.x, p.point.y, p.point.z}));
-      p.rot_axis = unit_vector(w, "rotation_axis", {p.normal.x, p.normal.y, p.normal.z}, false);
+      p.point = to_v(w.get_vec3(t.field("point").key));
+      p.normal = unit_vector(w, t.field("normal").key, {0, 0, 1}, true);
+      p.omega = read_number(w, t.field("omega"));
+      p.rot_point = to_v(w.get_vec3(t.field("rotation_point").key, {p.point.x, p.point.y, p.point.z}));
+      p.rot_axis = unit_vector(w, t.field("rotation_axis").key, {p.normal.x, p.normal.y, p.normal.z}, false);
       s.walls.push_back(p);
     } else if (type == "box") {
-      const auto lo = w.get_vec3("lo");
-      const auto hi = w.get_vec3("hi");
+      const auto lo = w.get_vec3(t.field("lo").key);
+      const auto hi = w.get_vec3(t.field("hi").key);
       for (int d = 0; d < 3; ++d)
         if (!(hi[d] > lo[d])) w.fail("hi", "each component of hi must exceed lo's", "swap or correct lo and hi");
       const char* faces[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
@@ -163,16 +167,16 @@ void read_walls(DemScene& s, const SceneNode& root) {
       Wall c;
       c.kind = Wall::Kind::CylinderInner;
       c.name = name;
-      c.center = to_v(w.get_vec3("center"));
-      c.axis = unit_vector(w, "axis", {0, 0, 1}, true);
+      c.center = to_v(w.get_vec3(t.field("center").key));
+      c.axis = unit_vector(w, t.field("axis").key, {0, 0, 1}, true);
       // A kilometre-wide drum is a typo (a radius of 1e308 overflowed the series' arrays).
-      c.radius = w.get_double("radius", Range::open_closed(0, 1e3));
-      c.omega = w.get_double("omega", 0.0, Range::any());
+      c.radius = read_number(w, t.field("radius"));
+      c.omega = read_number(w, t.field("omega"));
       require_wall_step(s, w, std::abs(c.omega) * c.radius);
       c.rot_point = c.center;
       c.rot_axis = c.axis;
       if (type == "drum") {
-        const double length = w.get_double("length", Range::open_closed(0, 1e3));
+        const double length = read_number(w, t.field("length"));
         s.walls.push_back(c);
         for (int side = 0; side < 2; ++side) {
           Wall e;
@@ -273,7 +277,8 @@ void read_fills(DemScene& s, const SceneNode& root) {
 
 void read_pictures(DemScene& s, const SceneNode& out) {
   OutputSpec& o = s.output;
-  if (out.has("picture_angles")) {
+  const FieldTable& t = kOutputFields;
+  if (out.has(t.field("picture_angles").key)) {
     o.picture_angles = out.get_doubles("picture_angles");
     for (double a : o.picture_angles)
       if (a < 0) out.fail("picture_angles", "angle " + short_number(a) + " rad is negative", "give rotation angles >= 0 (rad)");
@@ -286,7 +291,7 @@ void read_pictures(DemScene& s, const SceneNode& out) {
                      " rad would share the file " + picture_name(o.picture_angles[k]),
                  "file names carry two decimals: keep requested angles at least 0.01 rad apart");
   }
-  o.picture_interval = out.get_double("picture_interval", 0.0, Range::non_negative());
+  o.picture_interval = read_number(out, t.field("picture_interval"));
   if (o.picture_interval > 0 && o.picture_interval < 0.01)
     out.fail("picture_interval", "pictures closer than 0.01 rad would share file names (two decimals)",
              "use an interval of at least 0.01 rad, or 0 for none");
@@ -299,10 +304,10 @@ void read_pictures(DemScene& s, const SceneNode& out) {
                      short_number(m) + " rad",
                  "move the angle onto the interval's grid or at least 0.01 rad away from it");
     }
-  const std::string colour = out.get_choice("picture_colour", {"species", "speed"}, "species");
+  const std::string colour = read_choice(out, t.field("picture_colour"), {"species", "speed"});
   o.picture.colour = colour == "speed" ? PictureOptions::Colour::Speed : PictureOptions::Colour::Species;
-  o.picture.size = static_cast<int>(out.get_int("picture_size", 800, 16, 8192));
-  o.picture.speed_max = out.get_double("picture_speed_max", 0.5, Range::positive());
+  o.picture.size = static_cast<int>(read_integer(out, t.field("picture_size")));
+  o.picture.speed_max = read_number(out, t.field("picture_speed_max"));
   std::vector<double> diameters;
   for (const SpeciesSpec& sp : s.species) diameters.push_back(sp.diameter);
   o.picture.palette = species_palette(diameters);
@@ -360,21 +365,22 @@ void read_analysis(DemScene& s, const SceneNode& root) {
               "remove the [analysis] table, or define exactly two [[species]]");
   // The species the measures follow (default the larger; on equal diameters the first): a map over
   // size ratios that reach 1 names it, so the radial index keeps its sign across the map.
-  if (node->has("species")) {
+  const FieldTable& t = kAnalysisFields;
+  if (node->has(t.field("species").key)) {
     s.segregation_type = species_index(s, *node, "species", node->get_string("species"));
     s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
     s.mixing_cell = s.segregation_cell;
   }
   const double d = s.species[s.segregation_type].diameter;
-  s.mixing_cell = node->get_double("mixing_cell", s.mixing_cell, Range::open_closed(0, 1e3));
+  s.mixing_cell = read_number(*node, t.field("mixing_cell"), &s.mixing_cell);
   if (s.mixing_cell < d)
     node->fail("mixing_cell",
                "a cell of " + short_number(s.mixing_cell) + " m is narrower than the large grains (" +
                    short_number(d) + " m) and holds one of them at most",
                "give at least " + short_number(d) + " m; the default is three large diameters, " +
                    short_number(3.0 * d) + " m");
-  s.mixing_min_grains = static_cast<int>(node->get_int("mixing_min_grains", 10, 2, 1000000));
-  if (auto layers = node->maybe_table("layers")) read_layers(s, *layers);
+  s.mixing_min_grains = static_cast<int>(read_integer(*node, t.field("mixing_min_grains")));
+  if (auto layers = node->maybe_table(t.field("layers").key)) read_layers(s, *layers);
 }
 
 }  // namespace
@@ -398,31 +404,35 @@ namespace {
 
 // [run]'s step, seeds and gravity (its duration: read_duration, once the walls are known).
 void read_run(DemScene& s, const SceneNode& run, const DemLoadOptions& options) {
-  s.dt = options.outer_dt ? *options.outer_dt : run.get_double("dt", Range::positive());
-  s.dt_safety = run.get_double("dt_safety", 0.1, Range::open_closed(0, 1));
-  s.allow_unstable_dt = run.get_bool("allow_unstable_dt", false);
-  s.skin = run.get_double("skin", Range::positive());
-  s.seed = static_cast<std::uint64_t>(run.get_int("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
-  s.max_overlap = run.get_double("max_overlap", 0.1, Range::open_closed(0, 1));
-  const auto g = run.get_vec3("gravity", {0, -9.81, 0});
+  const FieldTable& t = kRunFields;
+  s.dt = options.outer_dt ? *options.outer_dt : read_number(run, t.field("dt"));
+  s.dt_safety = read_number(run, t.field("dt_safety"));
+  s.allow_unstable_dt = read_bool(run, t.field("allow_unstable_dt"));
+  s.skin = read_number(run, t.field("skin"));
+  const Field& seed = t.field("seed");
+  s.seed = static_cast<std::uint64_t>(run.get_int(seed.key, static_cast<std::int64_t>(seed.fallback), 0,
+                                                  std::numeric_limits<std::int64_t>::max()));
+  s.max_overlap = read_number(run, t.field("max_overlap"));
+  const auto g = run.get_vec3(t.field("gravity").key, {0, -9.81, 0});
   require_acceleration(run, "gravity", g);
   s.gravity = {g[0], g[1], g[2]};
 }
 
 void read_species(DemScene& s, const SceneNode& root, bool with_bodies) {
   for (const SceneNode& sp : root.tables("species")) {
+    const FieldTable& t = kSpeciesFields;
     SpeciesSpec spec;
-    spec.name = sp.get_string("name");
+    spec.name = sp.get_string(t.field("name").key);
     for (auto& other : s.species)
       if (other.name == spec.name) sp.fail("name", "species '" + spec.name + "' is defined twice", "rename one");
     // Bounds far past any granular material (osmium is 22,600 kg/m^3; a coarse-grained parcel a few cm)
     // that keep the masses, inertias and time-step terms finite: 1e308 kg/m^3 made them infinite.
-    spec.diameter = sp.get_double("diameter", Range::open_closed(0, 100));
-    spec.density = sp.get_double("density", Range::open_closed(0, 1e6));
+    spec.diameter = read_number(sp, t.field("diameter"));
+    spec.density = read_number(sp, t.field("density"));
     const double r = 0.5 * spec.diameter;
     spec.mass = spec.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
     spec.inertia = 0.4 * spec.mass * r * r;
-    spec.rotates = sp.get_bool("rotates", true);
+    spec.rotates = read_bool(sp, t.field("rotates"));
     s.species.push_back(spec);
   }
   if (s.species.empty() && !with_bodies)
@@ -434,14 +444,15 @@ void read_species(DemScene& s, const SceneNode& root, bool with_bodies) {
 
 // run.duration, or run.end_angle over the first rotating wall's speed; then both stages' step counts.
 void read_duration(DemScene& s, const SceneNode& root, const SceneNode& run) {
-  const bool has_duration = run.has("duration"), has_angle = run.has("end_angle");
+  const FieldTable& t = kRunFields;
+  const bool has_duration = run.has(t.field("duration").key), has_angle = run.has(t.field("end_angle").key);
   if (has_duration == has_angle)
     run.fail("duration", "give exactly one of 'duration' (s) and 'end_angle' (rad of drum rotation)",
              "e.g. duration = 2.0 or end_angle = 30.0");
   if (has_duration) {
-    s.duration = run.get_double("duration", Range::non_negative());
+    s.duration = read_number(run, t.field("duration"));
   } else {
-    s.end_angle = run.get_double("end_angle", Range::non_negative());
+    s.end_angle = read_number(run, t.field("end_angle"));
     double omega = 0.0;
     for (const Wall& w : s.walls)
       if (w.omega != 0.0) {
@@ -463,9 +474,10 @@ void read_duration(DemScene& s, const SceneNode& root, const SceneNode& run) {
 void read_outputs(DemScene& s, const SceneNode& root, bool with_bodies) {
   if (auto out = root.maybe_table("output")) {
     read_output_times(*out, s.dt, s.output);
-    s.output.fields.velocity = out->get_bool("frame_velocity", true);
-    s.output.fields.angular_velocity = out->get_bool("frame_angular_velocity", true);
-    s.output.fields.force = out->get_bool("frame_force", false);
+    const FieldTable& t = kOutputFields;
+    s.output.fields.velocity = read_bool(*out, t.field("frame_velocity"));
+    s.output.fields.angular_velocity = read_bool(*out, t.field("frame_angular_velocity"));
+    s.output.fields.force = read_bool(*out, t.field("frame_force"));
     if (!with_bodies) read_pictures(s, *out);  // a body scene's pictures: read_bodies
   }
   // A binary mixture reports the segregation of its larger species (grains' tables only).
@@ -489,7 +501,7 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
   read_species(s, root, with_bodies);
 
   const SceneNode ct = root.table("contact");
-  s.law = ct.get_choice("model", law_names());
+  s.law = ct.get_choice(kContactFields.field("model").key, law_names());
   with_law(s.law, [&]<class Law>() { read_contacts<Law>(s, root, ct); });
   s.critical = s.contacts->critical_period();
   // Bodies need the walls and fills read first: spheres of the fills join them as bodies.

@@ -2,6 +2,10 @@
 
 #include <limits>
 
+#include "engine/output_times.hpp"
+#include "systems/contact/laws.hpp"
+#include "systems/walls/wall_fields.hpp"
+
 namespace gf {
 
 namespace {
@@ -69,6 +73,78 @@ const Field kLayers[] = {
     {"pool", "", {1, 1e6, false, false}, "(integers)", 1, "", "samples pooled per row of `layers.csv`"},
 };
 
+const Field kRun[] = {
+    {"dt", "s", kPositive, "", kNoDefault, "",
+     "the time step. It must not exceed `dt_safety` of the contact law's smallest time-step term (printed by "
+     "`grainflow check`) unless `allow_unstable_dt`"},
+    {"duration", "s", kNonNegative, "and at most 1e15 steps", kNoDefault, "required, or `end_angle`",
+     "length of the main stage; give exactly one of `duration` and `end_angle`"},
+    {"end_angle", "rad", kNonNegative, "and at most 1e15 steps", kNoDefault, "required, or `duration`",
+     "length of the main stage as the rotation angle of the first rotating wall (needs a wall with `omega` ≠ 0)"},
+    {"skin", "m", kPositive, "", kNoDefault, "", "Verlet skin: the neighbour list holds pairs closer than r_i + r_j + skin"},
+    {"gravity", "m/s²", kAnyNumber, "three numbers, magnitude ≤ 1e6", kNoDefault, "`[0, -9.81, 0]`", "gravity"},
+    {"dt_safety", "", {0, 1, true, false}, "", 0.1, "", "`dt` may be at most this fraction of the smallest time-step term"},
+    {"allow_unstable_dt", "", kAnyNumber, "true, false", kNoDefault, "false", "run even when `dt` exceeds the limit"},
+    {"max_overlap", "", {0, 1, true, false}, "", 0.1, "",
+     "largest overlap, as a fraction of the smaller diameter; beyond it the run stops (checked in every step, see "
+     "[the step](model.md#stability-checks))"},
+    {"seed", "", kAnyNumber, "integer 0 to 2^63 − 1", 1, "",
+     "base seed of random fills (each fill adds its index) and feeds"},
+};
+
+const Field kSpecies[] = {
+    {"name", "", kAnyNumber, "unique text", kNoDefault, "", "the name fills, pairs and `[analysis]` refer to"},
+    {"diameter", "m", {0, 100, true, false}, "", kNoDefault, "", "grain diameter"},
+    {"density", "kg/m³", {0, 1e6, true, false}, "", kNoDefault, "",
+     "solid density; mass and moment of inertia (2/5 m r²) follow"},
+    {"rotates", "", kAnyNumber, "true, false", kNoDefault, "true",
+     "false: the grains only translate and their torques are not integrated; when no species rotates the grains "
+     "have no spin columns at all. The representative-volume law needs false in every species"},
+    {"", "", kAnyNumber, "", kNoDefault, "", "", &kHertzMaterialFields},
+};
+
+const Field kContact[] = {
+    {"model", "", kAnyNumber, "a law's name: `\"linear_spring_dashpot\"`, `\"hertz_mindlin\"`, `\"representative_volume\"`",
+     kNoDefault, "", "the contact law; the law's own keys follow in its table below"},
+};
+
+const Field kContactPair[] = {
+    {"species_a", "", kAnyNumber, "a species name", kNoDefault, "", "one species of the pair"},
+    {"species_b", "", kAnyNumber, "a species name", kNoDefault, "", "the other (may be the same)"},
+};
+
+const Field kPeriodic[] = {
+    {"x", "m", kAnyNumber, "`[min, max]`, max > min, length > 2 (largest diameter + skin) + skin", kNoDefault,
+     "not periodic", "the periodic extent along x"},
+    {"y", "m", kAnyNumber, "as `x`", kNoDefault, "not periodic", "the periodic extent along y"},
+    {"z", "m", kAnyNumber, "as `x`", kNoDefault, "not periodic", "the periodic extent along z"},
+};
+
+const Field kOutput[] = {
+    {"", "", kAnyNumber, "", kNoDefault, "", "", &kOutputTimesFields},
+    {"frame_velocity", "", kAnyNumber, "true, false", kNoDefault, "true", "frames hold `velocity` and `speed`"},
+    {"frame_angular_velocity", "", kAnyNumber, "true, false", kNoDefault, "true", "frames hold `angular_velocity`"},
+    {"frame_force", "", kAnyNumber, "true, false", kNoDefault, "false", "frames hold `force`"},
+    {"picture_angles", "rad", kAnyNumber, "list of numbers ≥ 0, at least 0.01 apart", kNoDefault, "none",
+     "draw a picture when the first rotating wall reaches each angle, e.g. `[2, 10, 18, 30]`"},
+    {"picture_interval", "rad", kNonNegative, "0, or ≥ 0.01", 0.0, "", "draw a picture every interval of rotation; 0: none"},
+    {"picture_colour", "", kAnyNumber, "`\"species\"`, `\"speed\"`", kNoDefault, "`\"species\"`",
+     "colour grains by species or by speed"},
+    {"picture_size", "px", {16, 8192, false, false}, "(integers)", 800, "", "picture width and height"},
+    {"picture_speed_max", "m/s", kPositive, "", 0.5, "", "the speed at the top of the speed colours"},
+};
+
+const Field kAnalysis[] = {
+    {"species", "", kAnyNumber, "a species name", kNoDefault, "the larger (the first on equal diameters)",
+     "the species whose fraction the segregation, Lacey and radial indices and the pattern classifier follow"},
+    {"mixing_cell", "m", {0, 1e3, true, false}, "and at least one diameter of `species`", kNoDefault,
+     "three diameters of `species`", "the edge of Lacey's cubic cells"},
+    {"mixing_min_grains", "", {2, 1e6, false, false}, "(integers)", 10, "",
+     "cells with fewer grains are left out of Lacey's index"},
+    {"layers", "", kAnyNumber, "a table", kNoDefault, "none",
+     "transverse layers of a continuous mixer: see [continuous mixers](mixers.md)"},
+};
+
 const Field kSettle[] = {
     {"time", "s", kNonNegative, "and at most 1e15 steps", kNoDefault, "", "simulated time of settling"},
 };
@@ -80,10 +156,22 @@ const FieldTable kFillFields{"[[fill]]", "scene-files.md", kFill};
 const FieldTable kFeedFields{"[[feed]]", "mixers.md", kFeed};
 const FieldTable kOutletFields{"[[outlet]]", "mixers.md", kOutlet};
 const FieldTable kSettleFields{"[settle]", "scene-files.md", kSettle};
+const FieldTable kRunFields{"[run]", "scene-files.md", kRun};
+const FieldTable kSpeciesFields{"[[species]]", "scene-files.md", kSpecies};
+const FieldTable kContactFields{"[contact]", "scene-files.md", kContact};
+const FieldTable kContactPairFields{"[[contact.pair]]", "scene-files.md", kContactPair};
+const FieldTable kPeriodicFields{"[periodic]", "scene-files.md", kPeriodic};
+const FieldTable kOutputFields{"[output]", "scene-files.md", kOutput};
+const FieldTable kAnalysisFields{"[analysis]", "scene-files.md", kAnalysis};
 const FieldTable kLayersFields{"[analysis.layers]", "mixers.md", kLayers};
 
 std::vector<const FieldTable*> scene_field_tables() {
-  return {&kFillFields, &kSettleFields, &kFeedFields, &kOutletFields, &kLayersFields};
+  std::vector<const FieldTable*> all{&kRunFields, &kSpeciesFields, &kContactFields};
+  for (const FieldTable* t : law_field_tables()) all.push_back(t);
+  for (const FieldTable* t : {&kContactPairFields, &kWallFields, &kFillFields, &kPeriodicFields, &kSettleFields,
+                              &kOutputFields, &kAnalysisFields, &kFeedFields, &kOutletFields, &kLayersFields})
+    all.push_back(t);
+  return all;
 }
 
 }  // namespace gf

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "systems/walls/wall_fields.hpp"
+
 namespace gf {
 
 namespace {
@@ -17,9 +19,10 @@ Vec3d direction(const SceneNode& node, std::string_view key, const Vec3d* fallba
   return {a[0] / len, a[1] / len, a[2] / len};
 }
 
-int count(const SceneNode& w, std::string_view key, std::int64_t fallback) {
-  return static_cast<int>(w.get_int(key, fallback, 1, 100000));
-}
+// The wall table's field named `key`, for the keys read below.
+const Field& field(std::string_view key) { return kWallFields.field(key); }
+
+int count(const SceneNode& w, std::string_view key) { return static_cast<int>(read_integer(w, field(key))); }
 
 // A MeshError's "<where>: <problem>. Fix: <fix>" as the scene's message at `key`.
 [[noreturn]] void fail_mesh(const SceneNode& w, std::string_view key, const MeshError& e) {
@@ -30,20 +33,20 @@ int count(const SceneNode& w, std::string_view key, std::int64_t fallback) {
 }
 
 TriangleSoup primitive(const SceneNode& w, const std::string& kind, Vec3d& axis_out, Vec3d& center_out) {
-  const Vec3d center = to_v(w.get_vec3("center"));
+  const Vec3d center = to_v(w.get_vec3(field("center").key));
   center_out = center;
   if (kind == "plate") {
-    const Vec3d normal = direction(w, "normal", nullptr);
-    const Vec3d axis = direction(w, "axis", nullptr);
+    const Vec3d normal = direction(w, field("normal").key, nullptr);
+    const Vec3d axis = direction(w, field("axis").key, nullptr);
     if (std::abs(dot(axis, normal)) > 0.999)
       w.fail("axis", "the plate's in-plane axis is (nearly) along its normal",
              "give an axis in the plate's plane, perpendicular to normal");
-    const std::vector<double> half = w.get_doubles("half_widths");
+    const std::vector<double> half = w.get_doubles(field("half_widths").key);
     if (half.size() != 2 || !(half[0] > 0 && half[1] > 0 && half[0] <= 1e3 && half[1] <= 1e3))
       w.fail("half_widths", "give the plate's two half-widths as [a, b], each > 0 and at most 1000 (m)",
              "e.g. half_widths = [0.05, 0.02]");
     std::vector<double> cells{1.0, 1.0};
-    if (w.has("cells")) cells = w.get_doubles("cells");
+    if (w.has(field("cells").key)) cells = w.get_doubles("cells");
     if (cells.size() != 2 || cells[0] != std::floor(cells[0]) || cells[1] != std::floor(cells[1]) || cells[0] < 1 ||
         cells[1] < 1 || cells[0] * cells[1] > 1e7)
       w.fail("cells", "give the plate's cells as two whole numbers [n_a, n_b], each at least 1 (at most 10^7 cells)",
@@ -52,31 +55,27 @@ TriangleSoup primitive(const SceneNode& w, const std::string& kind, Vec3d& axis_
     return plate_triangles(center, normal, axis, half[0], half[1], static_cast<int>(cells[0]),
                            static_cast<int>(cells[1]));
   }
-  const Vec3d axis = direction(w, "axis", nullptr);
+  const Vec3d axis = direction(w, field("axis").key, nullptr);
   axis_out = axis;
   if (kind == "annulus") {
-    const double outer = w.get_double("outer_radius", Range::open_closed(0, 1e3));
-    const double inner = w.get_double("inner_radius", 0.0, Range::non_negative());
+    const double outer = read_number(w, field("outer_radius"));
+    const double inner = read_number(w, field("inner_radius"));
     if (!(inner < outer))
       w.fail("inner_radius", "the inner radius " + short_number(inner) + " m is not below the outer radius " +
                                  short_number(outer) + " m",
              "give inner_radius < outer_radius (0 for a full disc)");
-    const int segments = count(w, "segments", 64);
-    if (segments < 3) w.fail("segments", "an annulus needs at least 3 segments", "e.g. segments = 64");
-    return annulus_triangles(center, axis, inner, outer, segments);
+    return annulus_triangles(center, axis, inner, outer, count(w, "segments"));
   }
-  const double radius = w.get_double("radius", Range::open_closed(0, 1e3));
-  const double length = w.get_double("length", Range::open_closed(0, 1e3));
-  const int segments = count(w, "segments", 64);
-  if (segments < 3) w.fail("segments", "a cylinder needs at least 3 segments", "e.g. segments = 64");
-  return cylinder_triangles(center, axis, radius, length, segments, count(w, "rings", 1));
+  const double radius = read_number(w, field("radius"));
+  const double length = read_number(w, field("length"));
+  return cylinder_triangles(center, axis, radius, length, count(w, "segments"), count(w, "rings"));
 }
 
 }  // namespace
 
 MeshWall read_mesh_wall(const SceneNode& w, const std::string& name, double largest_radius, double smallest_diameter,
                         double dt) {
-  const bool has_file = w.has("file"), has_primitive = w.has("primitive");
+  const bool has_file = w.has(field("file").key), has_primitive = w.has(field("primitive").key);
   if (has_file == has_primitive)
     w.fail(has_file ? "primitive" : "file", "a mesh wall takes exactly one of 'file' (an STL file) and 'primitive'",
            "give file = \"part.stl\" (relative to the scene file), or primitive = \"plate\", \"annulus\" or "
@@ -87,8 +86,8 @@ MeshWall read_mesh_wall(const SceneNode& w, const std::string& name, double larg
   const char* key = has_file ? "file" : "primitive";
   if (has_file) {
     const std::string file = w.get_string("file");
-    const double scale = w.get_double("scale", 1.0, Range::open_closed(0, 1e3));
-    const Vec3d translate = to_v(w.get_vec3("translate", {0, 0, 0}));
+    const double scale = read_number(w, field("scale"));
+    const Vec3d translate = to_v(w.get_vec3(field("translate").key, {0, 0, 0}));
     try {
       soup = read_stl(w.doc().resolve(file));
     } catch (const MeshError& e) {
@@ -107,7 +106,7 @@ MeshWall read_mesh_wall(const SceneNode& w, const std::string& name, double larg
   } catch (const MeshError& e) {
     fail_mesh(w, key, e);
   }
-  mw.omega = w.get_double("omega", 0.0, Range::any());
+  mw.omega = read_number(w, field("omega"));
   if (mw.omega != 0.0 && !defaults) {
     if (!w.has("rotation_axis"))
       w.fail("rotation_axis", "a turning mesh from a file needs its rotation axis",
@@ -116,8 +115,8 @@ MeshWall read_mesh_wall(const SceneNode& w, const std::string& name, double larg
       w.fail("rotation_point", "a turning mesh from a file needs a point on its rotation axis",
              "give rotation_point = [x, y, z] (m)");
   }
-  mw.rot_axis = direction(w, "rotation_axis", &default_axis);
-  mw.rot_point = to_v(w.get_vec3("rotation_point", {default_point.x, default_point.y, default_point.z}));
+  mw.rot_axis = direction(w, field("rotation_axis").key, &default_axis);
+  mw.rot_point = to_v(w.get_vec3(field("rotation_point").key, {default_point.x, default_point.y, default_point.z}));
   // The fastest surface point: omega times the largest distance of a vertex from the axis.
   double reach = 0.0;
   for (const Vec3d& v : mw.mesh->vertex) {
