@@ -9,7 +9,8 @@
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/broadphase/broadphase_checkpoint.hpp"
 #include "systems/integrate/integrate.hpp"
-#include "systems/setup/list_sections.hpp"
+#include "systems/periodic/periodic_checkpoint.hpp"
+#include "systems/broadphase/list_sections.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -25,11 +26,6 @@ void require(const CheckpointReader& in, bool ok, const std::string& what) {
   if (!ok)
     in.fail("it is inconsistent (" + what + ")",
             "resume from an earlier checkpoint, or from final_state.csv with a file fill");
-}
-
-template <class T>
-bool all_below(const T& v, std::size_t n) {
-  return std::all_of(v.begin(), v.end(), [n](auto x) { return x >= 0 && static_cast<std::size_t>(x) < n; });
 }
 
 void check_grains(const CheckpointReader& in, const Grains& g, std::size_t species, const Walls& walls) {
@@ -51,55 +47,12 @@ void check_grains(const CheckpointReader& in, const Grains& g, std::size_t speci
     require(in, r.type >= 0 && static_cast<std::size_t>(r.type) < species, "a queued grain's species is out of range");
 }
 
-void check_list(const CheckpointReader& in, const NeighborList& l, const PairHistory& h, const BroadphaseState& bp,
-                const Grains& g) {
-  const std::size_t pairs = l.pairs();
-  require(in, l.offsets.empty() || (l.offsets.size() == g.n_owned + 1 && l.offsets.front() == 0 &&
-                                    l.offsets.back() == pairs && std::is_sorted(l.offsets.begin(), l.offsets.end())),
-          "neighbour list offsets");
-  require(in, l.i.size() == pairs && l.key.size() == pairs && l.type_pair.size() >= pairs &&
-                  l.i_lane.size() >= pairs && l.j_lane.size() >= pairs,
-          "neighbour list lengths");
-  require(in, all_below(l.i, g.n_owned) && all_below(l.j, g.n) && all_below(l.i_lane, g.n) &&
-                  all_below(l.j_lane, g.n) && all_below(l.type_pair, static_cast<std::size_t>(kMaxSpecies * kMaxSpecies)),
-          "neighbour list rows");
-  require(in, all_below(h.pair, pairs) && std::is_sorted(h.pair.begin(), h.pair.end()), "contact history pairs");
-  for (std::size_t q = 0; q < h.width; ++q) require(in, h.value[q].size() == h.size(), "contact history lengths");
-  require(in, std::all_of(h.slot.begin(), h.slot.end(),
-                          [&](std::int32_t s) { return s >= -1 && s < static_cast<std::int64_t>(h.size()); }),
-          "contact history slots");
-  require(in, bp.ref_x.size() == bp.ref_y.size() && bp.ref_y.size() == bp.ref_z.size() &&
-                  (bp.ref_x.empty() || bp.ref_x.size() == g.n),
-          "skin reference positions");
-}
-
 template <class T>
 void require_equal(const CheckpointReader& in, const char* what, T stored, T now, const std::string& fix) {
   if (stored != now)
     in.fail(std::string("it was written with ") + what + " = " + std::to_string(stored) + ", the scene now gives " +
                 std::to_string(now),
             fix);
-}
-
-// The periodic images (the rows past n_owned), when the scene has periodic faces; a scene without
-// them must not resume a checkpoint that has image rows, nor the reverse.
-void restore_images(const CheckpointReader& in, PeriodicImages& im, const Grains& g) {
-  const bool stored = in.has("periodic.owner");
-  if (stored != im.box.any())
-    in.fail(stored ? "it was written with [periodic] faces, the scene now has none"
-                   : "it was written without [periodic] faces, the scene now has them",
-            "resume with the scene (and --set overrides) of the run that wrote the checkpoint");
-  if (!stored) {
-    require(in, g.n == g.n_owned, "ghost rows without periodic faces");
-    return;
-  }
-  in.vector("periodic.owner", im.owner);
-  in.vector("periodic.shift_x", im.sx);
-  in.vector("periodic.shift_y", im.sy);
-  in.vector("periodic.shift_z", im.sz);
-  require(in, im.owner.size() == g.n - g.n_owned && im.sx.size() == im.owner.size() &&
-                  im.sy.size() == im.owner.size() && im.sz.size() == im.owner.size() && all_below(im.owner, g.n_owned),
-          "periodic images");
 }
 
 }  // namespace
@@ -136,13 +89,7 @@ void save_dem_rows(CheckpointWriter& out, World& world, const DemScene& scene) {
   save_broadphase(out, bp, "");
   out.value("walls.rotation_enabled", world.resources.get<Walls>().rotation_enabled);
   list_sections(out, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, "");
-  const PeriodicImages& im = world.resources.get<PeriodicImages>();
-  if (im.box.any()) {
-    out.vector("periodic.owner", im.owner);
-    out.vector("periodic.shift_x", im.sx);
-    out.vector("periodic.shift_y", im.sy);
-    out.vector("periodic.shift_z", im.sz);
-  }
+  save_periodic_images(out, world.resources.get<PeriodicImages>());
   if (const FlowState* f = world.resources.find<FlowState>()) save_flow_state(out, *f);
 }
 
@@ -202,13 +149,13 @@ void restore_dem_rows(const CheckpointReader& in, World& world, const DemScene& 
   walls.rotation_enabled = in.value<bool>("walls.rotation_enabled");
   walls.place(world.clock.t);
   list_sections(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, "");
-  restore_images(in, world.resources.get<PeriodicImages>(), gr);
+  restore_periodic_images(in, world.resources.get<PeriodicImages>(), gr);
   if (scene.flow.any())
     restore_flow_state(in, world.resources.get<FlowState>(), scene.flow);
   else if (in.has("flow.feeds"))
     in.fail("it was written by a run with [[feed]] or [[outlet]] tables, the scene now has none", same_scene);
   check_grains(in, gr, scene.species.size(), walls);
-  check_list(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, gr);
+  check_list_sections(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, gr);
 }
 
 }  // namespace gf

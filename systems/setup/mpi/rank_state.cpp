@@ -16,7 +16,7 @@
 #include "systems/setup/mpi/rank_simulation.hpp"
 #include "systems/decomposition/row_bytes.hpp"
 #include "systems/flow/flow_systems.hpp"
-#include "systems/setup/list_sections.hpp"
+#include "systems/broadphase/list_sections.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
@@ -82,26 +82,6 @@ void restore_ghosts(const CheckpointReader& in, DomainGhosts& gh, const Grains& 
   at = 0;
   for (std::size_t r = 0; r < ranks; ++r)
     for (std::size_t k = 0; k < sizes[r]; ++k, at += 3) gh.shift[r].push_back({shifts[at], shifts[at + 1], shifts[at + 2]});
-}
-
-void check_list(const CheckpointReader& in, const NeighborList& l, const PairHistory& h, const BroadphaseState& bp,
-                const Grains& g) {
-  const std::size_t pairs = l.pairs();
-  require(in, l.offsets.empty() || (l.offsets.size() == g.n_owned + 1 && l.offsets.back() == pairs),
-          "neighbour list offsets");
-  require(in, l.i.size() == pairs && l.key.size() == pairs && l.type_pair.size() >= pairs &&
-                  l.i_lane.size() >= pairs && l.j_lane.size() >= pairs,
-          "neighbour list lengths");
-  require(in, all_below(l.i, g.n_owned) && all_below(l.j, g.n) && all_below(l.i_lane, g.n) && all_below(l.j_lane, g.n),
-          "neighbour list rows");
-  require(in, all_below(h.pair, pairs), "spring pairs");
-  for (std::size_t q = 0; q < h.width; ++q) require(in, h.value[q].size() == h.size(), "spring lengths");
-  require(in, std::all_of(h.slot.begin(), h.slot.end(),
-                          [&](std::int32_t s) { return s >= -1 && s < static_cast<std::int64_t>(h.size()); }),
-          "spring slots");
-  require(in, bp.ref_x.size() == bp.ref_y.size() && bp.ref_y.size() == bp.ref_z.size() &&
-                  (bp.ref_x.empty() || bp.ref_x.size() == g.n),
-          "skin reference positions");
 }
 
 void check_domain(const CheckpointReader& in, const DomainBox& now_domain);
@@ -222,7 +202,7 @@ void RankSimulation::restore(const CheckpointReader& in) {
   NeighborList& list = w.resources.get<NeighborList>();
   PairHistory& history = w.resources.get<PairHistory>();
   list_sections(in, list, history, bp, "rank.");
-  check_list(in, list, history, bp, g);
+  check_list_sections(in, list, history, bp, g);
   restore_ghosts(in, ghosts_, g, static_cast<std::size_t>(mpi_->size()));
   set_boxes(std::move(rcb));
   ghosts_.peers = box_peers(*rcb_, mpi_->rank(), reach_, &periodic_);  // as make_domain_ghosts found them
