@@ -112,110 +112,79 @@ std::string number(T v) {
   return std::string(buf, end);
 }
 
-}  // namespace
+// The header's width (6, 9 or 12 columns); spaces around the commas are tolerated as in data rows.
+std::size_t header_width(const std::filesystem::path& file, int line, std::string_view text) {
+  std::string normalised;
+  std::string_view h = text;
+  for (;;) {
+    const std::size_t c = h.find(',');
+    normalised += trim(h.substr(0, c));
+    if (c == std::string_view::npos) break;
+    normalised += ',';
+    h.remove_prefix(c + 1);
+  }
+  for (std::size_t w : {6, 9, 12})
+    if (normalised == header_of(w)) return w;
+  // The line itself is not shown: a wrong path may name any file, and its first line is not ours to echo.
+  fail(file, line,
+       "the first line is not the header '" + std::string(kHeader) + "' (optionally followed by ',vx,vy,vz' "
+       "and then ',wx,wy,wz')",
+       "make the first line exactly " + std::string(kHeader) +
+           " (SI units: diameter and positions in m), or add the velocity columns");
+}
 
-std::vector<StateRow> read_state_csv(const std::filesystem::path& file) {
-  const std::string data = read_all(file);
-  std::string_view rest(data);
-  // Spreadsheet programs put a UTF-8 byte order mark in front; it is not part of the header.
-  if (rest.starts_with("\xEF\xBB\xBF")) rest.remove_prefix(3);
+// One data row of `width` columns, every value checked.
+StateRow parse_row(const std::filesystem::path& file, int line, std::string_view text, std::size_t width) {
+  std::array<std::string_view, 12> fields;
+  std::size_t n_fields = 0;
+  std::string_view t = text;
+  for (;;) {
+    const std::size_t c = t.find(',');
+    if (n_fields < fields.size()) fields[n_fields] = trim(t.substr(0, c));
+    ++n_fields;
+    if (c == std::string_view::npos) break;
+    t.remove_prefix(c + 1);
+  }
+  if (n_fields != width) {
+    fail(file, line,
+         std::to_string(n_fields) + " fields, expected " + std::to_string(width) + " (" + header_of(width) + ")",
+         "give every row exactly the " + std::to_string(width) + " columns of the header, with no extra commas");
+  }
+  for (std::size_t c = 0; c < width; ++c)
+    if (fields[c].empty()) fail(file, line, "column '" + std::string(kColumns[c]) + "' is empty", "fill in every column");
 
-  std::vector<StateRow> rows;
-  rows.reserve(data.size() / 48);  // rows are ~60 bytes in the usual files: no regrowth
-  int line = 0;
-  bool header_seen = false;
-  std::size_t width = 0;  // columns of the header
-  while (!rest.empty()) {
-    const std::size_t nl = rest.find('\n');
-    const std::string_view raw = rest.substr(0, nl);
-    rest.remove_prefix(nl == std::string_view::npos ? rest.size() : nl + 1);
-    ++line;
-    const std::string_view text = trim(raw);
-
-    if (!header_seen) {
-      // Compare field by field so that spaces around the commas are tolerated as in data rows.
-      std::string normalised;
-      std::string_view h = text;
-      for (;;) {
-        const std::size_t c = h.find(',');
-        normalised += trim(h.substr(0, c));
-        if (c == std::string_view::npos) break;
-        normalised += ',';
-        h.remove_prefix(c + 1);
-      }
-      for (std::size_t w : {6, 9, 12})
-        if (normalised == header_of(w)) width = w;
-      if (width == 0) {
-        // The line itself is not shown: a wrong path may name any file, and its first line is not ours to echo.
-        fail(file, line,
-             "the first line is not the header '" + std::string(kHeader) + "' (optionally followed by ',vx,vy,vz' "
-             "and then ',wx,wy,wz')",
-             "make the first line exactly " + std::string(kHeader) +
-                 " (SI units: diameter and positions in m), or add the velocity columns");
-      }
-      header_seen = true;
-      continue;
-    }
-    if (text.empty()) continue;
-
-    std::array<std::string_view, 12> fields;
-    std::size_t n_fields = 0;
-    std::string_view t = text;
-    for (;;) {
-      const std::size_t c = t.find(',');
-      if (n_fields < fields.size()) fields[n_fields] = trim(t.substr(0, c));
-      ++n_fields;
-      if (c == std::string_view::npos) break;
-      t.remove_prefix(c + 1);
-    }
-    if (n_fields != width) {
+  const LineParser p{file, line};
+  StateRow row{};
+  row.line = line;
+  row.id = p.integer<std::int64_t>(fields[0], 0);
+  row.type = p.integer<std::int32_t>(fields[1], 1);
+  row.diameter = p.real(fields[2], 2);
+  for (int i = 0; i < 3; ++i) row.x[i] = p.real(fields[3 + i], 3 + i);
+  for (std::size_t c = 6; c < width; ++c) {
+    double& value = c < 9 ? row.v[c - 6] : row.w[c - 9];
+    value = p.real(fields[c], c);
+    if (!std::isfinite(value))
+      fail(file, line, "column '" + std::string(kColumns[c]) + "' is " + gf::quoted(fields[c]) + ", not finite",
+           "give finite velocities (m/s and rad/s)");
+  }
+  if (!std::isfinite(row.diameter) || !(row.diameter > 0.0)) {
+    fail(file, line, "diameter " + std::string(fields[2]) + " is not a finite number > 0",
+         "give every grain a positive diameter in m");
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(row.x[i])) {
       fail(file, line,
-           std::to_string(n_fields) + " fields, expected " + std::to_string(width) + " (" + header_of(width) + ")",
-           "give every row exactly the " + std::to_string(width) + " columns of the header, with no extra commas");
+           "column '" + std::string(kColumns[3 + i]) + "' is " + std::string(fields[3 + i]) +
+               ", positions must be finite",
+           "give finite coordinates in m");
     }
-    for (std::size_t c = 0; c < width; ++c) {
-      if (fields[c].empty()) {
-        fail(file, line, "column '" + std::string(kColumns[c]) + "' is empty",
-             "fill in every column");
-      }
-    }
-
-    const LineParser p{file, line};
-    StateRow row{};
-    row.line = line;
-    row.id = p.integer<std::int64_t>(fields[0], 0);
-    row.type = p.integer<std::int32_t>(fields[1], 1);
-    row.diameter = p.real(fields[2], 2);
-    for (int i = 0; i < 3; ++i) row.x[i] = p.real(fields[3 + i], 3 + i);
-    for (std::size_t c = 6; c < width; ++c) {
-      double& value = c < 9 ? row.v[c - 6] : row.w[c - 9];
-      value = p.real(fields[c], c);
-      if (!std::isfinite(value))
-        fail(file, line, "column '" + std::string(kColumns[c]) + "' is " + gf::quoted(fields[c]) + ", not finite",
-             "give finite velocities (m/s and rad/s)");
-    }
-
-    if (!std::isfinite(row.diameter) || !(row.diameter > 0.0)) {
-      fail(file, line, "diameter " + std::string(fields[2]) + " is not a finite number > 0",
-           "give every grain a positive diameter in m");
-    }
-    for (int i = 0; i < 3; ++i) {
-      if (!std::isfinite(row.x[i])) {
-        fail(file, line,
-             "column '" + std::string(kColumns[3 + i]) + "' is " + std::string(fields[3 + i]) +
-                 ", positions must be finite",
-             "give finite coordinates in m");
-      }
-    }
-    rows.push_back(row);
   }
-  if (!header_seen) {
-    fail(file, 1, "the file is empty, expected the header '" + std::string(kHeader) + "'",
-         "write the header line, then one row per grain");
-  }
+  return row;
+}
 
-  // Ids key contact history and outputs, so a repeat is an error. Sorting (id, row) pairs finds
-  // repeats without a hash table; the report names the earliest line that repeats an id.
+// Ids key contact history and outputs, so a repeat is an error. Sorting (id, row) pairs finds
+// repeats without a hash table; the report names the earliest line that repeats an id.
+void require_unique_ids(const std::filesystem::path& file, const std::vector<StateRow>& rows) {
   std::vector<std::pair<std::int64_t, std::uint32_t>> ids(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) ids[r] = {rows[r].id, static_cast<std::uint32_t>(r)};
   std::sort(ids.begin(), ids.end());
@@ -233,10 +202,40 @@ std::vector<StateRow> read_state_csv(const std::filesystem::path& file) {
   }
   if (repeat != rows.size()) {
     fail(file, rows[repeat].line,
-         "id " + number(rows[repeat].id) + " is already used at line " +
-             std::to_string(rows[original].line),
+         "id " + number(rows[repeat].id) + " is already used at line " + std::to_string(rows[original].line),
          "give every grain a unique id");
   }
+}
+
+}  // namespace
+
+std::vector<StateRow> read_state_csv(const std::filesystem::path& file) {
+  const std::string data = read_all(file);
+  std::string_view rest(data);
+  // Spreadsheet programs put a UTF-8 byte order mark in front; it is not part of the header.
+  if (rest.starts_with("\xEF\xBB\xBF")) rest.remove_prefix(3);
+
+  std::vector<StateRow> rows;
+  rows.reserve(data.size() / 48);  // rows are ~60 bytes in the usual files: no regrowth
+  int line = 0;
+  std::size_t width = 0;  // columns of the header; 0 before it
+  while (!rest.empty()) {
+    const std::size_t nl = rest.find('\n');
+    const std::string_view raw = rest.substr(0, nl);
+    rest.remove_prefix(nl == std::string_view::npos ? rest.size() : nl + 1);
+    ++line;
+    const std::string_view text = trim(raw);
+    if (width == 0) {
+      width = header_width(file, line, text);
+    } else if (!text.empty()) {
+      rows.push_back(parse_row(file, line, text, width));
+    }
+  }
+  if (width == 0) {
+    fail(file, 1, "the file is empty, expected the header '" + std::string(kHeader) + "'",
+         "write the header line, then one row per grain");
+  }
+  require_unique_ids(file, rows);
   return rows;
 }
 

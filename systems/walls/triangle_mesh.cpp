@@ -348,9 +348,9 @@ void transform_soup(TriangleSoup& soup, double scale, const Vec3d& translate) {
 
 // ---- Geometry -----------------------------------------------------------------------------------------
 
-TriangleMesh build_mesh(const TriangleSoup& soup) {
-  TriangleMesh m;
-  m.name = soup.name;
+namespace {
+
+void require_usable(const TriangleSoup& soup) {
   const std::size_t nt = soup.size();
   if (nt == 0)
     fail(soup.name, "the mesh holds no triangles", "give a mesh with at least one facet (an empty solid is not a wall)");
@@ -360,8 +360,11 @@ TriangleMesh build_mesh(const TriangleSoup& soup) {
     for (int k = 0; k < 3; ++k)
       if (!finite(soup.corners[3 * t + static_cast<std::size_t>(k)]))
         fail(soup.where(t), "a corner is not a finite number", "check scale and translate, and the file's numbers");
-  // Weld: corners sorted by coordinates, equal ones one vertex.
-  std::vector<std::uint32_t> order(3 * nt);
+}
+
+// Weld: corners sorted by coordinates, equal ones one vertex; the vertex of each corner.
+std::vector<std::uint32_t> weld(const TriangleSoup& soup, TriangleMesh& m) {
+  std::vector<std::uint32_t> order(soup.corners.size());
   std::iota(order.begin(), order.end(), 0u);
   auto less = [&](std::uint32_t i, std::uint32_t j) {
     const Vec3d &a = soup.corners[i], &b = soup.corners[j];
@@ -370,50 +373,48 @@ TriangleMesh build_mesh(const TriangleSoup& soup) {
     return a.z < b.z;
   };
   std::sort(order.begin(), order.end(), less);
-  std::vector<std::uint32_t> vid(3 * nt);
+  std::vector<std::uint32_t> vid(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) {
     if (k == 0 || less(order[k - 1], order[k])) m.vertex.push_back(soup.corners[order[k]]);
     vid[order[k]] = static_cast<std::uint32_t>(m.vertex.size() - 1);
   }
-  m.tri.resize(nt);
-  m.at = soup.at;
-  m.normal.resize(nt);
-  m.centre.resize(nt);
-  m.bound.resize(nt);
-  m.edge_out.resize(nt);
-  m.edge_of.resize(nt);
-  m.shortest_edge = std::numeric_limits<double>::infinity();
-  for (std::size_t t = 0; t < nt; ++t) {
-    m.tri[t] = {vid[3 * t], vid[3 * t + 1], vid[3 * t + 2]};
-    const Vec3d a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
-    const Vec3d n = cross(b - a, c - a);
-    const double longest2 = std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
-    const double n_len = norm(n);
-    if (!(n_len > 1e-12 * longest2))
-      fail(soup.where(t),
-           longest2 == 0.0 ? std::string("the triangle's three corners coincide")
-                           : std::string("the triangle is degenerate (its corners are collinear or two coincide)"),
-           "repair the mesh (remove zero-area facets, e.g. with MeshLab's \"Remove Zero Area Faces\") and export it "
-           "again");
-    m.normal[t] = (1.0 / n_len) * n;
-    m.centre[t] = (1.0 / 3.0) * (a + b + c);
-    m.bound[t] = std::sqrt(std::max({dot(a - m.centre[t], a - m.centre[t]), dot(b - m.centre[t], b - m.centre[t]),
-                                     dot(c - m.centre[t], c - m.centre[t])}));
-    for (int k = 0; k < 3; ++k) {
-      const Vec3d p0 = m.corner(t, k), p1 = m.corner(t, (k + 1) % 3), opp = m.corner(t, (k + 2) % 3);
-      const Vec3d e = p1 - p0;
-      m.shortest_edge = std::min(m.shortest_edge, norm(e));
-      Vec3d out = unit(cross(e, m.normal[t]));
-      if (dot(out, opp - p0) > 0) out = -out;
-      m.edge_out[t][static_cast<std::size_t>(k)] = out;
-    }
+  return vid;
+}
+
+// Triangle t's normal, centre, bounding radius and outward edge normals; a degenerate one refused.
+void triangle_geometry(const TriangleSoup& soup, std::size_t t, TriangleMesh& m) {
+  const Vec3d a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
+  const Vec3d n = cross(b - a, c - a);
+  const double longest2 = std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
+  const double n_len = norm(n);
+  if (!(n_len > 1e-12 * longest2))
+    fail(soup.where(t),
+         longest2 == 0.0 ? std::string("the triangle's three corners coincide")
+                         : std::string("the triangle is degenerate (its corners are collinear or two coincide)"),
+         "repair the mesh (remove zero-area facets, e.g. with MeshLab's \"Remove Zero Area Faces\") and export it "
+         "again");
+  m.normal[t] = (1.0 / n_len) * n;
+  m.centre[t] = (1.0 / 3.0) * (a + b + c);
+  m.bound[t] = std::sqrt(std::max({dot(a - m.centre[t], a - m.centre[t]), dot(b - m.centre[t], b - m.centre[t]),
+                                   dot(c - m.centre[t], c - m.centre[t])}));
+  for (int k = 0; k < 3; ++k) {
+    const Vec3d p0 = m.corner(t, k), p1 = m.corner(t, (k + 1) % 3), opp = m.corner(t, (k + 2) % 3);
+    const Vec3d e = p1 - p0;
+    m.shortest_edge = std::min(m.shortest_edge, norm(e));
+    Vec3d out = unit(cross(e, m.normal[t]));
+    if (dot(out, opp - p0) > 0) out = -out;
+    m.edge_out[t][static_cast<std::size_t>(k)] = out;
   }
-  // Edges: the triangles' sides sorted by their vertex pair.
+}
+
+// Edges: the triangles' sides sorted by their vertex pair; the key (vertex pair) of each edge.
+std::vector<std::uint64_t> build_edges(TriangleMesh& m) {
   struct Side {
     std::uint64_t key;
     std::uint32_t t;
     std::uint32_t k;
   };
+  const std::size_t nt = m.tri.size();
   std::vector<Side> sides;
   sides.reserve(3 * nt);
   for (std::size_t t = 0; t < nt; ++t)
@@ -434,7 +435,11 @@ TriangleMesh build_mesh(const TriangleSoup& soup) {
     m.edge_of[sides[s].t][sides[s].k] = static_cast<std::uint32_t>(edge_key.size() - 1);
   }
   m.edge_start.push_back(static_cast<std::uint32_t>(sides.size()));
-  // Vertex neighbours from the edges.
+  return edge_key;
+}
+
+// Vertex neighbours from the edges.
+void build_vertex_neighbours(const std::vector<std::uint64_t>& edge_key, TriangleMesh& m) {
   const std::size_t nv = m.vertex.size();
   m.vertex_start.assign(nv + 1, 0);
   for (const std::uint64_t k : edge_key) ++m.vertex_start[(k >> 32) + 1], ++m.vertex_start[(k & 0xffffffffu) + 1];
@@ -446,7 +451,11 @@ TriangleMesh build_mesh(const TriangleSoup& soup) {
     m.vertex_nbr[fill[a]++] = b;
     m.vertex_nbr[fill[b]++] = a;
   }
-  // Flat regions: union-find through edges of two parallel triangles.
+}
+
+// Flat regions: union-find through edges of two parallel triangles.
+void build_flat_regions(TriangleMesh& m) {
+  const std::size_t nt = m.tri.size();
   std::vector<std::uint32_t> parent(nt);
   std::iota(parent.begin(), parent.end(), 0u);
   auto root = [&](std::uint32_t i) {
@@ -465,6 +474,30 @@ TriangleMesh build_mesh(const TriangleSoup& soup) {
     if (id[r] == ~0u) id[r] = m.regions++;
     m.region[t] = id[r];
   }
+}
+
+}  // namespace
+
+TriangleMesh build_mesh(const TriangleSoup& soup) {
+  require_usable(soup);
+  TriangleMesh m;
+  m.name = soup.name;
+  const std::size_t nt = soup.size();
+  const std::vector<std::uint32_t> vid = weld(soup, m);
+  m.tri.resize(nt);
+  m.at = soup.at;
+  m.normal.resize(nt);
+  m.centre.resize(nt);
+  m.bound.resize(nt);
+  m.edge_out.resize(nt);
+  m.edge_of.resize(nt);
+  m.shortest_edge = std::numeric_limits<double>::infinity();
+  for (std::size_t t = 0; t < nt; ++t) {
+    m.tri[t] = {vid[3 * t], vid[3 * t + 1], vid[3 * t + 2]};
+    triangle_geometry(soup, t, m);
+  }
+  build_vertex_neighbours(build_edges(m), m);
+  build_flat_regions(m);
   m.lo = m.hi = m.vertex.front();
   for (const Vec3d& v : m.vertex) {
     m.lo = {std::min(m.lo.x, v.x), std::min(m.lo.y, v.y), std::min(m.lo.z, v.z)};
