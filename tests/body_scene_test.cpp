@@ -14,6 +14,7 @@
 #include "systems/bodies/bodies.hpp"
 #include "systems/bodies/body_contact.hpp"
 #include "systems/bodies/body_shapes.hpp"
+#include "systems/setup/body_fields.hpp"
 #include "systems/setup/dem_simulation.hpp"
 #include "tests/test_support.hpp"
 
@@ -206,6 +207,15 @@ TEST_CASE("bodies scene keys for fixed bodies, outputs and analysis are checked 
   CHECK_THAT(load_error(kScene + "\n[periodic]\nx = [-1, 1]\n"), Catch::Contains("periodic"));
   CHECK_THAT(load_error(kScene + "\n[[species]]\nname = \"a\"\ndiameter = 0.01\ndensity = 1000\n[[outlet]]\n"),
              Catch::Contains("outlet") && Catch::Contains("[[fill]]"));
+}
+
+TEST_CASE("the [[shape]] key table states a letter's default sizes") {
+  const gf::LetterSize size;  // what build_letter starts from
+  CHECK(gf::kShapeFields.field("width").fallback == size.width);
+  CHECK(gf::kShapeFields.field("depth").fallback == size.depth);
+  CHECK(gf::kShapeFields.field("stroke").fallback == size.stroke);
+  CHECK(size.height == 0.180);  // the table's words: "0.180 (`letter`)"
+  CHECK_THAT(std::string(gf::kShapeFields.field("height").default_text), Catch::Contains("0.180 (`letter`)"));
 }
 
 TEST_CASE("a body contact overlapping past run.max_overlap stops the run naming the limit and the fix") {

@@ -9,6 +9,14 @@
 
 namespace gf {
 
+extern const FieldTable kShapeFields;         // [[shape]]
+extern const FieldTable kBodiesFields;        // [[bodies]] (its region: kRegionFields)
+extern const FieldTable kBodyOutputFields;    // a body scene's [output]
+extern const FieldTable kBodyAnalysisFields;  // a body scene's [analysis]
+extern const FieldTable kReposeFields;        // [[analysis.repose]]
+extern const FieldTable kReposeRegionFields;  // a heap's `region` inline table (a box)
+extern const FieldTable kSinkFields;          // [sink]
+
 // Every composite-grain table with a manual page, in the order the manual gives them.
 std::vector<const FieldTable*> body_field_tables();
 

@@ -13,6 +13,7 @@
 
 #include "engine/read_file.hpp"
 #include "systems/analysis/metrics.hpp"
+#include "systems/setup/body_fields.hpp"
 #include "systems/setup/body_sphere_fill.hpp"
 #include "systems/setup/repose_scene.hpp"
 #include "systems/bodies/body_contact.hpp"
@@ -30,42 +31,52 @@ namespace {
 
 Eigen::Vector3d to_e(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 
+const Field& shape_field(std::string_view key) { return kShapeFields.field(key); }
+
+ShapeSpec build_up_down_cone(const SceneNode& t, double r) {
+  UpDownCone c;
+  c.base_radius = read_number(t, shape_field("base_radius"));
+  c.neck_radius = read_number(t, shape_field("neck_radius"));
+  c.height = read_number(t, shape_field("height"));
+  c.facets = static_cast<int>(read_integer(t, shape_field("facets")));
+  c.join = read_choice(t, shape_field("join"), {"narrow_ends", "wide_ends"}) == "narrow_ends"
+               ? UpDownCone::Join::narrow_ends
+               : UpDownCone::Join::wide_ends;
+  return up_down_cone_shape(c, r);
+}
+
+ShapeSpec build_letter(const SceneNode& t, double r) {
+  // Required of a letter (the table's default names the kind that requires it).
+  const std::string letter = t.get_choice(shape_field("letter").key, {"O", "T", "Z", "K", "A", "C"});
+  LetterSize size;
+  size.width = read_number(t, shape_field("width"));
+  Field height = shape_field("height");  // required for an up_down_cone; a letter's has a default
+  height.fallback = size.height;
+  size.height = read_number(t, height);
+  size.depth = read_number(t, shape_field("depth"));
+  size.stroke = read_number(t, shape_field("stroke"));
+  return letter_shape(letter[0], size, r);
+}
+
 ShapeSpec build_shape(const SceneNode& t, const std::string& kind, double r) {
-  if (kind == "box") return box_shape(to_e(t.get_vec3("size")), r);
+  if (kind == "box") return box_shape(to_e(t.get_vec3(shape_field("size").key)), r);
   if (kind == "triangular_prism")
-    return triangular_prism_shape(t.get_double("side", Range::positive()), t.get_double("length", Range::positive()), r);
-  if (kind == "up_down_cone") {
-    UpDownCone c;
-    c.base_radius = t.get_double("base_radius", Range::positive());
-    c.neck_radius = t.get_double("neck_radius", Range::non_negative());
-    c.height = t.get_double("height", Range::positive());
-    c.facets = static_cast<int>(t.get_int("facets", 12, 3, static_cast<std::int64_t>(kMaxCoreVertices / 2)));
-    c.join = t.get_choice("join", {"narrow_ends", "wide_ends"}, "narrow_ends") == "narrow_ends"
-                 ? UpDownCone::Join::narrow_ends
-                 : UpDownCone::Join::wide_ends;
-    return up_down_cone_shape(c, r);
-  }
+    return triangular_prism_shape(read_number(t, shape_field("side")), read_number(t, shape_field("length")), r);
+  if (kind == "up_down_cone") return build_up_down_cone(t, r);
   if (kind == "sphere") return spheres_shape(std::array{Eigen::Vector3d::Zero().eval()}, r);
-  if (kind == "ellipsoid") return ellipsoid_shape(to_e(t.get_vec3("semi_axes")), r);
+  if (kind == "ellipsoid") return ellipsoid_shape(to_e(t.get_vec3(shape_field("semi_axes").key)), r);
   if (kind == "spheres") {
     std::vector<Eigen::Vector3d> centres;
-    for (const auto& c : t.get_vec3_list("centres")) centres.push_back(to_e(c));
+    for (const auto& c : t.get_vec3_list(shape_field("centres").key)) centres.push_back(to_e(c));
     return spheres_shape(centres, r);
   }
-  if (kind == "letter") {
-    const std::string letter = t.get_choice("letter", {"O", "T", "Z", "K", "A", "C"});
-    LetterSize size;
-    size.width = t.get_double("width", size.width, Range::positive());
-    size.height = t.get_double("height", size.height, Range::positive());
-    size.depth = t.get_double("depth", size.depth, Range::positive());
-    size.stroke = t.get_double("stroke", size.stroke, Range::positive());
-    return letter_shape(letter[0], size, r);
-  }
-  const std::filesystem::path file = t.doc().resolve(t.get_string("path"));
+  if (kind == "letter") return build_letter(t, r);
+  const Field& path = shape_field("path");
+  const std::filesystem::path file = t.doc().resolve(t.get_string(path.key));
   try {
     return read_shape_file(file, r);
   } catch (const ShapeFileError& e) {
-    t.fail("path", e.what(), "correct the shape file or give another path");
+    t.fail(path.key, e.what(), "correct the shape file or give another path");
   }
 }
 
@@ -76,40 +87,45 @@ double smallest_edge(const ShapeSpec& shape) {
 
 BodyShape read_shape(const DemScene& s, const SceneNode& t) {
   BodyShape out;
-  out.name = t.get_string("name");
+  out.name = t.get_string(shape_field("name").key);
   out.line = t.line();
-  const std::string kind =
-      t.get_choice("kind", {"box", "triangular_prism", "up_down_cone", "letter", "file", "sphere", "spheres", "ellipsoid"});
-  const bool round = kind == "sphere" || kind == "spheres";
-  const double r = t.get_double("radius", round ? Range::open_closed(0, 100) : Range::closed(0, 100));
+  const Field& kind_field = shape_field("kind");
+  const std::string kind = read_choice(
+      t, kind_field, {"box", "triangular_prism", "up_down_cone", "letter", "file", "sphere", "spheres", "ellipsoid"});
+  Field radius = shape_field("radius");  // a sphere or a clump of spheres needs a radius > 0
+  radius.range.lo_open = kind == "sphere" || kind == "spheres";
+  const double r = read_number(t, radius);
   if (s.law == "hertz_mindlin" && r == 0.0)
-    t.fail("radius", "a sharp shape (radius 0) has no Hertz stiffness", "give the shape a dilation radius > 0 (m)");
-  const double rho = t.get_double("density", Range::open_closed(0, 1e6));
+    t.fail(radius.key, "a sharp shape (radius 0) has no Hertz stiffness", "give the shape a dilation radius > 0 (m)");
+  const double rho = read_number(t, shape_field("density"));
   try {
     out.shape = build_shape(t, kind, r);
   } catch (const std::invalid_argument& e) {
-    t.fail("kind", std::string("the ") + kind + " cannot be built: " + e.what(), "correct its dimensions or radius");
+    t.fail(kind_field.key, std::string("the ") + kind + " cannot be built: " + e.what(), "correct its dimensions or radius");
   }
+  Field grid = shape_field("grid");
   if (kind == "sphere") {  // exact: no grid
-    if (t.has("grid")) t.fail("grid", "a sphere's mass properties are exact, not counted on a grid", "remove grid");
+    if (t.has(grid.key)) t.fail(grid.key, "a sphere's mass properties are exact, not counted on a grid", "remove grid");
     out.props = sphere_mass_properties(r, rho);
     out.bound = r;
     return out;
   }
   if (kind == "ellipsoid" && r == 0.0) {  // exact: no grid
-    if (t.has("grid")) t.fail("grid", "a sharp ellipsoid's mass properties are exact, not counted on a grid", "remove grid");
-    out.props = ellipsoid_mass_properties(to_e(t.get_vec3("semi_axes")), rho);
+    if (t.has(grid.key))
+      t.fail(grid.key, "a sharp ellipsoid's mass properties are exact, not counted on a grid", "remove grid");
+    out.props = ellipsoid_mass_properties(to_e(t.get_vec3(shape_field("semi_axes").key)), rho);
     out.bound = shape_reach(out.shape, out.props.centre);
     return out;
   }
-  const double h = t.get_double("grid", 0.1 * smallest_edge(out.shape), Range::positive());
+  grid.fallback = 0.1 * smallest_edge(out.shape);  // the default the table states in words
+  const double h = read_number(t, grid);
   try {
     out.props = voxel_mass_properties(shape_members(out.shape), rho, h);
   } catch (const std::invalid_argument& e) {
-    t.fail("grid", e.what(), "give a coarser grid (m)");
+    t.fail(grid.key, e.what(), "give a coarser grid (m)");
   }
   if (out.props.voxels < 8)
-    t.fail("grid", "only " + std::to_string(out.props.voxels) + " voxels lie inside the shape",
+    t.fail(grid.key, "only " + std::to_string(out.props.voxels) + " voxels lie inside the shape",
            "give a grid edge (m) well below the shape's smallest dimension");
   out.bound = shape_reach(out.shape, out.props.centre);
   return out;
@@ -117,54 +133,69 @@ BodyShape read_shape(const DemScene& s, const SceneNode& t) {
 
 bool empty_lattice(const std::array<std::size_t, 3>& n) { return n[0] == 0 || n[1] == 0 || n[2] == 0; }
 
-// A height along -gravity (m): with the default gravity, the y coordinate.
-double read_height(const SceneNode& t, const char* key) { return t.get_double(key, Range::closed(-1e6, 1e6)); }
+const Field& output_field(std::string_view key) { return kBodyOutputFields.field(key); }
 
-// [output], [analysis] and [sink] of a body scene (the keys are in the header). The grains' [output]
-// keys that bodies share (series_interval, frame_interval) are read by load_dem_scene.
+// A body scene's [output]: its pictures, and the frame fields a body frame always holds. The keys
+// bodies share with grains (series_interval, frame_interval, the checkpoints) are read by load_dem_scene.
+void read_body_output(const DemScene& s, const SceneNode& out, BodyOutputSpec& o) {
+  for (const Field* f : {&output_field("picture_angles"), &output_field("picture_speed_max")})
+    if (out.has(f->key))
+      out.fail(f->key, "body pictures are drawn at times, not at drum angles, and coloured by group or layer",
+               "remove it; use picture_interval (s) and picture_colour = \"group\" or \"layer\"");
+  const Field& interval = output_field("picture_interval");
+  o.picture_interval = read_number(out, interval);
+  if (o.picture_interval > 0 && o.picture_interval < s.dt)
+    out.fail(interval.key, "shorter than the time step", "use a multiple of run.dt, or 0 for no pictures");
+  if (o.picture_interval > 0 && o.picture_interval < 1e-4)
+    out.fail(interval.key, "pictures closer than 1e-4 s would share file names (four decimals)",
+             "use an interval of at least 1e-4 s, or 0 for none");
+  o.picture_size = static_cast<int>(read_integer(out, output_field("picture_size")));
+  o.colour_by_layer = read_choice(out, output_field("picture_colour"), {"group", "layer"}) == "layer";
+  o.view_axis = read_choice(out, output_field("picture_view"), {"z", "x"}) == "z" ? 2 : 0;
+  const Field& force = output_field("frame_force");
+  if (read_bool(out, force)) out.fail(force.key, "body frames hold no forces", "remove frame_force, or set it false");
+  const Field &velocity = output_field("frame_velocity"), &angular = output_field("frame_angular_velocity");
+  if (!read_bool(out, velocity) || !read_bool(out, angular))
+    out.fail(out.has(velocity.key) ? velocity.key : angular.key,
+             "body frames always hold velocities and angular velocities (what a restart from them needs)",
+             "remove the key");
+}
+
+// A body scene's [analysis]: the outlet height (m along -gravity) and the heaps of [[analysis.repose]].
+void read_body_analysis(const DemScene& s, const SceneNode& an, BodyOutputSpec& o) {
+  for (const char* key : {"species", "mixing_cell", "mixing_min_grains"}) {
+    const Field& f = kBodyAnalysisFields.field(key);
+    if (an.has(f.key))
+      an.fail(f.key, "the mixing measures compare species of grains, and a body scene has none",
+              "remove it; bodies take outlet_height (m) and [[analysis.repose]]");
+  }
+  const Field& outlet = kBodyAnalysisFields.field("outlet_height");
+  o.has_outlet = an.has(outlet.key);
+  if (o.has_outlet) o.outlet_height = read_number(an, outlet);
+  if (an.has("repose")) {  // [[analysis.repose]]: its keys are kReposeFields
+    const double g = std::sqrt(s.gravity.x * s.gravity.x + s.gravity.y * s.gravity.y + s.gravity.z * s.gravity.z);
+    if (!(g > 0)) an.fail("repose", "a heap's slope is measured against gravity, and run.gravity is zero", "give run.gravity");
+    o.repose = read_repose(an, {-s.gravity.x / g, -s.gravity.y / g, -s.gravity.z / g});
+  }
+}
+
+// [sink]: its height (m along -gravity), below the outlet's.
+void read_sink(const SceneNode& sink, BodyOutputSpec& o) {
+  const Field& height = kSinkFields.field("height");
+  o.has_sink = true;
+  o.sink_height = read_number(sink, height);
+  if (o.has_outlet && o.sink_height >= o.outlet_height)
+    sink.fail(height.key, "the sink lies at or above analysis.outlet_height: bodies still in the hopper would vanish",
+              "give a height below the outlet (m along -gravity)");
+}
+
+// [output], [analysis] and [sink] of a body scene (body_fields.hpp), the overlap scale, and the drum
+// walls' speed against it.
 void read_body_outputs(const DemScene& s, const SceneNode& root, BodiesSpec& b) {
   BodyOutputSpec& o = b.output;
-  if (const auto out = root.maybe_table("output")) {
-    for (const char* key : {"picture_angles", "picture_speed_max"})
-      if (out->has(key))
-        out->fail(key, "body pictures are drawn at times, not at drum angles, and coloured by group or layer",
-                  "remove it; use picture_interval (s) and picture_colour = \"group\" or \"layer\"");
-    o.picture_interval = out->get_double("picture_interval", 0.0, Range::closed(0, 1e12));
-    if (o.picture_interval > 0 && o.picture_interval < s.dt)
-      out->fail("picture_interval", "shorter than the time step", "use a multiple of run.dt, or 0 for no pictures");
-    if (o.picture_interval > 0 && o.picture_interval < 1e-4)
-      out->fail("picture_interval", "pictures closer than 1e-4 s would share file names (four decimals)",
-                "use an interval of at least 1e-4 s, or 0 for none");
-    o.picture_size = static_cast<int>(out->get_int("picture_size", 800, 16, 8192));
-    o.colour_by_layer = out->get_choice("picture_colour", {"group", "layer"}, "group") == "layer";
-    o.view_axis = out->get_choice("picture_view", {"z", "x"}, "z") == "z" ? 2 : 0;
-    if (out->get_bool("frame_force", false))
-      out->fail("frame_force", "body frames hold no forces", "remove frame_force, or set it false");
-    if (!out->get_bool("frame_velocity", true) || !out->get_bool("frame_angular_velocity", true))
-      out->fail(out->has("frame_velocity") ? "frame_velocity" : "frame_angular_velocity",
-                "body frames always hold velocities and angular velocities (what a restart from them needs)",
-                "remove the key");
-  }
-  if (const auto an = root.maybe_table("analysis")) {
-    for (const char* key : {"species", "mixing_cell", "mixing_min_grains"})
-      if (an->has(key))
-        an->fail(key, "the mixing measures compare species of grains, and a body scene has none",
-                 "remove it; bodies take outlet_height (m) and [[analysis.repose]]");
-    o.has_outlet = an->has("outlet_height");
-    if (o.has_outlet) o.outlet_height = read_height(*an, "outlet_height");
-    if (an->has("repose")) {
-      const double g = std::sqrt(s.gravity.x * s.gravity.x + s.gravity.y * s.gravity.y + s.gravity.z * s.gravity.z);
-      if (!(g > 0)) an->fail("repose", "a heap's slope is measured against gravity, and run.gravity is zero", "give run.gravity");
-      o.repose = read_repose(*an, {-s.gravity.x / g, -s.gravity.y / g, -s.gravity.z / g});
-    }
-  }
-  if (const auto sink = root.maybe_table("sink")) {
-    o.has_sink = true;
-    o.sink_height = read_height(*sink, "height");
-    if (o.has_outlet && o.sink_height >= o.outlet_height)
-      sink->fail("height", "the sink lies at or above analysis.outlet_height: bodies still in the hopper would vanish",
-                 "give a height below the outlet (m along -gravity)");
-  }
+  if (const auto out = root.maybe_table("output")) read_body_output(s, *out, o);
+  if (const auto an = root.maybe_table("analysis")) read_body_analysis(s, *an, o);
+  if (const auto sink = root.maybe_table("sink")) read_sink(*sink, o);
   // The overlap scale: the thinnest moving shape's smallest outer dimension (fixed walls and gates
   // may be thinner than any grain without tightening the grains' limit).
   o.overlap_scale = std::numeric_limits<double>::infinity();
@@ -182,13 +213,16 @@ void read_body_outputs(const DemScene& s, const SceneNode& root, BodiesSpec& b) 
   }
 }
 
+const Field& bodies_field(std::string_view key) { return kBodiesFields.field(key); }
+
 std::size_t shape_index(const BodiesSpec& b, const SceneNode& t) {
-  const std::string name = t.get_string("shape");
+  const Field& shape = bodies_field("shape");
+  const std::string name = t.get_string(shape.key);
   for (std::size_t k = 0; k < b.shapes.size(); ++k)
     if (b.shapes[k].name == name) return k;
   std::string names;
   for (const BodyShape& sh : b.shapes) names += (names.empty() ? "'" : ", '") + sh.name + "'";
-  t.fail("shape", "no [[shape]] is named '" + name + "'", "use one of the [[shape]] names: " + names);
+  t.fail(shape.key, "no [[shape]] is named '" + name + "'", "use one of the [[shape]] names: " + names);
 }
 
 std::array<double, 4> random_quaternion(std::mt19937_64& rng) {
@@ -207,7 +241,7 @@ std::array<double, 4> random_quaternion(std::mt19937_64& rng) {
 std::vector<std::array<double, 3>> lattice_positions(const SceneNode& t, const BodiesSpec& b, std::size_t shape,
                                                      const Region& region, std::size_t count) {
   if (region.kind != Region::Kind::Box)
-    t.fail("arrangement", "a lattice fills a box region", "give region = { shape = \"box\", lo, hi }, or arrangement = \"random\"");
+    t.fail(bodies_field("arrangement").key, "a lattice fills a box region", "give region = { shape = \"box\", lo, hi }, or arrangement = \"random\"");
   const double bound = b.shapes[shape].bound, step = 2.02 * bound;
   std::array<std::size_t, 3> n{};
   std::array<double, 3> first{};
@@ -242,8 +276,8 @@ std::vector<std::array<double, 3>> lattice_positions(const SceneNode& t, const B
 std::vector<std::array<double, 3>> random_positions(const DemScene& s, const SceneNode& t, const BodiesSpec& b,
                                                     std::size_t shape, std::uint64_t seed) {
   const Region region = read_fill_region(t, s.gravity);
-  const auto count = static_cast<std::size_t>(t.get_int("count", 1, 100000));
-  if (t.get_choice("arrangement", {"random", "lattice"}, "random") == "lattice")
+  const auto count = static_cast<std::size_t>(read_integer(t, bodies_field("count")));
+  if (read_choice(t, bodies_field("arrangement"), {"random", "lattice"}) == "lattice")
     return lattice_positions(t, b, shape, region, count);
   std::vector<PlacedGrain> existing;
   for (const BodyPlacement& p : b.placed) existing.push_back({p.x, 0, b.shapes[p.shape].bound});
@@ -261,7 +295,7 @@ std::vector<std::array<double, 3>> random_positions(const DemScene& s, const Sce
 // frame), each with its centre of mass, orientation of the shape's frame, velocity and angular
 // velocity: a run restarted from a frame's state.
 std::vector<BodyPlacement> frame_file_placements(const SceneNode& t, std::size_t shape, const std::string& name) {
-  const std::filesystem::path file = t.doc().resolve(t.get_string("file"));
+  const std::filesystem::path file = t.doc().resolve(t.get_string(bodies_field("file").key));
   std::string text;
   FileProblem why;
   if (!read_regular_file(file, std::size_t(1) << 30, text, why)) t.fail("file", why.problem, why.fix);
@@ -309,32 +343,44 @@ std::vector<BodyPlacement> frame_file_placements(const SceneNode& t, std::size_t
   return out;
 }
 
+// `remove_at` (s of the main stage), or -1 when the bodies stay.
+double read_remove_at(const SceneNode& t) {
+  const Field& f = bodies_field("remove_at");
+  return t.has(f.key) ? read_number(t, f) : -1.0;
+}
+
 void read_placements(const DemScene& s, const SceneNode& t, std::size_t index, BodiesSpec& b) {
   const std::size_t shape = shape_index(b, t);
-  const int group = static_cast<int>(t.get_int("group", static_cast<std::int64_t>(index), 0, 1000000));
-  if (t.has("file")) {
+  Field group_field = bodies_field("group");
+  group_field.fallback = static_cast<double>(index);  // the default the table states in words
+  const int group = static_cast<int>(read_integer(t, group_field));
+  if (t.has(bodies_field("file").key)) {
     for (const char* key : {"positions", "count", "orientation", "velocity", "fixed"})
-      if (t.has(key))
+      if (t.has(bodies_field(key).key))
         t.fail(key, "the bodies of a frame file take their state from it", std::string("remove ") + key + ", or file");
-    for (BodyPlacement p : frame_file_placements(t, shape, b.shapes[shape].name)) {
+    const std::vector<BodyPlacement> placed = frame_file_placements(t, shape, b.shapes[shape].name);
+    const double remove_at = read_remove_at(t);
+    for (BodyPlacement p : placed) {
       p.group = group;
-      p.remove_at = t.has("remove_at") ? t.get_double("remove_at", Range::closed(0, 1e12)) : -1.0;
+      p.remove_at = remove_at;
       b.placed.push_back(p);
     }
     return;
   }
-  if (t.has("positions") == t.has("count"))
-    t.fail("positions", "give exactly one of 'positions', 'count' (with a region) and 'file' (a body frame)",
+  const Field& positions = bodies_field("positions");
+  if (t.has(positions.key) == t.has(bodies_field("count").key))
+    t.fail(positions.key, "give exactly one of 'positions', 'count' (with a region) and 'file' (a body frame)",
            "e.g. positions = [[0, 0.1, 0]] or count = 10 with region = { shape = \"box\", lo, hi }");
-  const auto seed = static_cast<std::uint64_t>(
-      t.get_int("seed", static_cast<std::int64_t>(s.seed + index), 0, std::numeric_limits<std::int64_t>::max()));
-  const auto xs = t.has("positions") ? t.get_vec3_list("positions") : random_positions(s, t, b, shape, seed);
-  const bool random = t.get_choice("orientation", {"identity", "random"}, "identity") == "random";
-  const bool fixed = t.get_bool("fixed", false);
-  const auto v = t.get_vec3("velocity", {0, 0, 0});
+  const auto seed = static_cast<std::uint64_t>(t.get_int(
+      bodies_field("seed").key, static_cast<std::int64_t>(s.seed + index), 0, std::numeric_limits<std::int64_t>::max()));
+  const auto xs = t.has(positions.key) ? t.get_vec3_list(positions.key) : random_positions(s, t, b, shape, seed);
+  const bool random = read_choice(t, bodies_field("orientation"), {"identity", "random"}) == "random";
+  const bool fixed = read_bool(t, bodies_field("fixed"));
+  const Field& velocity = bodies_field("velocity");
+  const auto v = t.get_vec3(velocity.key, {0, 0, 0});
   if (fixed && (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0))
-    t.fail("velocity", "a fixed body never moves", "remove velocity, or fixed = true");
-  const double remove_at = t.has("remove_at") ? t.get_double("remove_at", Range::closed(0, 1e12)) : -1.0;
+    t.fail(velocity.key, "a fixed body never moves", "remove velocity, or fixed = true");
+  const double remove_at = read_remove_at(t);
   std::mt19937_64 rng(seed);
   for (const auto& x : xs) {
     BodyPlacement p{shape, t.line(), fixed, remove_at, group, x, {1.0, 0.0, 0.0, 0.0}, v, {0.0, 0.0, 0.0}};
@@ -438,9 +484,10 @@ BodiesSpec read_bodies(const DemScene& s, const SceneNode& root) {
   std::vector<SceneNode> shapes = root.tables("shape");
   if (shapes.empty() && s.species.empty())
     root.fail("shape", "the [[bodies]] name no shape", "add a [[shape]] table with name and kind");
+  const std::string_view name = shape_field("name").key;
   for (const SceneNode& t : shapes) {
     for (const BodyShape& other : b.shapes)
-      if (other.name == t.get_string("name")) t.fail("name", "shape '" + other.name + "' is defined twice", "rename one");
+      if (other.name == t.get_string(name)) t.fail(name, "shape '" + other.name + "' is defined twice", "rename one");
     b.shapes.push_back(read_shape(s, t));
   }
   add_species_shapes(s, root, b);
@@ -450,7 +497,7 @@ BodiesSpec read_bodies(const DemScene& s, const SceneNode& root) {
   place_fill_spheres(s, b, static_cast<int>(tables.size()));
   bool moving = false;
   for (const BodyPlacement& p : b.placed) moving = moving || !p.fixed;
-  if (!moving) tables.front().fail("fixed", "every body is fixed: nothing would move", "leave some [[bodies]] moving");
+  if (!moving) tables.front().fail(bodies_field("fixed").key, "every body is fixed: nothing would move", "leave some [[bodies]] moving");
   for (const SceneNode& sp : root.tables("species")) shapes.push_back(sp);  // their materials, as the shapes'
   with_law(s.law, [&]<class L>() { read_model<L>(root, shapes, b); });
   read_body_outputs(s, root, b);
