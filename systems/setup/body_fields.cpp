@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "engine/output_times.hpp"
 #include "systems/bodies/mass_properties.hpp"
 #include "systems/setup/scene_fields.hpp"
 
@@ -96,15 +97,8 @@ const Field kBodies[] = {
      "`orientation`, `velocity` and `fixed` are refused beside it"},
 };
 
-constexpr std::string_view kAfterStep = "and either 0 or ≥ `run.dt`";
-
 const Field kBodyOutput[] = {
-    {"series_interval", "s", kNonNegative, kAfterStep, 0.0, "0 (none)", "rows of `series.csv`"},
-    {"frame_interval", "s", kNonNegative, kAfterStep, 0.0, "0 (none)", "body frames `frames/frame_NNNNNN.csv`"},
-    {"checkpoint_interval", "s", kNonNegative, kAfterStep, 0.0, "0 (at the end only)", "checkpoints of the main stage"},
-    {"checkpoint_keep_all", "", kAnyNumber, "true, false", kNoDefault, "false",
-     "keep every checkpoint, not only the latest"},
-    {"checkpoint_at_end", "", kAnyNumber, "true, false", kNoDefault, "true", "write a checkpoint when the run ends"},
+    {"", "", kAnyNumber, "", kNoDefault, "", "", &kOutputTimesFields},  // frames: frames/frame_NNNNNN.csv
     {"picture_interval", "s", kTime, "and either 0, or ≥ `run.dt` and ≥ 1e-4", 0.0, "0 (none)",
      "a side view every interval, `pictures/time_SSSS.SSSS.png`"},
     {"picture_size", "px", {16, 8192, false, false}, "(integers)", 800, "", "the picture's longer side"},

@@ -205,18 +205,19 @@ void read_walls(DemScene& s, const SceneNode& root) {
 
 Region read_region(const SceneNode& f, const Gravity& g) {
   const SceneNode r = f.table("region");
-  const std::string shape = r.get_choice("shape", {"box", "cylinder"});
+  const FieldTable& t = kRegionFields;
+  const std::string shape = read_choice(r, t.field("shape"), {"box", "cylinder"});
   Region region;
   if (shape == "box") {
-    region = Region::box(r.get_vec3("lo"), r.get_vec3("hi"));
+    region = Region::box(r.get_vec3(t.field("lo").key), r.get_vec3(t.field("hi").key));
   } else {
     const double glen = std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
     const std::array<double, 3> up =
         glen > 0 ? std::array<double, 3>{-g.x / glen, -g.y / glen, -g.z / glen} : std::array<double, 3>{0, 1, 0};
-    const Vec3d axis = unit_vector(r, "axis", {0, 0, 1}, true);
-    region = Region::cylinder(r.get_vec3("center"), {axis.x, axis.y, axis.z},
-                              read_number(r, kRegionFields.field("radius")), read_number(r, kRegionFields.field("length")),
-                              read_number(r, kRegionFields.field("max_height")), up);
+    const Vec3d axis = unit_vector(r, t.field("axis").key, {0, 0, 1}, true);
+    region = Region::cylinder(r.get_vec3(t.field("center").key), {axis.x, axis.y, axis.z},
+                              read_number(r, t.field("radius")), read_number(r, t.field("length")),
+                              read_number(r, t.field("max_height")), up);
   }
   if (const std::string why = region.problem(); !why.empty()) r.fail("shape", why, "correct the region's geometry");
   return region;
@@ -332,17 +333,17 @@ void read_pictures(DemScene& s, const SceneNode& out) {
 void read_layers(DemScene& s, const SceneNode& n) {
   LayerSettings l;
   l.type_a = s.segregation_type;
-  const Vec3d axis = unit_vector(n, "axis", {1, 0, 0}, true);
+  const FieldTable& t = kLayersFields;
+  const Vec3d axis = unit_vector(n, t.field("axis").key, {1, 0, 0}, true);
   l.axis = {axis.x, axis.y, axis.z};
-  const auto inlet = n.get_vec3("inlet");
+  const auto inlet = n.get_vec3(t.field("inlet").key);
   l.inlet = {inlet[0], inlet[1], inlet[2]};
-  l.distances = n.get_doubles("distances");
+  l.distances = n.get_doubles(t.field("distances").key);
   if (l.distances.empty() || l.distances.size() > 10000)
     n.fail("distances", "give between 1 and 10,000 distances from the inlet", "e.g. distances = [0.05, 0.1, 0.15]");
   double largest = 0.0;
   for (const SpeciesSpec& sp : s.species) largest = std::max(largest, sp.diameter);
-  const FieldTable& t = kLayersFields;
-  l.thickness = n.get_double("thickness", largest, t.field("thickness").range);
+  l.thickness = read_number(n, t.field("thickness"), &largest);
   l.cell = read_number(n, t.field("cell"));
   l.min_grains = static_cast<int>(read_integer(n, t.field("min_grains")));
   l.interval = read_number(n, t.field("interval"));

@@ -19,7 +19,7 @@ const Field kRegion[] = {
     {"lo", "m", kAnyNumber, "three numbers, each below `hi`'s", kNoDefault, "required for a box", "the box's lower corner"},
     {"hi", "m", kAnyNumber, "three numbers, each above `lo`'s", kNoDefault, "required for a box", "the box's upper corner"},
     {"center", "m", kAnyNumber, "three numbers", kNoDefault, "required for a cylinder", "the cylinder's centre"},
-    {"axis", "", kAnyNumber, "non-zero vector", kNoDefault, "[0, 0, 1]", "the cylinder's axis direction"},
+    {"axis", "", kAnyNumber, "non-zero vector", kNoDefault, "required for a cylinder", "the cylinder's axis direction"},
     {"radius", "m", kPositive, "", kNoDefault, "required for a cylinder", "the cylinder's radius"},
     {"length", "m", kPositive, "", kNoDefault, "required for a cylinder", "the cylinder's length, half to each side of the centre"},
     {"max_height", "m", kAnyNumber, "any number; cylinders only", kInf, "no limit",
@@ -62,7 +62,7 @@ const Field kOutlet[] = {
 
 const Field kLayers[] = {
     {"inlet", "m", kAnyNumber, "three numbers", kNoDefault, "", "the point from which distances are measured"},
-    {"axis", "", kAnyNumber, "non-zero vector", kNoDefault, "[1, 0, 0]", "direction from the inlet along the mixer"},
+    {"axis", "", kAnyNumber, "non-zero vector", kNoDefault, "", "direction from the inlet along the mixer"},
     {"distances", "m", kAnyNumber, "1 to 10,000 numbers", kNoDefault, "", "distances L of the layers from the inlet"},
     {"thickness", "m", {0, 1e3, true, false}, "", kNoDefault, "the largest species diameter",
      "thickness of a layer (the seed's choice is the default)"},
