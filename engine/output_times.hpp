@@ -4,6 +4,7 @@
 namespace gf {
 
 class SceneNode;
+struct FieldTable;
 
 struct OutputTimes {
   double series_interval = 0;      // s, 0: no series
@@ -17,5 +18,8 @@ struct OutputTimes {
 // checkpoint_at_end from an [output] table. An interval shorter than the time step dt is refused at
 // its key: it would write every step (and with checkpoint_keep_all a file per step, without bound).
 void read_output_times(const SceneNode& out, double dt, OutputTimes& o);
+// The same through a section's key table (engine/field_table.hpp), which must hold those five keys:
+// their ranges and defaults are the table's.
+void read_output_times(const SceneNode& out, double dt, OutputTimes& o, const FieldTable& fields);
 
 }  // namespace gf
