@@ -14,6 +14,8 @@
 
 #include "engine/field_table.hpp"
 #include "engine/scene.hpp"
+#include "systems/coupling/coupling_fields.hpp"
+#include "systems/coupling/drag.hpp"
 #include "systems/mps/liquid_fields.hpp"
 #include "systems/setup/body_fields.hpp"
 #include "systems/setup/scene_fields.hpp"
@@ -50,6 +52,7 @@ std::vector<const gf::FieldTable*> all_tables() {
   std::vector<const gf::FieldTable*> all = gf::scene_field_tables();
   for (const auto* t : gf::body_field_tables()) all.push_back(t);
   for (const auto* t : gf::liquid_field_tables()) all.push_back(t);
+  all.push_back(&gf::kCouplingFields);  // liquid.md's, after [drive]; the coupling's own (systems/coupling)
   return all;
 }
 
@@ -108,4 +111,11 @@ TEST_CASE("scene_fields: numbers are read with the table's range and default") {
   CHECK(gf::read_number(f, gf::kFeedFields.field("interval")) == 0.01);  // the table's default
   CHECK_THROWS_WITH(gf::read_number(f, gf::kFeedFields.field("stop")), Catch::Matchers::Contains("stop"));
   CHECK_THROWS_WITH(gf::read_number(f, gf::kFeedFields.field("mass_rate")), Catch::Matchers::Contains("mass_rate"));
+}
+
+TEST_CASE("scene_fields: the [coupling] table names every drag law, the first the default") {
+  const gf::Field& drag = gf::kCouplingFields.field("drag");
+  for (const std::string& name : gf::drag_law_names())
+    CHECK(drag.values.find("`\"" + name + "\"`") != std::string_view::npos);
+  CHECK(drag.default_text == "`\"" + std::string(gf::drag_laws()[0].name) + "\"`");
 }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "systems/mps/liquid_fields.hpp"
+
 namespace gf {
 
 std::optional<FlowDrive> read_flow_drive(const SceneNode& root, const LiquidParams& params) {
@@ -12,8 +14,8 @@ std::optional<FlowDrive> read_flow_drive(const SceneNode& root, const LiquidPara
             "use a geometry with a periodic axis (type = \"channel\" or \"pipe\"), or remove [drive]");
   FlowDrive d;
   d.axis = params.periodic.axis;
-  d.target = t->get_double("mean_velocity", Range::closed(-1e3, 1e3));
-  d.relaxation = t->get_double("relaxation", 1.0, Range::open_closed(0.0, 1.0));
+  d.target = read_number(*t, kDriveFields.field("mean_velocity"));
+  d.relaxation = read_number(*t, kDriveFields.field("relaxation"));
   return d;
 }
 

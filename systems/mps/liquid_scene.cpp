@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "engine/machine_memory.hpp"
+#include "systems/mps/liquid_fields.hpp"
 
 namespace gf {
 
@@ -18,32 +19,35 @@ bool multiple_of(double length, double l0) {
 }
 
 void read_geometry(LiquidScene& s, const SceneNode& root) {
+  const FieldTable& T = kLiquidGeometryFields;
   const SceneNode g = root.table("geometry");
   LiquidGeometry& geo = s.geometry;
   geo.dim = s.params.k.dim;
   const double l0 = s.params.k.l0;
-  const std::string type = g.get_choice("type", {"tank", "box", "channel", "pipe"});
+  const std::string type = read_choice(g, T.field("type"), {"tank", "box", "channel", "pipe"});
   geo.kind = type == "tank"      ? LiquidGeometry::Kind::Tank
              : type == "box"     ? LiquidGeometry::Kind::Box
              : type == "channel" ? LiquidGeometry::Kind::Channel
                                  : LiquidGeometry::Kind::Pipe;
   const int min_layers = static_cast<int>(std::ceil(s.params.k.re / l0 - 1e-9));
-  geo.layers = static_cast<int>(g.get_int("layers", std::max(3, min_layers), 1, 20));
+  const Field& layers = T.field("layers");
+  geo.layers = static_cast<int>(g.get_int(layers.key, std::max(3, min_layers), static_cast<std::int64_t>(layers.range.lo),
+                                          static_cast<std::int64_t>(layers.range.hi)));
   if (geo.layers < min_layers)
     g.fail("layers", std::to_string(geo.layers) + " wall+dummy layers do not cover the kernel radius (" +
                          short_number(s.params.k.re / l0) + " l0): wall nodes would see a truncated neighbourhood",
            "set layers >= " + std::to_string(min_layers) + " or remove the key");
   if (geo.kind == LiquidGeometry::Kind::Pipe) {
     if (geo.dim != 3) g.fail("type", "a pipe needs liquid.dim = 3", "use type = \"channel\" in 2D");
-    geo.center = g.get_vec3("center");
-    geo.radius = g.get_double("radius", Range::positive());
-    const double len = g.get_double("length", Range::positive());
+    geo.center = g.get_vec3(T.field("center").key);
+    geo.radius = read_number(g, T.field("radius"));
+    const double len = read_number(g, T.field("length"));
     geo.lo = {geo.center[0], 0, 0};
     geo.hi = {geo.center[0] + len, 0, 0};
     if (geo.radius < 2 * l0) g.fail("radius", "the pipe is narrower than 4 particle spacings", "reduce liquid.l0");
   } else {
-    geo.lo = g.get_vec3("lo");
-    geo.hi = g.get_vec3("hi");
+    geo.lo = g.get_vec3(T.field("lo").key);
+    geo.hi = g.get_vec3(T.field("hi").key);
     for (int a = 0; a < geo.dim; ++a)
       if (!(geo.hi[a] > geo.lo[a])) g.fail("hi", "each component of hi must exceed lo's", "swap or correct lo and hi");
     if (geo.dim == 2 && (geo.lo[2] != 0 || geo.hi[2] != 0))
@@ -93,13 +97,113 @@ void read_fluid(LiquidScene& s, const SceneNode& root) {
   s.fluid_line = blocks.front().line();
   for (const SceneNode& b : blocks) {
     FluidBlock fb;
-    fb.lo = b.get_vec3("lo");
-    fb.hi = b.get_vec3("hi");
-    fb.velocity = b.get_vec3("velocity", {0, 0, 0});
+    fb.lo = b.get_vec3(kFluidBlockFields.field("lo").key);
+    fb.hi = b.get_vec3(kFluidBlockFields.field("hi").key);
+    fb.velocity = b.get_vec3(kFluidBlockFields.field("velocity").key, {0, 0, 0});
     for (int a = 0; a < s.params.k.dim; ++a)
       if (!(fb.hi[a] > fb.lo[a])) b.fail("hi", "each component of hi must exceed lo's", "swap or correct lo and hi");
     s.blocks.push_back(fb);
   }
+}
+
+
+void read_solver(LiquidParams& p, const SceneNode& liq) {
+  const auto sv = liq.maybe_table("solver");
+  if (!sv) return;
+  const FieldTable& T = kLiquidSolverFields;
+  p.solver.kind = read_choice(*sv, T.field("kind"), {"parallel_cg", "eigen_cg"}) == "eigen_cg" ? PpeSolverKind::EigenCg
+                                                                                                : PpeSolverKind::ParallelCg;
+  const std::string pc = read_choice(*sv, T.field("preconditioner"), {"jacobi", "incomplete_cholesky"});
+  p.solver.preconditioner = pc == "jacobi" ? Preconditioner::Jacobi : Preconditioner::IncompleteCholesky;
+  if (p.solver.kind == PpeSolverKind::ParallelCg && pc != "jacobi")
+    sv->fail("preconditioner", "the parallel CG is Jacobi-preconditioned only",
+             "use kind = \"eigen_cg\" for incomplete Cholesky, or remove the key");
+  p.solver.tolerance = read_number(*sv, T.field("tolerance"));
+  p.solver.max_iterations = static_cast<int>(read_integer(*sv, T.field("max_iterations")));
+}
+
+// [liquid]: the lattice, the material and the solver.
+void read_liquid(LiquidParams& p, const SceneNode& root) {
+  const FieldTable& T = kLiquidFields;
+  const SceneNode liq = root.table("liquid");
+  const int dim = static_cast<int>(read_integer(liq, T.field("dim")));
+  const double l0 = read_number(liq, T.field("l0"));
+  const double re = read_number(liq, T.field("re"));
+  p.k = lattice_constants(dim, l0, re * l0);
+  p.rho = read_number(liq, T.field("density"));  // kg/m^3, as a DEM species' bound
+  p.nu = read_number(liq, T.field("viscosity"));
+  p.gamma = read_number(liq, T.field("gamma"));
+  p.beta = read_number(liq, T.field("surface_threshold"));
+  p.free_surface = read_bool(liq, T.field("free_surface"));
+  p.gradient = read_choice(liq, T.field("gradient"), {"sum", "min"}) == "sum" ? GradientForm::Sum : GradientForm::MinPressure;
+  p.clip_negative = read_bool(liq, T.field("clip_negative"));
+  p.compressibility = read_number(liq, T.field("compressibility"));
+  p.collision.distance = read_number(liq, T.field("collision_distance")) * l0;
+  p.collision.restitution = read_number(liq, T.field("collision_restitution"));
+  p.skin = read_number(liq, T.field("skin")) * l0;
+  read_solver(p, liq);
+}
+
+// An acceleration of [run]: three numbers, at most 1e6 m/s^2, none along z in 2D.
+std::array<double, 3> read_acceleration(const SceneNode& run, std::string_view key) {
+  const auto a = run.get_vec3(kLiquidRunFields.field(key).key, {0, 0, 0});
+  require_acceleration(run, key, a);
+  return a;
+}
+
+// [run]'s step, duration, accelerations and limits (its margin and velocity scale: after the geometry).
+void read_run(LiquidScene& s, const SceneNode& run) {
+  const FieldTable& T = kLiquidRunFields;
+  LiquidParams& p = s.params;
+  s.dt = read_number(run, T.field("dt"));
+  s.duration = read_number(run, T.field("duration"));
+  check_step_count(run, "duration", s.duration, s.dt);
+  p.gravity = read_acceleration(run, "gravity");
+  p.body_force = read_acceleration(run, "body_force");
+  if (p.k.dim == 2 && (p.gravity[2] != 0 || p.body_force[2] != 0))
+    run.fail(p.gravity[2] != 0 ? "gravity" : "body_force", "a 2D scene has no z component",
+             "set the third component to 0");
+  s.cfl_limit = read_number(run, T.field("cfl_limit"));
+  s.diffusion_limit = read_number(run, T.field("diffusion_limit"));
+  s.density_limit = read_number(run, T.field("density_limit"));
+  s.allow_unstable_dt = read_bool(run, T.field("allow_unstable_dt"));
+}
+
+// Velocity scale for the CFL check: free fall over the liquid's height unless the scene states one.
+void read_velocity_scale(LiquidScene& s, const SceneNode& run) {
+  const std::array<double, 3>& gv = s.params.gravity;
+  double height = 0;
+  for (const FluidBlock& b : s.blocks) height = std::max(height, b.hi[1] - s.geometry.lo[1]);
+  const double g = std::sqrt(gv[0] * gv[0] + gv[1] * gv[1] + gv[2] * gv[2]);
+  const Field& f = kLiquidRunFields.field("velocity_scale");
+  if (run.has(f.key)) {
+    s.velocity_scale = read_number(run, f);
+  } else {
+    s.velocity_scale = std::sqrt(2.0 * g * std::max(height, 0.0));
+    if (!(s.velocity_scale > 0))
+      run.fail("velocity_scale", "no gravity to estimate the flow speed from",
+               "set velocity_scale (m/s) to the largest speed expected, e.g. the analytic centre velocity");
+  }
+}
+
+// The load-time CFL and diffusion numbers against their limits, unless the scene allows an unstable step.
+void check_stability(LiquidScene& s, const SceneNode& run) {
+  const double l0 = s.params.k.l0, nu = s.params.nu;
+  s.cfl = s.velocity_scale * s.dt / l0;
+  s.diffusion = nu * s.dt / (l0 * l0);
+  if (s.allow_unstable_dt) return;
+  if (s.cfl > s.cfl_limit)
+    run.fail("dt",
+             "time step " + short_number(s.dt) + " s gives a CFL number " + short_number(s.cfl) + " (velocity scale " +
+                 short_number(s.velocity_scale) + " m/s, l0 = " + short_number(l0) + " m) above cfl_limit = " + short_number(s.cfl_limit),
+             "set dt <= " + short_number(s.cfl_limit * l0 / s.velocity_scale) +
+                 ", or set allow_unstable_dt = true to run anyway");
+  if (s.diffusion > s.diffusion_limit)
+    run.fail("dt",
+             "time step " + short_number(s.dt) + " s gives a viscous diffusion number nu dt / l0^2 = " + short_number(s.diffusion) +
+                 " above diffusion_limit = " + short_number(s.diffusion_limit),
+             "set dt <= " + short_number(s.diffusion_limit * l0 * l0 / std::max(nu, 1e-300)) +
+                 ", or set allow_unstable_dt = true to run anyway");
 }
 
 }  // namespace
@@ -127,87 +231,16 @@ LiquidScene load_liquid_scene(const SceneDoc& doc, bool check_unused_keys) {
   LiquidScene s;
   s.file = doc.file();
   const SceneNode root = doc.root();
-  LiquidParams& p = s.params;
-
-  const SceneNode liq = root.table("liquid");
-  const int dim = static_cast<int>(liq.get_int("dim", 2, 3));
-  const double l0 = liq.get_double("l0", Range::positive());
-  const double re = liq.get_double("re", 2.1, Range::closed(1.5, 5.0));
-  p.k = lattice_constants(dim, l0, re * l0);
-  p.rho = liq.get_double("density", Range::open_closed(0, 1e6));  // kg/m^3, as a DEM species' bound
-  p.nu = liq.get_double("viscosity", Range::non_negative());
-  p.gamma = liq.get_double("gamma", 0.001, Range::closed(0, 1));
-  p.beta = liq.get_double("surface_threshold", 0.97, Range::open_closed(0, 1));
-  p.free_surface = liq.get_bool("free_surface", true);
-  p.gradient = liq.get_choice("gradient", {"sum", "min"}, "sum") == "sum" ? GradientForm::Sum : GradientForm::MinPressure;
-  p.clip_negative = liq.get_bool("clip_negative", true);
-  p.compressibility = liq.get_double("compressibility", 0.0, Range::non_negative());
-  p.collision.distance = liq.get_double("collision_distance", 0.8, Range::closed(0.0, 1.0)) * l0;
-  p.collision.restitution = liq.get_double("collision_restitution", 0.2, Range::closed(0.0, 1.0));
-  p.skin = liq.get_double("skin", 0.5, Range::closed(0.0, 2.0)) * l0;
-  if (auto sv = liq.maybe_table("solver")) {
-    p.solver.kind = sv->get_choice("kind", {"parallel_cg", "eigen_cg"}, "parallel_cg") == "eigen_cg"
-                        ? PpeSolverKind::EigenCg
-                        : PpeSolverKind::ParallelCg;
-    const std::string pc = sv->get_choice("preconditioner", {"jacobi", "incomplete_cholesky"}, "jacobi");
-    p.solver.preconditioner = pc == "jacobi" ? Preconditioner::Jacobi : Preconditioner::IncompleteCholesky;
-    if (p.solver.kind == PpeSolverKind::ParallelCg && pc != "jacobi")
-      sv->fail("preconditioner", "the parallel CG is Jacobi-preconditioned only",
-               "use kind = \"eigen_cg\" for incomplete Cholesky, or remove the key");
-    p.solver.tolerance = sv->get_double("tolerance", 1e-8, Range::open_closed(0, 0.1));
-    p.solver.max_iterations = static_cast<int>(sv->get_int("max_iterations", 2000, 1, 1000000));
-  }
-
+  read_liquid(s.params, root);
   const SceneNode run = root.table("run");
-  s.dt = run.get_double("dt", Range::positive());
-  s.duration = run.get_double("duration", Range::non_negative());
-  check_step_count(run, "duration", s.duration, s.dt);
-  p.gravity = run.get_vec3("gravity", {0, 0, 0});
-  require_acceleration(run, "gravity", p.gravity);
-  p.body_force = run.get_vec3("body_force", {0, 0, 0});
-  require_acceleration(run, "body_force", p.body_force);
-  if (dim == 2 && (p.gravity[2] != 0 || p.body_force[2] != 0))
-    run.fail(p.gravity[2] != 0 ? "gravity" : "body_force", "a 2D scene has no z component",
-             "set the third component to 0");
-  s.cfl_limit = run.get_double("cfl_limit", 0.5, Range::open_closed(0, 2));
-  s.diffusion_limit = run.get_double("diffusion_limit", 0.2, Range::open_closed(0, 2));
-  s.density_limit = run.get_double("density_limit", 1.5, Range::open_closed(1, 10));
-  s.allow_unstable_dt = run.get_bool("allow_unstable_dt", false);
-
+  read_run(s, run);
   read_geometry(s, root);
-  s.drive = read_flow_drive(root, p);  // after the geometry: its periodic axis
+  s.drive = read_flow_drive(root, s.params);  // after the geometry: its periodic axis
   read_fluid(s, root);
-  s.domain_margin = run.get_double("domain_margin", 10 * l0, Range::non_negative());
-
-  // Velocity scale for the CFL check: free fall over the liquid's height unless the scene states one.
-  double height = 0;
-  for (const FluidBlock& b : s.blocks) height = std::max(height, b.hi[1] - s.geometry.lo[1]);
-  const double g = std::sqrt(p.gravity[0] * p.gravity[0] + p.gravity[1] * p.gravity[1] + p.gravity[2] * p.gravity[2]);
-  if (run.has("velocity_scale")) {
-    s.velocity_scale = run.get_double("velocity_scale", Range::positive());
-  } else {
-    s.velocity_scale = std::sqrt(2.0 * g * std::max(height, 0.0));
-    if (!(s.velocity_scale > 0))
-      run.fail("velocity_scale", "no gravity to estimate the flow speed from",
-               "set velocity_scale (m/s) to the largest speed expected, e.g. the analytic centre velocity");
-  }
-  s.cfl = s.velocity_scale * s.dt / l0;
-  s.diffusion = p.nu * s.dt / (l0 * l0);
-  if (!s.allow_unstable_dt) {
-    if (s.cfl > s.cfl_limit)
-      run.fail("dt",
-               "time step " + short_number(s.dt) + " s gives a CFL number " + short_number(s.cfl) + " (velocity scale " +
-                   short_number(s.velocity_scale) + " m/s, l0 = " + short_number(l0) + " m) above cfl_limit = " + short_number(s.cfl_limit),
-               "set dt <= " + short_number(s.cfl_limit * l0 / s.velocity_scale) +
-                   ", or set allow_unstable_dt = true to run anyway");
-    if (s.diffusion > s.diffusion_limit)
-      run.fail("dt",
-               "time step " + short_number(s.dt) + " s gives a viscous diffusion number nu dt / l0^2 = " + short_number(s.diffusion) +
-                   " above diffusion_limit = " + short_number(s.diffusion_limit),
-               "set dt <= " + short_number(s.diffusion_limit * l0 * l0 / std::max(p.nu, 1e-300)) +
-                   ", or set allow_unstable_dt = true to run anyway");
-  }
-
+  const Field& margin = kLiquidRunFields.field("domain_margin");  // default: 10 l0, as the table says
+  s.domain_margin = run.get_double(margin.key, 10 * s.params.k.l0, margin.range);
+  read_velocity_scale(s, run);
+  check_stability(s, run);
   if (auto out = root.maybe_table("output")) read_output_times(*out, s.dt, s.output);
   if (check_unused_keys) doc.check_all_used();
   return s;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "systems/coupling/coupling_fields.hpp"
+#include "systems/mps/liquid_fields.hpp"
 #include "systems/setup/dem_body_scene.hpp"
 
 namespace gf {
@@ -18,9 +20,10 @@ void refuse_unsupported(const SceneNode& root) {
     if (root.has(key)) root.fail(key, "feeds and outlets are not coupled to a liquid yet", fix);
   if (root.has("settle")) root.fail("settle", "a coupled scene has no dry settling stage", fix);
   const SceneNode liquid = root.table("liquid");
-  if (liquid.get_int("dim", 2, 3) != 3) liquid.fail("dim", "grains are spheres, so the liquid they sit in is 3D", "set dim = 3");
+  if (read_integer(liquid, kLiquidFields.field("dim")) != 3)
+    liquid.fail("dim", "grains are spheres, so the liquid they sit in is 3D", "set dim = 3");
   const SceneNode run = root.table("run");
-  if (!run.has("gravity"))
+  if (!run.has(kLiquidRunFields.field("gravity").key))
     run.fail("gravity", "a coupled scene states its gravity: the liquid's default is none, the grains' -9.81 m/s^2 along y",
              "set gravity = [gx, gy, gz] (m/s^2) in [run]");
 }
@@ -50,12 +53,13 @@ void read_substeps(CoupledScene& s, const SceneNode& c) {
   CouplingSpec& k = s.coupling;
   const double dt = s.liquid.dt;
   k.dem_step_limit = s.dem.dt_safety * s.dem.critical.period;
-  if (k.fixed_grains) {  // nothing moves: the contact law's period sets no limit
-    k.substeps = static_cast<int>(c.get_int("substeps", 1, 1, 1000000));
+  const Field& f = kCouplingFields.field("substeps");
+  if (k.fixed_grains) {  // nothing moves: the contact law's period sets no limit; at least one step
+    k.substeps = static_cast<int>(c.get_int(f.key, 1, 1, static_cast<std::int64_t>(f.range.hi)));
     return;
   }
   const double needed = std::ceil(dt / k.dem_step_limit * (1.0 - 1e-12));
-  const std::int64_t given = c.get_int("substeps", 0, 0, 1000000);
+  const std::int64_t given = read_integer(c, f);  // 0, the default: computed
   if (given == 0) {
     if (!(needed <= 1e6))
       c.fail("substeps", "the DEM step limit " + short_number(k.dem_step_limit) + " s needs more than 1e6 sub-steps of run.dt = " + short_number(dt) + " s",
@@ -78,7 +82,7 @@ void read_substeps(CoupledScene& s, const SceneNode& c) {
 // the motion: the liquid may solve for p + rho_l |g| height instead, with no gravity in its step (no
 // start-up compression, no sloshing). The grains keep gravity and Archimedes' buoyancy.
 void read_modified_pressure(CoupledScene& s, const SceneNode& c) {
-  s.coupling.modified_pressure = c.get_bool("modified_pressure", false);
+  s.coupling.modified_pressure = read_bool(c, kCouplingFields.field("modified_pressure"));
   if (!s.coupling.modified_pressure) return;
   const LiquidGeometry& g = s.liquid.geometry;
   const bool filled = s.liquid.blocks.size() == 1 && s.liquid.blocks[0].lo == g.lo && s.liquid.blocks[0].hi == g.hi;
@@ -89,21 +93,22 @@ void read_modified_pressure(CoupledScene& s, const SceneNode& c) {
 }
 
 void read_coupling(CoupledScene& s, const SceneNode& root) {
+  const FieldTable& T = kCouplingFields;
   const SceneNode c = root.table("coupling");
   const double l0 = s.liquid.params.k.l0;
-  s.coupling.fixed_grains = c.get_bool("fixed_grains", false);
+  s.coupling.fixed_grains = read_bool(c, T.field("fixed_grains"));
   read_substeps(s, c);
   s.dem.dt = s.liquid.dt / s.coupling.substeps;
-  s.coupling.smoothing_radius = c.get_double("smoothing_radius", Range::positive());
+  s.coupling.smoothing_radius = read_number(c, T.field("smoothing_radius"));
   if (s.coupling.smoothing_radius < l0)
     c.fail("smoothing_radius",
            short_number(s.coupling.smoothing_radius) + " m is shorter than the node spacing l0 = " + short_number(l0) +
                " m: a grain between nodes would reach none",
            "set smoothing_radius >= l0, e.g. " + short_number(2.5 * l0) + " m (2.5 l0)");
-  s.coupling.drag = &drag_law(c.get_choice("drag", drag_law_names(), std::string(drag_laws()[0].name)));
-  s.coupling.min_liquid_fraction = c.get_double("min_liquid_fraction", 0.2, Range::open_closed(0.0, 1.0));
-  s.coupling.fluid_nodes_only = c.get_choice("share_with", {"all_nodes", "fluid_nodes"}, "all_nodes") == "fluid_nodes";
-  s.coupling.averaged = c.get_bool("averaged", false);
+  s.coupling.drag = &drag_law(read_choice(c, T.field("drag"), drag_law_names()));
+  s.coupling.min_liquid_fraction = read_number(c, T.field("min_liquid_fraction"));
+  s.coupling.fluid_nodes_only = read_choice(c, T.field("share_with"), {"all_nodes", "fluid_nodes"}) == "fluid_nodes";
+  s.coupling.averaged = read_bool(c, T.field("averaged"));
   read_modified_pressure(s, c);
 }
 
