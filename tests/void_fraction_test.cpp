@@ -3,6 +3,7 @@
 // read back exactly at the grains, a uniform suspension gives its solid fraction at the nodes, and a
 // grain out of the liquid's reach is reported.
 #include "systems/coupling/void_fraction.hpp"
+#include "systems/mps/mps_coupled_liquid.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

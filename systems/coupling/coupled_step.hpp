@@ -12,7 +12,8 @@
 //                      nodes pass their share to the tank. Grain impulse plus liquid reaction is zero to
 //                      rounding (CouplingState's totals; tests/coupled_step_test.cpp)
 //   the liquid's step  (liquid_step.hpp), from the kicked velocities
-// The liquid itself is not yet locally averaged: its density and number density do not see eps.
+// The liquid is read and kicked through the seam of coupled_liquid.hpp: the systems that touch it take the
+// liquid's type L (the MPS liquid's: MpsCoupledLiquid, systems/mps/mps_coupled_liquid.hpp).
 #pragma once
 
 #include <cstdint>
@@ -21,13 +22,14 @@
 #include <vector>
 
 #include "engine/column.hpp"
+#include "engine/grains.hpp"
 #include "engine/schedule.hpp"
+#include "engine/sub_schedule.hpp"
+#include "systems/coupling/coupled_liquid.hpp"
+#include "systems/coupling/coupling_settings.hpp"
 #include "systems/coupling/drag.hpp"
 #include "systems/coupling/void_fraction.hpp"
 #include "systems/integrate/force_terms.hpp"
-#include "systems/mps/neighbors.hpp"
-#include "systems/coupling/coupling_settings.hpp"
-#include "systems/mps/liquid_scene.hpp"
 
 namespace gf {
 
@@ -54,19 +56,17 @@ struct CouplingState {
   double h = 0;            // m, smoothing radius
   DragModel drag = &drag_laws()[0];
   double eps_min = 0.2;
-  double node_volume = 0;  // m^3, l0^3
-  Periodicity periodic;    // the liquid's periodic axis: shares reach across it
-  bool fluid_nodes_only = false;  // shares over fluid nodes only (coupling.share_with = "fluid_nodes")
-  LiquidProps liquid;
+  LiquidFacts liquid;      // the liquid's density, viscosity, carrier volume and periodic axis
+  bool fluid_nodes_only = false;  // shares over moving carriers only (coupling.share_with = "fluid_nodes")
   GrainShares shares;
-  std::vector<double> node_eps;  // liquid fraction per node
+  std::vector<double> node_eps;  // liquid fraction per carrier
   V3<double> grain_impulse{0, 0, 0};     // N s, sum over grains of the last outer step's tallies
-  V3<double> reaction_impulse{0, 0, 0};  // N s, sum over every node of the reaction given to it
-  V3<double> fluid_reaction{0, 0, 0};    // N s, the part given to fluid nodes (the rest went to the tank)
+  V3<double> reaction_impulse{0, 0, 0};  // N s, sum over every carrier of the reaction given to it
+  V3<double> fluid_reaction{0, 0, 0};    // N s, the part given to moving carriers (the rest went to the tank)
 };
 
-// Attaches the grain columns and the CouplingState resource (the liquid and the grains are in `world`).
-void attach_coupling(const CouplingSpec& coupling, const LiquidScene& liquid, World& world);
+// Attaches the grain columns and the CouplingState resource (the grains are in `world`).
+void attach_coupling(const CouplingSpec& coupling, const LiquidFacts& liquid, World& world);
 
 // The liquid's force on the grains, one more force term of the DEM step (the step itself is assembled
 // with the scene's: systems/setup/coupled_simulation.cpp).
@@ -76,12 +76,78 @@ void add_liquid_force(Schedule& step);
 // The sub-step of grains held fixed (coupling.fixed_grains): the liquid's force and its impulse only.
 std::unique_ptr<Schedule> fixed_grains_step();
 
-class SubSchedule;
-// The coupled step around the DEM sub-steps `inner` into `outer`: coupling_prepare, `substeps` runs of
-// `inner`, liquid_reaction, then the liquid's step; returns the DEM sub-steps.
-SubSchedule& schedule_coupled_step(Schedule& outer, std::unique_ptr<Schedule> inner, int substeps, bool driven);
+// The pieces of the liquid's systems below that do not depend on the liquid's type (coupled_step.cpp).
+namespace coupling_detail {
+// c.shares of the owned grains over the carriers, or over the carriers of `rows` only (renumbered back to
+// carrier rows); returns the grains' volume shared onto each carrier (m^3).
+std::vector<double> share_grains(const Grains& g, const PointSet& carriers, const std::vector<std::uint32_t>* rows,
+                                 CouplingState& c);
+// The liquid's velocity and fraction read at each grain through the shares; the grains' tallies zeroed.
+void sample_at_grains(Grains& g, const CouplingState& c, const PointSet& velocity);
+// The grains' tallied impulses shared onto the carriers as reaction per volume (N s/m^3); c.grain_impulse.
+std::vector<V3<double>> reaction_per_volume(Grains& g, CouplingState& c, std::size_t carriers);
+}  // namespace coupling_detail
 
-// The systems of the outer step that the coupled simulation runs on its own while priming.
-void prepare_coupling(World& world);
+// Shares, liquid fractions and the liquid read at the grains, from the grains' positions: the start of an
+// outer step (coupling_prepare), also run on its own while the coupled simulation primes.
+template <CoupledLiquid L>
+void prepare_coupling(World& w) {
+  L liquid(w);
+  CouplingState& c = w.resources.get<CouplingState>();
+  const PointSet carriers{liquid.position(0), liquid.position(1), liquid.position(2)};
+  std::vector<std::uint32_t> moving;
+  if (c.fluid_nodes_only)
+    for (std::size_t i = 0; i < liquid.carriers(); ++i)
+      if (liquid.moves(i)) moving.push_back(static_cast<std::uint32_t>(i));
+  const std::vector<double> solid =
+      coupling_detail::share_grains(w.grains, carriers, c.fluid_nodes_only ? &moving : nullptr, c);
+  if (liquid.averaged()) {  // the carriers thin out where grains are: each stands for its own volume of mixture
+    c.node_eps = liquid_fraction(solid, liquid.carrier_volumes(), c.eps_min);
+    liquid.take_fraction(c.node_eps);
+  } else {
+    c.node_eps = liquid_fraction(solid, c.liquid.carrier_volume, c.eps_min);
+  }
+  coupling_detail::sample_at_grains(w.grains, c, {liquid.velocity(0), liquid.velocity(1), liquid.velocity(2)});
+}
+
+template <CoupledLiquid L>
+struct CouplingPrepare : SystemBase<CouplingPrepare<L>> {
+  using Reads = typename Join<gf::Reads<Position, Radius>, typename L::SampleReads>::type;
+  using Writes =
+      typename Join<gf::Writes<LiquidAtGrain, LiquidImpulse, CouplingState>, typename L::SampleWrites>::type;
+  std::string_view name() const override { return "coupling_prepare"; }
+  void run(World& w, const StepContext&) override { prepare_coupling<L>(w); }
+};
+
+// Minus each grain's tally, shared with the same weights, as momentum of the moving carriers.
+template <CoupledLiquid L>
+struct LiquidReaction : SystemBase<LiquidReaction<L>> {
+  using Reads = typename Join<gf::Reads<LiquidAtGrain, LiquidImpulse>, typename L::ReactReads>::type;
+  using Writes = typename Join<typename L::ReactWrites, gf::Writes<CouplingState>>::type;
+  std::string_view name() const override { return "liquid_reaction"; }
+  void run(World& w, const StepContext&) override {
+    L liquid(w);
+    CouplingState& c = w.resources.get<CouplingState>();
+    const std::vector<V3<double>> per_volume = coupling_detail::reaction_per_volume(w.grains, c, liquid.carriers());
+    c.reaction_impulse = c.fluid_reaction = {0, 0, 0};
+    for (std::size_t n = 0; n < per_volume.size(); ++n) {
+      const V3<double> dp = c.liquid.carrier_volume * per_volume[n];
+      c.reaction_impulse = c.reaction_impulse + dp;
+      if (!liquid.moves(n)) continue;
+      c.fluid_reaction = c.fluid_reaction + dp;
+      liquid.add_momentum(n, dp);
+    }
+  }
+};
+
+// The coupled step around the DEM sub-steps `inner` into `outer`: coupling_prepare, `substeps` runs of
+// `inner`, liquid_reaction; the liquid's own step follows (the caller adds it). Returns the DEM sub-steps.
+template <CoupledLiquid L>
+SubSchedule& schedule_coupled_step(Schedule& outer, std::unique_ptr<Schedule> inner, int substeps) {
+  outer.emplace<CouplingPrepare<L>>();
+  SubSchedule& dem = outer.emplace<SubSchedule>("dem_substeps", substeps, std::move(inner));
+  outer.emplace<LiquidReaction<L>>();
+  return dem;
+}
 
 }  // namespace gf

@@ -108,12 +108,6 @@ std::vector<double> liquid_fraction(std::span<const double> solid, std::span<con
   return out;
 }
 
-std::vector<double> mixture_volumes(std::span<const double> n, double n0, double node_volume) {
-  std::vector<double> out(n.size());
-  for (std::size_t i = 0; i < n.size(); ++i) out[i] = node_volume * n0 / (n[i] > 0.0 ? std::max(n[i], 0.5 * n0) : n0);
-  return out;
-}
-
 std::vector<double> at_grains(const GrainShares& s, std::span<const double> node_field) {
   std::vector<double> out(s.start.empty() ? 0 : s.start.size() - 1, 0.0);
   for (std::size_t p = 0; p < out.size(); ++p)

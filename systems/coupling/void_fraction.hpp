@@ -10,7 +10,7 @@
 // grain sum to 1, so
 //   solid volume at node i      S_i = sum_p w_ip V_p           (sum_i S_i = sum_p V_p exactly)
 //   liquid fraction at node i   eps_i = max(eps_min, 1 - S_i / V_i), V_i = l0^dim the node's volume
-//                               (in a locally averaged liquid the node's own, mixture_volumes below)
+//                               (in a locally averaged liquid the volume of mixture it stands for, coupled_liquid.hpp)
 //   at the grain                eps_p = sum_i w_ip eps_i,  u_p = sum_i w_ip u_i
 //   reaction on the liquid      f_i = -(1 / V_i) sum_p w_ip F_p (a force per volume, N/m^3), so that
 //                               sum_i f_i V_i = -sum_p F_p: momentum conserved to rounding.
@@ -59,14 +59,6 @@ std::vector<double> solid_volume(const GrainShares& s, std::span<const double> g
 std::vector<double> liquid_fraction(std::span<const double> solid, double node_volume, double eps_min);
 // The same with each node's own volume V_i.
 std::vector<double> liquid_fraction(std::span<const double> solid, std::span<const double> volume, double eps_min);
-
-// The volume of mixture each node stands for in a locally averaged liquid, whose nodes thin out to
-// n = eps n0 where grains are: V_i = l0^dim n0 / n_i (l0^dim where the nodes sit at n0). With the
-// fixed l0^dim instead, a node of a thinned bed would hold its grains' share in too small a volume and
-// read eps too low (1 - phi / (n / n0) for a solid fraction phi), and the lower target would thin the
-// nodes further. n_i below n0 / 2 (a node at a free surface, whose kernel is cut, not thinned) counts as
-// n0 / 2; n_i = 0 (not computed yet) as n0.
-std::vector<double> mixture_volumes(std::span<const double> n, double n0, double node_volume);
 
 // sum_i w_ip phi_i per grain.
 std::vector<double> at_grains(const GrainShares& s, std::span<const double> node_field);

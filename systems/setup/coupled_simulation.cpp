@@ -1,6 +1,7 @@
 #include "systems/setup/coupled_simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <type_traits>
 
 #include "engine/run_loop.hpp"
@@ -8,7 +9,10 @@
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/coupling/coupled_step.hpp"
 #include "systems/integrate/integrate.hpp"
+#include "systems/mps/liquid_fraction.hpp"
 #include "systems/mps/liquid_simulation.hpp"
+#include "systems/mps/liquid_step.hpp"
+#include "systems/mps/mps_coupled_liquid.hpp"
 #include "systems/setup/coupled_checkpoint.hpp"
 #include "systems/walls/contact_systems.hpp"
 #include "systems/walls/walls.hpp"
@@ -30,6 +34,12 @@ std::unique_ptr<Schedule> coupled_dem_step(const DemScene& scene) {
   return step;
 }
 
+// What the coupling keeps of the MPS liquid: a node stands for l0^3 of clear liquid.
+LiquidFacts liquid_facts(const LiquidScene& liquid) {
+  const LiquidParams& p = liquid.params;
+  return {{p.rho, p.rho * p.nu}, std::pow(p.k.l0, 3), p.periodic.axis, p.periodic.lo, p.periodic.hi};
+}
+
 }  // namespace
 
 CoupledSimulation::CoupledSimulation(CoupledScene scene)
@@ -37,9 +47,11 @@ CoupledSimulation::CoupledSimulation(CoupledScene scene)
   World& w = *world_;
   build_dem_world(scene_.dem, w);
   build_liquid_world(scene_.liquid, w);  // the clock: the liquid's step
-  attach_coupling(scene_.coupling, scene_.liquid, w);
+  attach_coupling(scene_.coupling, liquid_facts(scene_.liquid), w);
+  if (scene_.coupling.averaged) w.resources.emplace<LiquidFraction>();  // the liquid's target: eps n0
   auto inner = scene_.coupling.fixed_grains ? fixed_grains_step() : coupled_dem_step(scene_.dem);
-  dem_ = &schedule_coupled_step(*step_, std::move(inner), scene_.coupling.substeps, scene_.liquid.drive.has_value());
+  dem_ = &schedule_coupled_step<MpsCoupledLiquid>(*step_, std::move(inner), scene_.coupling.substeps);
+  schedule_liquid_step(*step_, scene_.liquid.drive.has_value());
   step_->build(w);
 }
 
@@ -53,7 +65,7 @@ CoupledSimulation CoupledSimulation::from_text(std::string_view toml, const std:
 
 void CoupledSimulation::prime() {
   World& w = *world_;
-  prepare_coupling(w);
+  prepare_coupling<MpsCoupledLiquid>(w);
   StepContext now = next_step(w.clock);
   now.dt /= scene_.coupling.substeps;
   now.substeps = scene_.coupling.substeps;
