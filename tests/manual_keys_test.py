@@ -50,6 +50,11 @@ def manual_tables(manual):
     return tables
 
 
+# Override tables that take the keys of another section's tables besides their own rows (the manual says so
+# under their heading): [contact.wall] and [[contact.pair]] take the scene's law's [contact] keys.
+INHERITS = {"contact.wall": "contact", "contact.pair[]": "contact"}
+
+
 def pattern(key):
     return re.compile("^" + re.sub(r"<[^>]*>", r"[^.]+", re.escape(key)) + "$")
 
@@ -92,6 +97,9 @@ def main():
             problems.append(f"undocumented: section or key '{path}' (read for {scene}) has no key table in docs/manual")
             continue
         hits = [k for k in tables[section] if pattern(k).match(key)]
+        if not hits and section in INHERITS:
+            section = INHERITS[section]
+            hits = [k for k in tables.get(section, {}) if pattern(k).match(key)]
         for k in hits:
             matched[section, k] = True
         # A key that holds a sub-table documented by its dotted keys (region, count, solver), or by a table of
