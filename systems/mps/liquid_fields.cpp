@@ -1,37 +1,31 @@
 #include "systems/mps/liquid_fields.hpp"
 
-#include <limits>
-
 #include "engine/output_times.hpp"
 
 namespace gf {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr Range kPositive{0, kInf, true, true};
-constexpr Range kNonNegative{0, kInf, false, true};
 constexpr Range kUnitOpenClosed{0, 1, true, false};  // (0, 1]
-constexpr Range kUnitClosed{0, 1, false, false};     // [0, 1]
 constexpr Range kLimit{0, 2, true, false};           // (0, 2]
 
 constexpr std::string_view kBool = "true, false";
 
 const Field kLiquid[] = {
     {"dim", "", {2, 3, false, false}, "(integers); 3 in a coupled scene", kNoDefault, "", "space dimension"},
-    {"l0", "m", kPositive, "and smaller than the geometry's narrowest extent", kNoDefault, "", "initial particle spacing"},
+    {"l0", "m", kPositiveNumber, "and smaller than the geometry's narrowest extent", kNoDefault, "", "initial particle spacing"},
     {"re", "l0", {1.5, 5, false, false}, "", 2.1, "", "kernel radius"},
     {"density", "kg/m³", {0, 1e6, true, false}, "", kNoDefault, "", "liquid density ρ"},
-    {"viscosity", "m²/s", kNonNegative, "", kNoDefault, "", "kinematic viscosity ν"},
-    {"gamma", "", kUnitClosed, "", 0.001, "", "weight γ of the number-density term in the pressure source"},
+    {"viscosity", "m²/s", kNonNegativeNumber, "", kNoDefault, "", "kinematic viscosity ν"},
+    {"gamma", "", kFraction, "", 0.001, "", "weight γ of the number-density term in the pressure source"},
     {"surface_threshold", "", kUnitOpenClosed, "", 0.97, "", "β: a node with `n* < β n0` is a surface node"},
     {"free_surface", "", kAnyNumber, kBool, kNoDefault, "true", "false: a closed liquid, no surface nodes"},
     {"gradient", "", kAnyNumber, "`\"sum\"`, `\"min\"`", kNoDefault, "`\"sum\"`",
      "pressure-gradient form: symmetric `(p_j + p_i)` or Koshizuka's `(p_j − p_min)`"},
     {"clip_negative", "", kAnyNumber, kBool, kNoDefault, "true", "set negative pressures to 0 after the solve"},
-    {"compressibility", "1/Pa", kNonNegative, "", 0.0, "", "Ikeda's α; > 0 makes a closed liquid's matrix definite"},
-    {"collision_distance", "l0", kUnitClosed, "", 0.8, "", "distance below which the collision model acts"},
-    {"collision_restitution", "", kUnitClosed, "", 0.2, "", "restitution of the collision model"},
+    {"compressibility", "1/Pa", kNonNegativeNumber, "", 0.0, "", "Ikeda's α; > 0 makes a closed liquid's matrix definite"},
+    {"collision_distance", "l0", kFraction, "", 0.8, "", "distance below which the collision model acts"},
+    {"collision_restitution", "", kFraction, "", 0.2, "", "restitution of the collision model"},
     {"skin", "l0", {0, 2, false, false}, "", 0.5, "", "Verlet skin of the neighbour list (search radius `re + skin`)"},
     {"solver.", "", kAnyNumber, "", kNoDefault, "", "", &kLiquidSolverFields},
 };
@@ -46,14 +40,14 @@ const Field kSolver[] = {
 };
 
 const Field kRun[] = {
-    {"dt", "s", kPositive, "and within the CFL and diffusion limits", kNoDefault, "",
+    {"dt", "s", kPositiveNumber, "and within the CFL and diffusion limits", kNoDefault, "",
      "the liquid's step (the outer step of a coupled scene)"},
-    {"duration", "s", kNonNegative, "and at most 1e15 steps", kNoDefault, "", "simulated time"},
+    {"duration", "s", kNonNegativeNumber, "and at most 1e15 steps", kNoDefault, "", "simulated time"},
     {"gravity", "m/s²", kAnyNumber, "3 numbers, magnitude ≤ 1e6; z = 0 in 2D", kNoDefault,
      "[0, 0, 0]; required in a coupled scene", "gravity"},
     {"body_force", "m/s²", kAnyNumber, "3 numbers, magnitude ≤ 1e6; z = 0 in 2D", kNoDefault, "[0, 0, 0]",
      "extra acceleration of the liquid; with `[drive]`, the start of the control"},
-    {"velocity_scale", "m/s", kPositive, "", kNoDefault,
+    {"velocity_scale", "m/s", kPositiveNumber, "", kNoDefault,
      "free fall over the liquid's height, `sqrt(2 g H)` with g the size of `gravity`; required without gravity",
      "speed for the load-time CFL check"},
     {"cfl_limit", "", kLimit, "", 0.5, "", "largest CFL number, at load and during the run"},
@@ -61,7 +55,7 @@ const Field kRun[] = {
     {"density_limit", "", {1, 10, true, false}, "", 1.5, "", "largest `n*/n0` before the run stops"},
     {"allow_unstable_dt", "", kAnyNumber, kBool, kNoDefault, "false",
      "run despite the load-time checks (and, coupled, a too-small `substeps`)"},
-    {"domain_margin", "m", kNonNegative, "", kNoDefault, "10 l0", "how far a fluid node may leave the geometry's bounds"},
+    {"domain_margin", "m", kNonNegativeNumber, "", kNoDefault, "10 l0", "how far a fluid node may leave the geometry's bounds"},
 };
 
 const Field kGeometry[] = {
@@ -75,8 +69,8 @@ const Field kGeometry[] = {
      kNoDefault, "required (not `pipe`)", "high corner of the inner faces"},
     {"center", "m", kAnyNumber, "3 numbers", kNoDefault, "required (`pipe`)",
      "the pipe's axis runs along x through (·, y, z) and starts at x"},
-    {"radius", "m", kPositive, "and at least 2 l0", kNoDefault, "required (`pipe`)", "inner radius"},
-    {"length", "m", kPositive, "and a whole number of `l0`, at least 3 search radii", kNoDefault, "required (`pipe`)",
+    {"radius", "m", kPositiveNumber, "and at least 2 l0", kNoDefault, "required (`pipe`)", "inner radius"},
+    {"length", "m", kPositiveNumber, "and a whole number of `l0`, at least 3 search radii", kNoDefault, "required (`pipe`)",
      "periodic length along x"},
 };
 

@@ -1,7 +1,5 @@
 #include "systems/setup/body_fields.hpp"
 
-#include <limits>
-
 #include "engine/output_times.hpp"
 #include "systems/bodies/mass_properties.hpp"
 #include "systems/setup/scene_fields.hpp"
@@ -10,9 +8,6 @@ namespace gf {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr Range kPositive{0, kInf, true, true};
-constexpr Range kNonNegative{0, kInf, false, true};
 constexpr Range kHeight{-1e6, 1e6, false, false};  // m along -gravity
 constexpr Range kTime{0, 1e12, false, false};       // s
 
@@ -30,21 +25,21 @@ const Field kShape[] = {
     {"radius", "m", {0, 100, false, false}, "and > 0 for `sphere` and `spheres` and under `hertz_mindlin`", kNoDefault,
      "", "the dilation radius r shared by every part (edge rounding; a sphere's or clump sphere's radius)"},
     {"density", "kg/m³", {0, 1e6, true, false}, "", kNoDefault, "", "the material's density"},
-    {"grid", "m", kPositive,
+    {"grid", "m", kPositiveNumber,
      "and at most 2^31 voxels over the bounding box, at least 8 inside the shape; refused for `sphere` and for "
      "`ellipsoid` with `radius` 0 (exact)",
      kNoDefault, "a tenth of the shape's smallest bounding-box edge", "voxel edge of the mass-property grid"},
     {"size", "m", kAnyNumber,
      "[x, y, z], each > 0 and wide enough that the core keeps an inside after the inset by `radius`", kNoDefault,
      "required (`box`)", "a box's outer edges along x, y, z, centred on the origin"},
-    {"side", "m", kPositive, "", kNoDefault, "required (`triangular_prism`)",
+    {"side", "m", kPositiveNumber, "", kNoDefault, "required (`triangular_prism`)",
      "the outer edge of the equilateral triangle (centroid on the z axis, one corner on +y)"},
-    {"length", "m", kPositive, "", kNoDefault, "required (`triangular_prism`)", "the prism's outer length along z"},
-    {"base_radius", "m", kPositive, "", kNoDefault, "required (`up_down_cone`)",
+    {"length", "m", kPositiveNumber, "", kNoDefault, "required (`triangular_prism`)", "the prism's outer length along z"},
+    {"base_radius", "m", kPositiveNumber, "", kNoDefault, "required (`up_down_cone`)",
      "circle through the wide end's corners of each frustum"},
-    {"neck_radius", "m", kNonNegative, "and < `base_radius`; > 0 when joined at the narrow ends", kNoDefault,
+    {"neck_radius", "m", kNonNegativeNumber, "and < `base_radius`; > 0 when joined at the narrow ends", kNoDefault,
      "required (`up_down_cone`)", "circle through the narrow end's corners (0: a pyramid)"},
-    {"height", "m", kPositive, "and for a letter > 3 `stroke`", kNoDefault,
+    {"height", "m", kPositiveNumber, "and for a letter > 3 `stroke`", kNoDefault,
      "required (`up_down_cone`); 0.180 (`letter`)",
      "`up_down_cone`: axial length of each of the two frusta; `letter`: the letter's height H"},
     {"facets", "", {3, kMaxFacets, false, false}, "(integers)", 12, "", "side faces of each frustum (`up_down_cone`)"},
@@ -52,9 +47,9 @@ const Field kShape[] = {
      "`up_down_cone`: an hourglass (concave, the seed's element) or a double frustum (convex, still two parts)"},
     {"letter", "", kAnyNumber, "`\"O\"`, `\"T\"`, `\"Z\"`, `\"K\"`, `\"A\"`, `\"C\"`", kNoDefault, "required (`letter`)",
      "which of the seed's letters, built from boxes and slanted boxes"},
-    {"width", "m", kPositive, "and > 2 `stroke`", 0.100, "", "the letter's width L"},
-    {"depth", "m", kPositive, "", 0.030, "", "the letter's depth W (through the letter)"},
-    {"stroke", "m", kPositive, "", 0.030, "", "the width of every stroke, measured across it"},
+    {"width", "m", kPositiveNumber, "and > 2 `stroke`", 0.100, "", "the letter's width L"},
+    {"depth", "m", kPositiveNumber, "", 0.030, "", "the letter's depth W (through the letter)"},
+    {"stroke", "m", kPositiveNumber, "", 0.030, "", "the width of every stroke, measured across it"},
     {"path", "", kAnyNumber, "an `.obj` or `.stl` file, relative to the scene", kNoDefault, "required (`file`)",
      "convex parts: one per OBJ `o`/`g` group; each connected component of each STL solid (ASCII or binary)"},
     {"centres", "m", kAnyNumber, "[[x, y, z], ...], 1 to 64", kNoDefault, "required (`spheres`)",
@@ -62,7 +57,7 @@ const Field kShape[] = {
     {"semi_axes", "m", kAnyNumber, "[a, b, c], each > `radius`", kNoDefault, "required (`ellipsoid`)",
      "the grain's semi-axes along x, y, z: its core is the ellipsoid of semi-axes a − r, b − r, c − r, a smooth core "
      "(no vertices), so the grain's extent along each axis is the one given"},
-    {"youngs_modulus", "Pa", kPositive, "and the same in every `[[shape]]` and `[[species]]`", kNoDefault,
+    {"youngs_modulus", "Pa", kPositiveNumber, "and the same in every `[[shape]]` and `[[species]]`", kNoDefault,
      "required under `hertz_mindlin`", "the bodies' one material"},
     {"poisson_ratio", "", {-0.99, 0.5, false, false}, "and the same in every table", kNoDefault,
      "required under `hertz_mindlin`", "the bodies' one material"},
@@ -141,7 +136,7 @@ const Field kRepose[] = {
      "a point on the heap's vertical axis"},
     {"across", "", kAnyNumber, "a direction, not vertical", kNoDefault, "required (`ridge`, `crater`); refused for `heap`",
      "the horizontal direction across the ridge or crater"},
-    {"column", "m", kPositive, "", kNoDefault, "", "the width of a column of horizontal distance"},
+    {"column", "m", kPositiveNumber, "", kNoDefault, "", "the width of a column of horizontal distance"},
     {"rank", "", {1, 1000, false, false}, "(integers)", 3, "", "which highest grain top of a column is its surface"},
     {"lower", "", {0, 1, false, false}, "and below `upper`", 0.15, "",
      "the fitted part of a flank starts here (fraction of its height range)"},
