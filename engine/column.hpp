@@ -7,14 +7,15 @@
 #include <span>
 #include <vector>
 
-#include "engine/simd.hpp"
+#include "engine/aligned_allocator.hpp"
+#include "engine/intrinsics.hpp"
 
 namespace gf {
 
 // Columns are 64-byte aligned and padded to whole batches of this many elements, so a kernel
-// may load a full xsimd batch at any row index that is a multiple of it without a bounds branch.
+// may load a full xsimd batch at any row index that is a multiple of it without a bounds branch
+// (engine/simd.hpp checks that the batch width divides it).
 inline constexpr std::size_t kColumnPad = 8;
-static_assert(kColumnPad % kLanes == 0, "columns must pad to whole SIMD batches");
 
 inline constexpr std::size_t padded_size(std::size_t n) {
   return (n + kColumnPad - 1) / kColumnPad * kColumnPad;
@@ -63,7 +64,7 @@ class Column {
   // Reorders rows so that new row r holds old row perm[r]. The old storage becomes this thread's
   // scratch for the next permutation of a column of the same type, so steady state allocates nothing.
   void permute(std::span<const std::uint32_t> perm) {
-    static thread_local std::vector<T, xsimd::aligned_allocator<T, 64>> scratch;
+    static thread_local std::vector<T, AlignedAllocator<T, 64>> scratch;
     scratch.resize(data_.size());
     for (std::size_t r = 0; r < perm.size(); ++r) scratch[r] = data_[perm[r]];
     for (std::size_t r = perm.size(); r < data_.size(); ++r) scratch[r] = T{};
@@ -73,7 +74,7 @@ class Column {
   std::size_t bytes() const { return data_.capacity() * sizeof(T); }
 
  private:
-  std::vector<T, xsimd::aligned_allocator<T, 64>> data_;
+  std::vector<T, AlignedAllocator<T, 64>> data_;
   std::size_t n_ = 0;
 };
 

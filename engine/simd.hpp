@@ -1,10 +1,12 @@
-// The one place xsimd is included. GCC 12 reports a false -Wuninitialized inside avx512fintrin.h
-// when kernels are instantiated on AVX-512 batches (GCC bug 105593); the diagnostic state is taken
-// at the header's own lines, so silencing it around this first inclusion is enough.
+// The one place xsimd is included (after engine/column.hpp, which brings the intrinsics with GCC
+// bug 105593's false warning silenced: engine/intrinsics.hpp); xsimd's own headers are silenced the
+// same way.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+
+#include "engine/column.hpp"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"
@@ -22,6 +24,7 @@ using SimdArch = xsimd::default_arch;
 #endif
 using BatchD = xsimd::batch<double, SimdArch>;
 inline constexpr std::size_t kLanes = BatchD::size;
+static_assert(kColumnPad % kLanes == 0, "columns must pad to whole SIMD batches");
 }  // namespace gf
 
 #if defined(__AVX512F__) || defined(__AVX2__)

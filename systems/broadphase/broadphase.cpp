@@ -2,6 +2,7 @@
 
 #include "engine/machine_memory.hpp"
 #include "engine/run_loop.hpp"
+#include "engine/simd.hpp"
 #include "systems/periodic/periodic_images.hpp"
 
 #include <algorithm>

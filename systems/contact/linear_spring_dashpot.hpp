@@ -29,7 +29,7 @@
 #include "engine/scene.hpp"
 #include "systems/contact/contact_law.hpp"
 #include "systems/contact/tangential_spring.hpp"
-#include "systems/contact/vec3.hpp"
+#include "systems/contact/vec3_batch.hpp"
 
 namespace gf {
 

@@ -13,6 +13,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "engine/simd.hpp"
 #include "systems/contact/laws.hpp"
 #include "systems/contact/sphere_geometry.hpp"
 

@@ -53,7 +53,7 @@
 #include "engine/field_table.hpp"
 #include "engine/scene.hpp"
 #include "systems/contact/contact_law.hpp"
-#include "systems/contact/vec3.hpp"
+#include "systems/contact/vec3_batch.hpp"
 
 namespace gf {
 

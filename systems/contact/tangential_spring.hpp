@@ -2,7 +2,7 @@
 // and the slider that caps a spring-dashpot force (Cundall-Strack).
 #pragma once
 
-#include "systems/contact/vec3.hpp"
+#include "systems/contact/vec3_batch.hpp"
 
 namespace gf {
 

@@ -1,5 +1,7 @@
 #include "systems/integrate/integrate.hpp"
 
+#include "engine/simd.hpp"
+
 #include "systems/stability/stability_report.hpp"
 
 #include <tbb/blocked_range.h>

@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/column.hpp"
+#include "engine/simd.hpp"
 #include "systems/mps/liquid_params.hpp"
 #include "systems/mps/neighbors.hpp"
 

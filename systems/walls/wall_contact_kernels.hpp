@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "systems/broadphase/neighbor_list.hpp"
+#include "engine/simd.hpp"
 #include "systems/contact/laws.hpp"
 #include "systems/contact/sphere_geometry.hpp"
 
