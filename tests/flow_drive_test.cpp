@@ -3,7 +3,7 @@
 // reaches the target mean velocity and settles on the body force that plane Poiseuille flow needs
 // between the no-slip planes at the wall nodes' centres (width W = L + l0: mps_poiseuille_test.cpp),
 // 12 nu U / W^2; a run stopped and resumed under the drive goes on bit for bit; a drive without a
-// periodic axis is refused naming the key.
+// periodic axis is refused naming the key. The 3D pipe under the drive: flow_drive_pipe_test.cpp.
 #include <catch2/catch.hpp>
 
 #include <cmath>
