@@ -102,6 +102,20 @@ class CheckpointReader {
   std::size_t bytes() const { return data_.size(); }  // the file's size
   // Throws CheckpointError "<file>: <problem>. Fix: <fix>".
   [[noreturn]] void fail(const std::string& problem, const std::string& fix) const;
+  // Fails with "it is inconsistent (<what>)" unless `ok`. A checkpoint is raw arrays of the same build, sealed
+  // by a checksum; one corrupted and sealed again must still not index past an array, so the readers check
+  // every value they use as an index or a count. `fix`: one of the kFix remedies below.
+  void require(bool ok, const std::string& what, const std::string& fix) const {
+    if (!ok) fail("it is inconsistent (" + what + ")", fix);
+  }
+  // Fails unless the value the checkpoint was written with equals the scene's now.
+  template <class T>
+  void require_equal(const char* what, T stored, T now, const std::string& fix) const {
+    if (stored != now)
+      fail(std::string("it was written with ") + what + " = " + std::to_string(stored) + ", the scene now gives " +
+               std::to_string(now),
+           fix);
+  }
 
  private:
   struct Section {
@@ -114,6 +128,12 @@ class CheckpointReader {
   std::string data_;
   std::map<std::string, Section> sections_;
 };
+
+// The remedies a checkpoint reader's refusals name, by what else can restart the run.
+inline constexpr const char* kFixResume = "resume from an earlier checkpoint";
+inline constexpr const char* kFixResumeOrStateFile =
+    "resume from an earlier checkpoint, or from final_state.csv with a file fill";
+inline constexpr const char* kFixResumeOrRerun = "resume from an earlier checkpoint, or run the scene again";
 
 }  // namespace gf
 

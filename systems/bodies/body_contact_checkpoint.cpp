@@ -29,10 +29,6 @@ void contact_sections(Io& io, State& s) {
   io.vector("body_contact.motion", s.motion);
 }
 
-void require(const CheckpointReader& in, bool ok, const std::string& what) {
-  if (!ok) in.fail("it is inconsistent (" + what + ")", "resume from an earlier checkpoint, or run the scene again");
-}
-
 template <class T>
 bool all_below(const std::vector<T>& v, std::size_t n) {
   return std::all_of(v.begin(), v.end(), [n](T x) { return static_cast<std::size_t>(x) < n; });
@@ -40,24 +36,24 @@ bool all_below(const std::vector<T>& v, std::size_t n) {
 
 void check_body_contact(const CheckpointReader& in, const BodyContactState& s, std::size_t members) {
   const std::size_t pairs = s.list.key.size();
-  require(in, s.list.a.size() == pairs && s.list.b.size() == pairs && all_below(s.list.a, members) &&
+  in.require(s.list.a.size() == pairs && s.list.b.size() == pairs && all_below(s.list.a, members) &&
                   all_below(s.list.b, members) && std::is_sorted(s.list.key.begin(), s.list.key.end()),
-          "member-pair list");
-  require(in, s.list.constants.size() == pairs * s.list.width || s.list.constants.empty(), "member-pair constants");
-  require(in, s.list.wall_constants.size() == members * s.list.width || s.list.wall_constants.empty(),
-          "wall constants");
-  require(in, std::all_of(s.history.pair.begin(), s.history.pair.end(),
+          "member-pair list", kFixResumeOrRerun);
+  in.require(s.list.constants.size() == pairs * s.list.width || s.list.constants.empty(), "member-pair constants", kFixResumeOrRerun);
+  in.require(s.list.wall_constants.size() == members * s.list.width || s.list.wall_constants.empty(),
+          "wall constants", kFixResumeOrRerun);
+  in.require(std::all_of(s.history.pair.begin(), s.history.pair.end(),
                           [&](std::int32_t p) { return p >= 0 && static_cast<std::size_t>(p) < pairs; }),
-          "member-pair springs");
-  require(in, std::all_of(s.history.slot.begin(), s.history.slot.end(),
+          "member-pair springs", kFixResumeOrRerun);
+  in.require(std::all_of(s.history.slot.begin(), s.history.slot.end(),
                           [&](std::int32_t e) { return e >= -1 && e < static_cast<std::int64_t>(s.history.size()); }),
-          "member-pair spring slots");
-  require(in, s.walls.value.size() == s.walls.members * s.walls.planes * s.walls.width &&
+          "member-pair spring slots", kFixResumeOrRerun);
+  in.require(s.walls.value.size() == s.walls.members * s.walls.planes * s.walls.width &&
                   s.walls.touching.size() == s.walls.members * s.walls.planes,
-          "member-wall springs");
-  require(in, (s.ref_x.empty() || s.ref_x.size() == members) && s.ref_y.size() == s.ref_x.size() &&
+          "member-wall springs", kFixResumeOrRerun);
+  in.require((s.ref_x.empty() || s.ref_x.size() == members) && s.ref_y.size() == s.ref_x.size() &&
                   s.ref_z.size() == s.ref_x.size() && (s.motion.empty() || s.motion.size() == members),
-          "member reference centres");
+          "member reference centres", kFixResumeOrRerun);
 }
 
 }  // namespace

@@ -58,7 +58,7 @@ void check_vertices(const std::vector<Vector3d>& v) {
 }
 
 // The length scale of a vertex set (its bounding box's largest edge), for round-off tolerances.
-double extent(const std::vector<Vector3d>& v) {
+double largest_edge(const std::vector<Vector3d>& v) {
   Vector3d lo = v.front(), hi = v.front();
   for (const Vector3d& x : v) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
   return (hi - lo).maxCoeff();
@@ -68,7 +68,7 @@ double extent(const std::vector<Vector3d>& v) {
 
 ConvexCore::ConvexCore(std::vector<Vector3d> vertices) : v_(std::move(vertices)) {
   check_vertices(v_);
-  const double tol = 1e-9 * extent(v_);
+  const double tol = 1e-9 * largest_edge(v_);
   std::size_t ia = 0, ib = 0;
   for (std::size_t i = 0; i < v_.size(); ++i)
     for (std::size_t j = i + 1; j < v_.size(); ++j)
@@ -94,7 +94,7 @@ ConvexCore::ConvexCore(std::vector<Vector3d> vertices) : v_(std::move(vertices))
 // vertex strictly inside gives the face's outward normal; when none is off any such plane the core
 // is flat, has no inside and no planes, and its triangles cover the polygon.
 void ConvexCore::build_triangles() {
-  const double scale = extent(v_), tol = 1e-9 * scale;
+  const double scale = largest_edge(v_), tol = 1e-9 * scale;
   const std::uint32_t n = static_cast<std::uint32_t>(v_.size());
   for (std::uint32_t i = 0; i < n; ++i)
     for (std::uint32_t j = i + 1; j < n; ++j)
@@ -149,14 +149,14 @@ bool ConvexCore::dilated_contains(const Vector3d& p, double r) const {
 namespace {
 
 // A member as the voxel loop reads it: its core and a sphere holding it (for a cheap rejection).
-struct MemberShape {
+struct VoxelShape {
   std::unique_ptr<CoreSolid> core;
   double r;
   Vector3d centre;
   double bound2;  // squared radius of the bounding sphere
 };
 
-MemberShape member_shape(const DilatedPolyhedron& m) {
+VoxelShape member_shape(const DilatedPolyhedron& m) {
   if (!std::isfinite(m.radius) || m.radius < 0.0)
     throw std::invalid_argument("a member's dilation radius must be finite and not negative");
   const CorePoints points(m.vertices, m.kind);
@@ -210,8 +210,8 @@ Grid make_grid(std::span<const DilatedPolyhedron> members, double h) {
   return g;
 }
 
-bool covered(const std::vector<MemberShape>& shapes, const Vector3d& p) {
-  for (const MemberShape& s : shapes)
+bool covered(const std::vector<VoxelShape>& shapes, const Vector3d& p) {
+  for (const VoxelShape& s : shapes)
     if ((p - s.centre).squaredNorm() <= s.bound2 && s.core->dilated_contains(p, s.r)) return true;
   return false;
 }
@@ -224,7 +224,7 @@ struct Sums {
   void add(const Sums& o) { count += o.count, first += o.first, second += o.second; }
 };
 
-Sums slice_sums(const std::vector<MemberShape>& shapes, const Grid& g, std::size_t k) {
+Sums slice_sums(const std::vector<VoxelShape>& shapes, const Grid& g, std::size_t k) {
   Sums s;
   for (std::size_t j = 0; j < g.n[1]; ++j)
     for (std::size_t i = 0; i < g.n[0]; ++i) {
@@ -237,7 +237,7 @@ Sums slice_sums(const std::vector<MemberShape>& shapes, const Grid& g, std::size
 }
 
 // Each z-slice summed on its own, then the slices in order: the result does not depend on threads.
-Sums voxel_sums(const std::vector<MemberShape>& shapes, const Grid& g) {
+Sums voxel_sums(const std::vector<VoxelShape>& shapes, const Grid& g) {
   std::vector<Sums> slices(g.n[2]);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.n[2]), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) slices[k] = slice_sums(shapes, g, k);
@@ -268,7 +268,7 @@ MassProperties voxel_mass_properties(std::span<const DilatedPolyhedron> members,
   if (members.empty()) throw std::invalid_argument("a composite needs at least one member");
   if (!std::isfinite(rho) || rho <= 0.0) throw std::invalid_argument("the density must be positive and finite");
   if (!std::isfinite(h) || h <= 0.0) throw std::invalid_argument("the voxel edge must be positive and finite");
-  std::vector<MemberShape> shapes;
+  std::vector<VoxelShape> shapes;
   for (const DilatedPolyhedron& m : members) shapes.push_back(member_shape(m));
   const Grid g = make_grid(members, h);
   const Sums s = voxel_sums(shapes, g);

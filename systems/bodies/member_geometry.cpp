@@ -60,13 +60,13 @@ Vector3d own_support(const MemberShape& s, const Vector3d& d) {
 
 // libccd's support callbacks: the core's point farthest along dir, in the pair frame; a hull's found
 // inline, the hot path of every contact between members, any other kind's through its seam.
-void hull_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
+void ccd_hull_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
   const auto& c = *static_cast<const ScaledCore*>(obj);
   const std::size_t i = farthest_vertex(*c.shape, c.shape->rotation.transpose() * to_eigen(*dir));
   *out = to_ccd(c.rotation * own_vertex(*c.shape, i) + c.offset);
 }
 
-void seam_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
+void ccd_seam_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
   const auto& c = *static_cast<const ScaledCore*>(obj);
   *out = to_ccd(c.rotation * core_support(c.shape->core(), c.shape->rotation.transpose() * to_eigen(*dir)) + c.offset);
 }
@@ -94,8 +94,8 @@ ScaledCore scaled_core(const MemberShape& m, const PairFrame& f) {
 ccd_t ccd_settings(const MemberShape& a, const MemberShape& b) {
   ccd_t ccd;
   CCD_INIT(&ccd);
-  ccd.support1 = a.kind == CoreKind::hull ? hull_support : seam_support;
-  ccd.support2 = b.kind == CoreKind::hull ? hull_support : seam_support;
+  ccd.support1 = a.kind == CoreKind::hull ? ccd_hull_support : ccd_seam_support;
+  ccd.support2 = b.kind == CoreKind::hull ? ccd_hull_support : ccd_seam_support;
   ccd.center1 = ccd.center2 = scaled_centre;
   ccd.max_iterations = kMemberMaxIterations;
   ccd.epa_tolerance = kMemberTolerance;

@@ -59,7 +59,7 @@ constexpr std::size_t kMaxFileVertices = kMaxShapeParts * kMaxCoreVertices;
 constexpr std::size_t kMaxPartTriangles = 16 * kMaxCoreVertices;
 constexpr std::size_t kMaxFileTriangles = kMaxShapeParts * kMaxPartTriangles;
 
-double extent(const std::vector<Vector3d>& v) {
+double bounding_diagonal(const std::vector<Vector3d>& v) {
   Vector3d lo = v.front(), hi = v.front();
   for (const Vector3d& x : v) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
   return (hi - lo).norm();
@@ -89,7 +89,7 @@ int affine_dimension(const std::vector<Vector3d>& v) {
 // For a solid part: the first vertex strictly inside the hull of the part (on no supporting plane
 // through three of its vertices, within 1e-6 of the part's size), if any. O(n^4), n <= 128.
 std::optional<std::size_t> inner_vertex(const std::vector<Vector3d>& v) {
-  const double tol = 1e-6 * extent(v);
+  const double tol = 1e-6 * bounding_diagonal(v);
   std::vector<bool> on_hull(v.size(), false);
   for (std::size_t i = 0; i < v.size(); ++i)
     for (std::size_t j = i + 1; j < v.size(); ++j)
@@ -111,7 +111,7 @@ std::optional<std::size_t> inner_vertex(const std::vector<Vector3d>& v) {
 // The first face whose plane has vertices of the part strictly on both sides (within 1e-6 of the
 // part's size): on a closed convex surface every face's plane supports the part.
 std::optional<std::size_t> folded_face(const RawPart& p) {
-  const double tol = 1e-6 * extent(p.v);
+  const double tol = 1e-6 * bounding_diagonal(p.v);
   for (std::size_t t = 0; t < p.tris.size(); ++t) {
     const Vector3d& a = p.v[p.tris[t][0]];
     const Vector3d n = (p.v[p.tris[t][1]] - a).cross(p.v[p.tris[t][2]] - a);

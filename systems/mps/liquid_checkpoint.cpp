@@ -69,12 +69,6 @@ void diagnostic_sections(Io& io, Diagnostics& d) {
   io_value(io, "liquid.diagnostics.ppe.closed", d.ppe.closed);
 }
 
-// A checkpoint is raw arrays sealed by a checksum; one corrupted and sealed again must still not index past an
-// array. These checks cover every value used as an index or a count.
-void require(const CheckpointReader& in, bool ok, const std::string& what) {
-  if (!ok) in.fail("it is inconsistent (" + what + ")", "resume from an earlier checkpoint");
-}
-
 void require_same(const CheckpointReader& in, const std::string& what, const std::string& stored,
                   const std::string& now, const std::string& fix) {
   if (stored != now) in.fail("it was written with " + what + " = " + stored + ", the scene now gives " + now, fix);
@@ -100,14 +94,14 @@ void check_scene(const CheckpointReader& in, const FluidNodes& f, const LiquidSc
 
 void check_pairs(const CheckpointReader& in, const NeighborPairs& nb, std::size_t rows) {
   const std::size_t pairs = nb.j.size();
-  require(in, nb.start.empty() || (nb.start.size() == rows + 1 && nb.start.front() == 0 && nb.start.back() == pairs &&
+  in.require(nb.start.empty() || (nb.start.size() == rows + 1 && nb.start.front() == 0 && nb.start.back() == pairs &&
                                     std::is_sorted(nb.start.begin(), nb.start.end())),
-          "neighbour list offsets");
-  require(in, nb.image.size() == pairs && (nb.w.empty() || nb.w.size() == pairs), "neighbour list lengths");
-  require(in, std::all_of(nb.j.begin(), nb.j.end(), [rows](std::uint32_t q) { return q < rows; }),
-          "neighbour list rows");
-  require(in, nb.x0.size() == nb.y0.size() && nb.y0.size() == nb.z0.size() && (nb.x0.empty() || nb.x0.size() == rows),
-          "neighbour reference positions");
+          "neighbour list offsets", kFixResume);
+  in.require(nb.image.size() == pairs && (nb.w.empty() || nb.w.size() == pairs), "neighbour list lengths", kFixResume);
+  in.require(std::all_of(nb.j.begin(), nb.j.end(), [rows](std::uint32_t q) { return q < rows; }),
+          "neighbour list rows", kFixResume);
+  in.require(nb.x0.size() == nb.y0.size() && nb.y0.size() == nb.z0.size() && (nb.x0.empty() || nb.x0.size() == rows),
+          "neighbour reference positions", kFixResume);
 }
 
 }  // namespace
@@ -123,7 +117,7 @@ void restore_liquid_state(const CheckpointReader& in, World& world, const Liquid
     require_same(in, "run.dt", short_number(in.value<double>("clock.dt")), short_number(scene.dt),
                  "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
   restore_clock(in, world.clock);
-  require(in, world.clock.step >= 0, "the step count is negative");
+  in.require(world.clock.step >= 0, "the step count is negative", kFixResume);
 }
 
 void save_liquid_nodes(CheckpointWriter& out, World& world, const LiquidScene& scene) {
@@ -157,10 +151,10 @@ void restore_liquid_nodes(const CheckpointReader& in, World& world, const Liquid
   node_sections(in, f);
   std::size_t wrong = 0;
   std::apply([&](auto&... c) { ((wrong += c.size() != rows), ...); }, f.columns());
-  require(in, wrong == 0, "a node column has the wrong length");
+  in.require(wrong == 0, "a node column has the wrong length", kFixResume);
   for (const ColumnD* c : {&f.x, &f.y, &f.z, &f.u, &f.v, &f.w, &f.p, &f.n})
-    require(in, std::all_of(c->begin(), c->end(), [](double v) { return std::isfinite(v); }),
-            "a node's position, velocity, pressure or number density is not finite");
+    in.require(std::all_of(c->begin(), c->end(), [](double v) { return std::isfinite(v); }),
+            "a node's position, velocity, pressure or number density is not finite", kFixResume);
   NeighborPairs& nb = world.resources.get<NeighborPairs>();
   pair_sections(in, nb);
   check_pairs(in, nb, rows);
@@ -169,15 +163,15 @@ void restore_liquid_nodes(const CheckpointReader& in, World& world, const Liquid
   nb.periodic.axis = in.value<int>("liquid.neighbors.periodic.axis");
   nb.periodic.lo = in.value<double>("liquid.neighbors.periodic.lo");
   nb.periodic.hi = in.value<double>("liquid.neighbors.periodic.hi");
-  require(in, nb.periodic.axis >= -1 && nb.periodic.axis <= 2, "the periodic axis");
+  in.require(nb.periodic.axis >= -1 && nb.periodic.axis <= 2, "the periodic axis", kFixResume);
   diagnostic_sections(in, world.resources.get<LiquidDiagnostics>());
   auto& force = world.resources.get<LiquidParams>().body_force;
   for (std::size_t c = 0; c < 3; ++c)
     if (in.has("liquid.body_force." + std::to_string(c))) force[c] = in.value<double>("liquid.body_force." + std::to_string(c));
-  require(in, std::all_of(force.begin(), force.end(), [](double v) { return std::isfinite(v); }), "the body force is not finite");
+  in.require(std::all_of(force.begin(), force.end(), [](double v) { return std::isfinite(v); }), "the body force is not finite", kFixResume);
   if (FlowDrive* d = world.resources.find<FlowDrive>(); d && in.has("liquid.drive.last_mean")) {
     d->last_mean = in.value<double>("liquid.drive.last_mean");  // NaN before the first control step
-    require(in, !std::isinf(d->last_mean), "the drive's last mean velocity is not finite");
+    in.require(!std::isinf(d->last_mean), "the drive's last mean velocity is not finite", kFixResume);
   }
 }
 

@@ -74,7 +74,7 @@ const Field kGeometry[] = {
      "periodic length along x"},
 };
 
-const Field kFluid[] = {
+const Field kFluidBlock[] = {
     {"lo", "m", kAnyNumber, "3 numbers", kNoDefault, "",
      "low corner of a block to fill; lattice nodes in `[lo, hi)` inside the geometry become liquid"},
     {"hi", "m", kAnyNumber, "each component above `lo`'s (in the scene's dimensions)", kNoDefault, "",
@@ -98,7 +98,7 @@ const FieldTable kLiquidFields{"[liquid]", "liquid.md", kLiquid};
 const FieldTable kLiquidSolverFields{"solver", "", kSolver};
 const FieldTable kLiquidRunFields{"[run]", "liquid.md", kRun};
 const FieldTable kLiquidGeometryFields{"[geometry]", "liquid.md", kGeometry};
-const FieldTable kFluidBlockFields{"[[fluid]]", "liquid.md", kFluid};
+const FieldTable kFluidBlockFields{"[[fluid]]", "liquid.md", kFluidBlock};
 const FieldTable kDriveFields{"[drive]", "liquid.md", kDrive};
 const FieldTable kLiquidOutputFields{"[output]", "liquid.md", kOutput};
 

@@ -76,10 +76,6 @@ Rgb scaled(const Rgb& c, double f) {
           static_cast<std::uint8_t>(std::lround(c[2] * f))};
 }
 
-void blend(std::uint8_t* p, const Rgb& c, double a) {
-  for (int k = 0; k < 3; ++k) p[k] = static_cast<std::uint8_t>(std::lround(a * c[k] + (1.0 - a) * p[k]));
-}
-
 // Nearer to the viewer is larger: +z for a view along -z, -x for a view along +x.
 double nearness(int view, const Eigen::Vector3d& x) { return view == 2 ? x.z() : -x.x(); }
 

@@ -33,11 +33,6 @@ constexpr std::array<Rgb, 9> kViridis{{{68, 1, 84},
                                        {170, 220, 50},
                                        {253, 231, 37}}};
 
-// Paints colour c with coverage a in [0, 1] over the pixel at byte offset i.
-inline void blend(std::uint8_t* p, const Rgb& c, double a) {
-  for (int k = 0; k < 3; ++k) p[k] = static_cast<std::uint8_t>(std::lround(a * c[k] + (1.0 - a) * p[k]));
-}
-
 // Coverage of a pixel whose centre is at distance d from an edge at distance `edge`, inside being
 // d < edge: a one-pixel linear ramp, the usual cheap anti-aliasing.
 inline double coverage(double d, double edge) { return std::clamp(edge + 0.5 - d, 0.0, 1.0); }

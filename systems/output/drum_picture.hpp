@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <cmath>
 #include <span>
 #include <string>
 #include <vector>
@@ -16,6 +17,11 @@
 namespace gf {
 
 using Rgb = std::array<std::uint8_t, 3>;
+
+// Paints colour c with coverage a in [0, 1] over the pixel whose three bytes start at p.
+inline void blend(std::uint8_t* p, const Rgb& c, double a) {
+  for (int k = 0; k < 3; ++k) p[k] = static_cast<std::uint8_t>(std::lround(a * c[k] + (1.0 - a) * p[k]));
+}
 
 // Species colours from the Okabe-Ito palette (distinguishable with the common colour-vision
 // deficiencies), assigned by size: the smallest species dark blue, the largest light orange, others

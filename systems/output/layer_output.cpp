@@ -8,13 +8,13 @@
 namespace gf {
 
 namespace {
-std::vector<std::string> columns() { return {"time", "distance", "vc", "lacey", "fraction_a", "cells", "grains"}; }
+std::vector<std::string> layer_columns() { return {"time", "distance", "vc", "lacey", "fraction_a", "cells", "grains"}; }
 }  // namespace
 
 LayerOutput::LayerOutput(std::filesystem::path file, LayerSettings s, std::optional<std::size_t> resume_rows)
     : s_(std::move(s)),
-      csv_(std::make_unique<SeriesCsv>(resume_rows ? SeriesCsv::resume(std::move(file), columns(), *resume_rows)
-                                                   : SeriesCsv(std::move(file), columns()))),
+      csv_(std::make_unique<SeriesCsv>(resume_rows ? SeriesCsv::resume(std::move(file), layer_columns(), *resume_rows)
+                                                   : SeriesCsv(std::move(file), layer_columns()))),
       rows_(resume_rows.value_or(0)) {}
 
 void LayerOutput::run(World& world, const StepContext& now) {

@@ -7,14 +7,14 @@
 namespace gf {
 
 namespace {
-std::vector<std::string> columns() {
+std::vector<std::string> residence_columns() {
   return {"id", "species", "mass", "entry_time", "exit_time", "residence_time"};
 }
 }  // namespace
 
 ResidenceOutput::ResidenceOutput(std::filesystem::path file, std::optional<std::size_t> resume_rows)
-    : csv_(std::make_unique<SeriesCsv>(resume_rows ? SeriesCsv::resume(std::move(file), columns(), *resume_rows)
-                                                   : SeriesCsv(std::move(file), columns()))),
+    : csv_(std::make_unique<SeriesCsv>(resume_rows ? SeriesCsv::resume(std::move(file), residence_columns(), *resume_rows)
+                                                   : SeriesCsv(std::move(file), residence_columns()))),
       rows_(resume_rows.value_or(0)) {}
 
 void ResidenceOutput::run(World& world, const StepContext&) {

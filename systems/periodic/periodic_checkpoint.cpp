@@ -5,15 +5,6 @@
 
 namespace gf {
 
-namespace {
-
-void require(const CheckpointReader& in, bool ok, const std::string& what) {
-  if (!ok)
-    in.fail("it is inconsistent (" + what + ")",
-            "resume from an earlier checkpoint, or from final_state.csv with a file fill");
-}
-
-}  // namespace
 
 void save_periodic_images(CheckpointWriter& out, const PeriodicImages& im) {
   if (!im.box.any()) return;
@@ -30,7 +21,7 @@ void restore_periodic_images(const CheckpointReader& in, PeriodicImages& im, con
                    : "it was written without [periodic] faces, the scene now has them",
             "resume with the scene (and --set overrides) of the run that wrote the checkpoint");
   if (!stored) {
-    require(in, g.n == g.n_owned, "ghost rows without periodic faces");
+    in.require(g.n == g.n_owned, "ghost rows without periodic faces", kFixResumeOrStateFile);
     return;
   }
   in.vector("periodic.owner", im.owner);
@@ -38,9 +29,9 @@ void restore_periodic_images(const CheckpointReader& in, PeriodicImages& im, con
   in.vector("periodic.shift_y", im.sy);
   in.vector("periodic.shift_z", im.sz);
   const bool rows = std::all_of(im.owner.begin(), im.owner.end(), [&](std::uint32_t o) { return o < g.n_owned; });
-  require(in, im.owner.size() == g.n - g.n_owned && im.sx.size() == im.owner.size() &&
+  in.require(im.owner.size() == g.n - g.n_owned && im.sx.size() == im.owner.size() &&
                   im.sy.size() == im.owner.size() && im.sz.size() == im.owner.size() && rows,
-          "periodic images");
+          "periodic images", kFixResumeOrStateFile);
 }
 
 }  // namespace gf

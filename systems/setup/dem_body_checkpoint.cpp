@@ -22,18 +22,6 @@ void for_each_body_column(Bodies& b, F f) {
   std::apply([&](auto&... comp) { (for_each_column(comp, f), ...); }, b.components());
 }
 
-void require(const CheckpointReader& in, bool ok, const std::string& what) {
-  if (!ok) in.fail("it is inconsistent (" + what + ")", "resume from an earlier checkpoint, or run the scene again");
-}
-
-template <class T>
-void require_equal(const CheckpointReader& in, const char* what, T stored, T now, const std::string& fix) {
-  if (stored != now)
-    in.fail(std::string("it was written with ") + what + " = " + std::to_string(stored) + ", the scene now gives " +
-                std::to_string(now),
-            fix);
-}
-
 }  // namespace
 
 void save_body_state(CheckpointWriter& out, World& world, const DemScene& scene) {
@@ -58,7 +46,7 @@ void restore_body_state(const CheckpointReader& in, World& world, const DemScene
   const std::string same_scene = "resume with the scene (and --set overrides) of the run that wrote the checkpoint";
   if (!in.has("bodies.n"))
     in.fail("it holds no composite bodies (a run of grains wrote it)", same_scene);
-  require_equal<double>(in, "run.dt", in.value<double>("clock.dt"), scene.dt,
+  in.require_equal<double>("run.dt", in.value<double>("clock.dt"), scene.dt,
                         "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
   std::vector<char> law;
   in.vector("contact.law", law);
@@ -69,12 +57,12 @@ void restore_body_state(const CheckpointReader& in, World& world, const DemScene
   Bodies& b = world.tables.get<Bodies>();
   Members& m = world.tables.get<Members>();
   BodyContactState& s = world.resources.get<BodyContactState>();
-  require_equal<std::uint64_t>(in, "wall count", in.value<std::uint64_t>("scene.walls"), scene.walls.size(), same_scene);
-  require_equal<std::uint64_t>(in, "shape count", in.value<std::uint64_t>("scene.shapes"), scene.bodies->shapes.size(),
+  in.require_equal<std::uint64_t>("wall count", in.value<std::uint64_t>("scene.walls"), scene.walls.size(), same_scene);
+  in.require_equal<std::uint64_t>("shape count", in.value<std::uint64_t>("scene.shapes"), scene.bodies->shapes.size(),
                                same_scene);
-  require_equal<std::uint64_t>(in, "body count", in.value<std::uint64_t>("bodies.n"), b.n, same_scene);
-  require_equal<std::uint64_t>(in, "member count", in.value<std::uint64_t>("members.n"), m.n, same_scene);
-  require_equal<double>(in, "run.skin", in.value<double>("body_contact.skin"), s.skin, "resume with the same run.skin");
+  in.require_equal<std::uint64_t>("body count", in.value<std::uint64_t>("bodies.n"), b.n, same_scene);
+  in.require_equal<std::uint64_t>("member count", in.value<std::uint64_t>("members.n"), m.n, same_scene);
+  in.require_equal<double>("run.skin", in.value<double>("body_contact.skin"), s.skin, "resume with the same run.skin");
 
   restore_clock(in, world.clock);
   std::size_t k = 0;
@@ -93,9 +81,9 @@ void restore_body_state(const CheckpointReader& in, World& world, const DemScene
   restore_body_contact(in, s, m.n);
   // Every value used as an index or a count, checked.
   for (std::size_t i = 0; i < b.n; ++i)
-    require(in, b.motion.state[i] <= static_cast<std::uint8_t>(Motion::removed) && b.mass.m[i] > 0 &&
+    in.require(b.motion.state[i] <= static_cast<std::uint8_t>(Motion::removed) && b.mass.m[i] > 0 &&
                     std::isfinite(b.pos.x[i] + b.pos.y[i] + b.pos.z[i]),
-            "a body's motion, mass or position");
+            "a body's motion, mass or position", kFixResumeOrRerun);
 }
 
 }  // namespace gf

@@ -20,39 +20,23 @@ namespace {
 std::string g(std::size_t k) { return "grains.column." + std::to_string(k); }
 std::string x(std::size_t k) { return "grains.attached." + std::to_string(k); }
 
-// A checkpoint is raw arrays of the same build, sealed by a checksum; one corrupted and sealed again
-// must still not index past an array. These checks cover every value used as an index or a count.
-void require(const CheckpointReader& in, bool ok, const std::string& what) {
-  if (!ok)
-    in.fail("it is inconsistent (" + what + ")",
-            "resume from an earlier checkpoint, or from final_state.csv with a file fill");
-}
-
 void check_grains(const CheckpointReader& in, const Grains& g, std::size_t species, const Walls& walls) {
   for (std::size_t i = 0; i < g.n; ++i) {
     // As for a state file's grain: a centre behind a wall is outside the domain.
     for (const Wall& w : walls.list) {
       Vec3d n;
-      require(in, !(wall_gap(w, {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, n) <= 0.0),
-              "a grain's centre is outside wall '" + w.name + "'");
+      in.require(!(wall_gap(w, {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, n) <= 0.0),
+              "a grain's centre is outside wall '" + w.name + "'", kFixResumeOrStateFile);
     }
-    require(in, g.species.type[i] >= 0 && static_cast<std::size_t>(g.species.type[i]) < species,
-            "a grain's species is out of range");
-    require(in, std::isfinite(g.pos.x[i]) && std::isfinite(g.pos.y[i]) && std::isfinite(g.pos.z[i]),
-            "a grain's position is not finite");
-    require(in, g.radius.r[i] > 0 && std::isfinite(g.radius.r[i]) && g.mass.m[i] > 0 && std::isfinite(g.mass.m[i]),
-            "a grain's radius or mass is not a positive number");
+    in.require(g.species.type[i] >= 0 && static_cast<std::size_t>(g.species.type[i]) < species,
+            "a grain's species is out of range", kFixResumeOrStateFile);
+    in.require(std::isfinite(g.pos.x[i]) && std::isfinite(g.pos.y[i]) && std::isfinite(g.pos.z[i]),
+            "a grain's position is not finite", kFixResumeOrStateFile);
+    in.require(g.radius.r[i] > 0 && std::isfinite(g.radius.r[i]) && g.mass.m[i] > 0 && std::isfinite(g.mass.m[i]),
+            "a grain's radius or mass is not a positive number", kFixResumeOrStateFile);
   }
   for (const GrainRow& r : g.pending.insert)
-    require(in, r.type >= 0 && static_cast<std::size_t>(r.type) < species, "a queued grain's species is out of range");
-}
-
-template <class T>
-void require_equal(const CheckpointReader& in, const char* what, T stored, T now, const std::string& fix) {
-  if (stored != now)
-    in.fail(std::string("it was written with ") + what + " = " + std::to_string(stored) + ", the scene now gives " +
-                std::to_string(now),
-            fix);
+    in.require(r.type >= 0 && static_cast<std::size_t>(r.type) < species, "a queued grain's species is out of range", kFixResumeOrStateFile);
 }
 
 }  // namespace
@@ -63,7 +47,7 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) 
 }
 
 void restore_dem_state(const CheckpointReader& in, World& world, const DemScene& scene) {
-  require_equal<double>(in, "run.dt", in.value<double>("clock.dt"), scene.dt,
+  in.require_equal<double>("run.dt", in.value<double>("clock.dt"), scene.dt,
                         "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
   restore_clock(in, world.clock);
   restore_dem_rows(in, world, scene);
@@ -95,9 +79,9 @@ void save_dem_rows(CheckpointWriter& out, World& world, const DemScene& scene) {
 
 void restore_dem_rows(const CheckpointReader& in, World& world, const DemScene& scene) {
   const std::string same_scene = "resume with the scene (and --set overrides) of the run that wrote the checkpoint";
-  require_equal<std::uint64_t>(in, "species count", in.value<std::uint64_t>("scene.species"), scene.species.size(),
+  in.require_equal<std::uint64_t>("species count", in.value<std::uint64_t>("scene.species"), scene.species.size(),
                                same_scene);
-  require_equal<std::uint64_t>(in, "wall count", in.value<std::uint64_t>("scene.walls"), scene.walls.size(),
+  in.require_equal<std::uint64_t>("wall count", in.value<std::uint64_t>("scene.walls"), scene.walls.size(),
                                same_scene);
   std::vector<char> law;
   if (in.has("contact.law")) in.vector("contact.law", law);
@@ -115,11 +99,11 @@ void restore_dem_rows(const CheckpointReader& in, World& world, const DemScene& 
   // The row count is the checkpoint's: grains may have been added or removed since the fill.
   const auto n_owned = in.value<std::uint64_t>("grains.n_owned");
   auto& bp = world.resources.get<BroadphaseState>();
-  require_equal<double>(in, "run.skin", in.value<double>("broadphase.skin"), bp.skin, "resume with the same run.skin");
+  in.require_equal<double>("run.skin", in.value<double>("broadphase.skin"), bp.skin, "resume with the same run.skin");
 
   const auto n = in.value<std::uint64_t>("grains.n");
   // Every row takes at least 8 bytes per column: a larger count is corrupt, not a reason to allocate.
-  require(in, n_owned <= n && n <= in.bytes() / 8, "grain counts");
+  in.require(n_owned <= n && n <= in.bytes() / 8, "grain counts", kFixResumeOrStateFile);
   gr.resize(n);
   gr.n_owned = n_owned;
   std::size_t k = 0;

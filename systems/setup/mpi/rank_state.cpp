@@ -47,11 +47,6 @@ void save_ghosts(CheckpointWriter& out, const DomainGhosts& gh) {
   if (!shifts.empty()) out.vector("rank.ghosts.send_shifts", std::move(shifts));
 }
 
-// Fails with the file named when a value read back cannot be this run's.
-void require(const CheckpointReader& in, bool ok, const std::string& what) {
-  if (!ok) in.fail("it is inconsistent (" + what + ")", "resume from an earlier checkpoint");
-}
-
 template <class T>
 bool all_below(const T& v, std::size_t n) {
   return std::all_of(v.begin(), v.end(), [n](auto x) { return x >= 0 && static_cast<std::size_t>(x) < n; });
@@ -64,21 +59,21 @@ void restore_ghosts(const CheckpointReader& in, DomainGhosts& gh, const Grains& 
   in.vector("rank.ghosts.send_rows", rows);
   in.vector("rank.ghosts.first", gh.first);
   in.vector("rank.ghosts.count", gh.count);
-  require(in, sizes.size() == ranks && gh.first.size() == ranks && gh.count.size() == ranks, "ghost lists");
-  require(in, all_below(rows, g.n_owned), "rows sent as ghosts");
+  in.require(sizes.size() == ranks && gh.first.size() == ranks && gh.count.size() == ranks, "ghost lists", kFixResume);
+  in.require(all_below(rows, g.n_owned), "rows sent as ghosts", kFixResume);
   gh.send.assign(ranks, {});
   std::size_t at = 0;
   for (std::size_t r = 0; r < ranks; ++r) {
-    require(in, sizes[r] <= rows.size() - at, "ghost list sizes");
+    in.require(sizes[r] <= rows.size() - at, "ghost list sizes", kFixResume);
     gh.send[r].assign(rows.begin() + static_cast<std::ptrdiff_t>(at), rows.begin() + static_cast<std::ptrdiff_t>(at + sizes[r]));
     at += sizes[r];
-    require(in, gh.first[r] >= g.n_owned && gh.first[r] <= g.n && gh.count[r] <= g.n - gh.first[r], "ghost rows");
+    in.require(gh.first[r] >= g.n_owned && gh.first[r] <= g.n && gh.count[r] <= g.n - gh.first[r], "ghost rows", kFixResume);
   }
   gh.shift.assign(ranks, {});
   if (!in.has("rank.ghosts.send_shifts")) return;
   std::vector<double> shifts;
   in.vector("rank.ghosts.send_shifts", shifts);
-  require(in, shifts.size() == 3 * rows.size(), "ghost shifts");
+  in.require(shifts.size() == 3 * rows.size(), "ghost shifts", kFixResume);
   at = 0;
   for (std::size_t r = 0; r < ranks; ++r)
     for (std::size_t k = 0; k < sizes[r]; ++k, at += 3) gh.shift[r].push_back({shifts[at], shifts[at + 1], shifts[at + 2]});
@@ -192,7 +187,7 @@ void RankSimulation::restore(const CheckpointReader& in) {
   const auto n_owned = in.value<std::uint64_t>("rank.grains.n_owned");
   const auto n = in.value<std::uint64_t>("rank.grains.n");
   // Every row takes at least 8 bytes per column: a larger count is corrupt, not a reason to allocate.
-  require(in, n_owned <= n && n <= in.bytes() / 8, "grain counts");
+  in.require(n_owned <= n && n <= in.bytes() / 8, "grain counts", kFixResume);
   g.resize(n);
   g.n_owned = n_owned;
   const std::vector<RawColumn> cols = raw_row_columns(g);
@@ -244,7 +239,7 @@ void RankSimulation::take_part(const CheckpointReader& in, std::int64_t step, Po
     in.fail("it holds another step than part 0 of its checkpoint", "resume from an index and parts of one checkpoint");
   const auto n_owned = in.value<std::uint64_t>("rank.grains.n_owned");
   const auto n = in.value<std::uint64_t>("rank.grains.n");
-  require(in, n_owned <= n && n <= in.bytes() / 8, "grain counts");
+  in.require(n_owned <= n && n <= in.bytes() / 8, "grain counts", kFixResume);
   const std::size_t base = g.n;
   g.resize(base + n);
   const std::vector<RawColumn> cols = raw_row_columns(g);
@@ -253,9 +248,9 @@ void RankSimulation::take_part(const CheckpointReader& in, std::int64_t step, Po
   // The part's springs, by its rows' ids, each to the rank that evaluates its pair under this run's boxes.
   list_sections(in, parts.list, parts.history, parts.broadphase, "rank.");
   const NeighborList& list = parts.list;
-  require(in, list.i.size() == list.j.size() && all_below(list.i, n_owned) && all_below(list.j, n) &&
+  in.require(list.i.size() == list.j.size() && all_below(list.i, n_owned) && all_below(list.j, n) &&
                   all_below(parts.history.pair, list.i.size()),
-          "neighbour list rows");
+          "neighbour list rows", kFixResume);
   for (std::size_t e = 0; e < parts.history.size(); ++e) {
     const auto k = static_cast<std::size_t>(parts.history.pair[e]);
     const std::size_t i = base + list.i[k], j = base + list.j[k];
