@@ -37,23 +37,23 @@ bool all_below(const std::vector<T>& v, std::size_t n) {
 void check_body_contact(const CheckpointReader& in, const BodyContactState& s, std::size_t members) {
   const std::size_t pairs = s.list.key.size();
   in.require(s.list.a.size() == pairs && s.list.b.size() == pairs && all_below(s.list.a, members) &&
-                  all_below(s.list.b, members) && std::is_sorted(s.list.key.begin(), s.list.key.end()),
-          "member-pair list", kFixResumeOrRerun);
+                 all_below(s.list.b, members) && std::is_sorted(s.list.key.begin(), s.list.key.end()),
+             "member-pair list", kFixResumeOrRerun);
   in.require(s.list.constants.size() == pairs * s.list.width || s.list.constants.empty(), "member-pair constants", kFixResumeOrRerun);
   in.require(s.list.wall_constants.size() == members * s.list.width || s.list.wall_constants.empty(),
-          "wall constants", kFixResumeOrRerun);
+             "wall constants", kFixResumeOrRerun);
   in.require(std::all_of(s.history.pair.begin(), s.history.pair.end(),
-                          [&](std::int32_t p) { return p >= 0 && static_cast<std::size_t>(p) < pairs; }),
-          "member-pair springs", kFixResumeOrRerun);
+                         [&](std::int32_t p) { return p >= 0 && static_cast<std::size_t>(p) < pairs; }),
+             "member-pair springs", kFixResumeOrRerun);
   in.require(std::all_of(s.history.slot.begin(), s.history.slot.end(),
-                          [&](std::int32_t e) { return e >= -1 && e < static_cast<std::int64_t>(s.history.size()); }),
-          "member-pair spring slots", kFixResumeOrRerun);
+                         [&](std::int32_t e) { return e >= -1 && e < static_cast<std::int64_t>(s.history.size()); }),
+             "member-pair spring slots", kFixResumeOrRerun);
   in.require(s.walls.value.size() == s.walls.members * s.walls.planes * s.walls.width &&
-                  s.walls.touching.size() == s.walls.members * s.walls.planes,
-          "member-wall springs", kFixResumeOrRerun);
+                 s.walls.touching.size() == s.walls.members * s.walls.planes,
+             "member-wall springs", kFixResumeOrRerun);
   in.require((s.ref_x.empty() || s.ref_x.size() == members) && s.ref_y.size() == s.ref_x.size() &&
-                  s.ref_z.size() == s.ref_x.size() && (s.motion.empty() || s.motion.size() == members),
-          "member reference centres", kFixResumeOrRerun);
+                 s.ref_z.size() == s.ref_x.size() && (s.motion.empty() || s.motion.size() == members),
+             "member reference centres", kFixResumeOrRerun);
 }
 
 }  // namespace

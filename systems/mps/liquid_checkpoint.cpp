@@ -95,13 +95,13 @@ void check_scene(const CheckpointReader& in, const FluidNodes& f, const LiquidSc
 void check_pairs(const CheckpointReader& in, const NeighborPairs& nb, std::size_t rows) {
   const std::size_t pairs = nb.j.size();
   in.require(nb.start.empty() || (nb.start.size() == rows + 1 && nb.start.front() == 0 && nb.start.back() == pairs &&
-                                    std::is_sorted(nb.start.begin(), nb.start.end())),
-          "neighbour list offsets", kFixResume);
+                                   std::is_sorted(nb.start.begin(), nb.start.end())),
+             "neighbour list offsets", kFixResume);
   in.require(nb.image.size() == pairs && (nb.w.empty() || nb.w.size() == pairs), "neighbour list lengths", kFixResume);
   in.require(std::all_of(nb.j.begin(), nb.j.end(), [rows](std::uint32_t q) { return q < rows; }),
-          "neighbour list rows", kFixResume);
+             "neighbour list rows", kFixResume);
   in.require(nb.x0.size() == nb.y0.size() && nb.y0.size() == nb.z0.size() && (nb.x0.empty() || nb.x0.size() == rows),
-          "neighbour reference positions", kFixResume);
+             "neighbour reference positions", kFixResume);
 }
 
 }  // namespace
@@ -154,7 +154,7 @@ void restore_liquid_nodes(const CheckpointReader& in, World& world, const Liquid
   in.require(wrong == 0, "a node column has the wrong length", kFixResume);
   for (const ColumnD* c : {&f.x, &f.y, &f.z, &f.u, &f.v, &f.w, &f.p, &f.n})
     in.require(std::all_of(c->begin(), c->end(), [](double v) { return std::isfinite(v); }),
-            "a node's position, velocity, pressure or number density is not finite", kFixResume);
+               "a node's position, velocity, pressure or number density is not finite", kFixResume);
   NeighborPairs& nb = world.resources.get<NeighborPairs>();
   pair_sections(in, nb);
   check_pairs(in, nb, rows);

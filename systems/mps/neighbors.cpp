@@ -174,8 +174,8 @@ void build_neighbors(const FluidNodes& f, double radius, const Periodicity& per,
   out.periodic = per;
   out.radius = radius;
   // One scan: each block of rows gathers its pairs into its own buffer (sized from the last list's pairs per
-  // row), counting each row's; the blocks are then copied into place in row order. Scanning twice, to count
-  // and then to fill, took near half of a rebuild.
+  // row), counting each row's; the blocks are then copied into place in row order, instead of scanning the
+  // cells twice, once to count and once to fill.
   constexpr std::size_t kRowsPerBlock = 256;
   const std::size_t blocks = (n + kRowsPerBlock - 1) / kRowsPerBlock;
   const std::size_t per_row = n > 0 && out.j.size() > 0 ? out.j.size() / n + 8 : 64;

@@ -9,7 +9,7 @@
 // since the build is taken from the fluid's common drift and may reach half the skin; a wall or dummy node never
 // moves, so against those a fluid node's whole displacement may reach the skin. A liquid carried along a periodic
 // pipe as a whole thus keeps its list for several steps, where a bound on the whole displacement against half
-// the skin rebuilt it every step from 1.25 m/s on (l0 = 10 mm, dt = 5e-4 s).
+// the skin (with the coming step's margin 2 dt |u|) rebuilt it every step above 1.67 m/s (skin 5 mm, dt = 5e-4 s).
 //
 // One axis may be periodic: positions are wrapped into [lo, hi) before the list is built, and each pair keeps the
 // image (-1, 0, +1 periods) through which it was found, so distances stay continuous through the step.

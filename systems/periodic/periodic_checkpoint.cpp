@@ -30,8 +30,8 @@ void restore_periodic_images(const CheckpointReader& in, PeriodicImages& im, con
   in.vector("periodic.shift_z", im.sz);
   const bool rows = std::all_of(im.owner.begin(), im.owner.end(), [&](std::uint32_t o) { return o < g.n_owned; });
   in.require(im.owner.size() == g.n - g.n_owned && im.sx.size() == im.owner.size() &&
-                  im.sy.size() == im.owner.size() && im.sz.size() == im.owner.size() && rows,
-          "periodic images", kFixResumeOrStateFile);
+                 im.sy.size() == im.owner.size() && im.sz.size() == im.owner.size() && rows,
+             "periodic images", kFixResumeOrStateFile);
 }
 
 }  // namespace gf

@@ -47,7 +47,7 @@ void restore_body_state(const CheckpointReader& in, World& world, const DemScene
   if (!in.has("bodies.n"))
     in.fail("it holds no composite bodies (a run of grains wrote it)", same_scene);
   in.require_equal<double>("run.dt", in.value<double>("clock.dt"), scene.dt,
-                        "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
+                           "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
   std::vector<char> law;
   in.vector("contact.law", law);
   if (std::string(law.begin(), law.end()) != scene.law)
@@ -59,7 +59,7 @@ void restore_body_state(const CheckpointReader& in, World& world, const DemScene
   BodyContactState& s = world.resources.get<BodyContactState>();
   in.require_equal<std::uint64_t>("wall count", in.value<std::uint64_t>("scene.walls"), scene.walls.size(), same_scene);
   in.require_equal<std::uint64_t>("shape count", in.value<std::uint64_t>("scene.shapes"), scene.bodies->shapes.size(),
-                               same_scene);
+                                  same_scene);
   in.require_equal<std::uint64_t>("body count", in.value<std::uint64_t>("bodies.n"), b.n, same_scene);
   in.require_equal<std::uint64_t>("member count", in.value<std::uint64_t>("members.n"), m.n, same_scene);
   in.require_equal<double>("run.skin", in.value<double>("body_contact.skin"), s.skin, "resume with the same run.skin");
@@ -82,8 +82,8 @@ void restore_body_state(const CheckpointReader& in, World& world, const DemScene
   // Every value used as an index or a count, checked.
   for (std::size_t i = 0; i < b.n; ++i)
     in.require(b.motion.state[i] <= static_cast<std::uint8_t>(Motion::removed) && b.mass.m[i] > 0 &&
-                    std::isfinite(b.pos.x[i] + b.pos.y[i] + b.pos.z[i]),
-            "a body's motion, mass or position", kFixResumeOrRerun);
+                   std::isfinite(b.pos.x[i] + b.pos.y[i] + b.pos.z[i]),
+               "a body's motion, mass or position", kFixResumeOrRerun);
 }
 
 }  // namespace gf

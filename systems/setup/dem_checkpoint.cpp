@@ -26,14 +26,14 @@ void check_grains(const CheckpointReader& in, const Grains& g, std::size_t speci
     for (const Wall& w : walls.list) {
       Vec3d n;
       in.require(!(wall_gap(w, {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, n) <= 0.0),
-              "a grain's centre is outside wall '" + w.name + "'", kFixResumeOrStateFile);
+                 "a grain's centre is outside wall '" + w.name + "'", kFixResumeOrStateFile);
     }
     in.require(g.species.type[i] >= 0 && static_cast<std::size_t>(g.species.type[i]) < species,
-            "a grain's species is out of range", kFixResumeOrStateFile);
+               "a grain's species is out of range", kFixResumeOrStateFile);
     in.require(std::isfinite(g.pos.x[i]) && std::isfinite(g.pos.y[i]) && std::isfinite(g.pos.z[i]),
-            "a grain's position is not finite", kFixResumeOrStateFile);
+               "a grain's position is not finite", kFixResumeOrStateFile);
     in.require(g.radius.r[i] > 0 && std::isfinite(g.radius.r[i]) && g.mass.m[i] > 0 && std::isfinite(g.mass.m[i]),
-            "a grain's radius or mass is not a positive number", kFixResumeOrStateFile);
+               "a grain's radius or mass is not a positive number", kFixResumeOrStateFile);
   }
   for (const GrainRow& r : g.pending.insert)
     in.require(r.type >= 0 && static_cast<std::size_t>(r.type) < species, "a queued grain's species is out of range", kFixResumeOrStateFile);
@@ -48,7 +48,7 @@ void save_dem_state(CheckpointWriter& out, World& world, const DemScene& scene) 
 
 void restore_dem_state(const CheckpointReader& in, World& world, const DemScene& scene) {
   in.require_equal<double>("run.dt", in.value<double>("clock.dt"), scene.dt,
-                        "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
+                           "resume with the same run.dt: a checkpoint continues a run, it does not change its step");
   restore_clock(in, world.clock);
   restore_dem_rows(in, world, scene);
 }
@@ -80,9 +80,9 @@ void save_dem_rows(CheckpointWriter& out, World& world, const DemScene& scene) {
 void restore_dem_rows(const CheckpointReader& in, World& world, const DemScene& scene) {
   const std::string same_scene = "resume with the scene (and --set overrides) of the run that wrote the checkpoint";
   in.require_equal<std::uint64_t>("species count", in.value<std::uint64_t>("scene.species"), scene.species.size(),
-                               same_scene);
+                                  same_scene);
   in.require_equal<std::uint64_t>("wall count", in.value<std::uint64_t>("scene.walls"), scene.walls.size(),
-                               same_scene);
+                                  same_scene);
   std::vector<char> law;
   if (in.has("contact.law")) in.vector("contact.law", law);
   const std::string stored_law(law.begin(), law.end());

@@ -249,8 +249,8 @@ void RankSimulation::take_part(const CheckpointReader& in, std::int64_t step, Po
   list_sections(in, parts.list, parts.history, parts.broadphase, "rank.");
   const NeighborList& list = parts.list;
   in.require(list.i.size() == list.j.size() && all_below(list.i, n_owned) && all_below(list.j, n) &&
-                  all_below(parts.history.pair, list.i.size()),
-          "neighbour list rows", kFixResume);
+                 all_below(parts.history.pair, list.i.size()),
+             "neighbour list rows", kFixResume);
   for (std::size_t e = 0; e < parts.history.size(); ++e) {
     const auto k = static_cast<std::size_t>(parts.history.pair[e]);
     const std::size_t i = base + list.i[k], j = base + list.j[k];
