@@ -3,41 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "engine/simd.hpp"
 #include "systems/mps/ppe.hpp"
+#include "systems/mps/row_blocks.hpp"
 
 namespace gf {
-
-namespace {
-
-constexpr std::size_t kBlock = 1024;
-
-// body(block, first row, end row) for every fixed block of rows, in parallel.
-template <class F>
-void blockwise(std::size_t n, F&& body) {
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& br) {
-    for (std::size_t b = br.begin(); b < br.end(); ++b) body(b, b * kBlock, std::min(n, (b + 1) * kBlock));
-  });
-}
-
-double in_order(const std::vector<double>& part) {
-  double t = 0;
-  for (double v : part) t += v;
-  return t;
-}
-
-}  // namespace
 
 void ppe_compact(const NeighborPairs& nb, const PpeProblem& pb, CompactPpe& sys) {
   number_rows(pb, sys.row_of, sys.node_of);
   const std::size_t m = sys.node_of.size();
   sys.start.assign(m + 1, 0);
   auto coupled = [&](std::uint32_t q) { return nb.w[q] != 0 && sys.row_of[nb.j[q]] >= 0; };
-  blockwise(m, [&](std::size_t, std::size_t r0, std::size_t r1) {
+  for_row_blocks(m, [&](std::size_t, std::size_t r0, std::size_t r1) {
     for (std::size_t r = r0; r < r1; ++r) {
       const std::uint32_t i = sys.node_of[r];
       std::uint32_t c = 0;
@@ -48,7 +25,7 @@ void ppe_compact(const NeighborPairs& nb, const PpeProblem& pb, CompactPpe& sys)
   for (std::size_t r = 0; r < m; ++r) sys.start[r + 1] += sys.start[r];
   sys.col.resize(sys.start[m]);
   sys.w.resize(sys.start[m]);
-  blockwise(m, [&](std::size_t, std::size_t r0, std::size_t r1) {
+  for_row_blocks(m, [&](std::size_t, std::size_t r0, std::size_t r1) {
     for (std::size_t r = r0; r < r1; ++r) {
       const std::uint32_t i = sys.node_of[r];
       std::uint32_t k = sys.start[r];
@@ -61,50 +38,47 @@ void ppe_compact(const NeighborPairs& nb, const PpeProblem& pb, CompactPpe& sys)
   });
 }
 
+double ppe_load(CompactPpe& sys, const PpeProblem& pb, ColumnD& p) {
+  const std::size_t m = sys.node_of.size();
+  for (auto* v : {&sys.diag, &sys.inv, &sys.b, &sys.x, &sys.r, &sys.d, &sys.q}) v->resize(m);
+  sys.part1.assign(row_blocks(m), 0.0);
+  sys.part2.assign(row_blocks(m), 0.0);
+  for_row_blocks(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
+    double bb = 0;
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::uint32_t node = sys.node_of[i];
+      sys.diag[i] = pb.diag[node];
+      sys.inv[i] = 1.0 / sys.diag[i];
+      sys.b[i] = pb.b[node];
+      sys.x[i] = p[node];
+      bb += sys.b[i] * sys.b[i];
+    }
+    sys.part1[blk] = bb;
+  });
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = 0;
+  return std::sqrt(sum_in_order(sys.part1));
+}
+
+void ppe_store(const CompactPpe& sys, ColumnD& p) {
+  for (std::size_t i = 0; i < sys.node_of.size(); ++i) p[sys.node_of[i]] = sys.x[i];
+}
+
 PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSettings& s, ColumnD& p) {
   const std::size_t m = sys.node_of.size();
   PpeResult res;
   res.unknowns = pb.unknowns;
   res.closed = pb.closed;
-  for (auto* v : {&sys.diag, &sys.inv, &sys.b, &sys.x, &sys.r, &sys.d, &sys.q}) v->resize(m);
-  const std::size_t blocks = (m + kBlock - 1) / kBlock;
-  sys.part1.assign(blocks, 0.0);
-  sys.part2.assign(blocks, 0.0);
+  const double bnorm = ppe_load(sys, pb, p);
+  if (m == 0 || bnorm == 0) return res;
   double *diag = sys.diag.data(), *inv = sys.inv.data(), *b = sys.b.data(), *x = sys.x.data();
   double *r = sys.r.data(), *d = sys.d.data(), *q = sys.q.data(), *part1 = sys.part1.data(), *part2 = sys.part2.data();
   const std::uint32_t* start = sys.start.data();
   const std::uint32_t* col = sys.col.data();
   const double* w = sys.w.data();
   const double c = pb.c;
-  const auto* col32 = reinterpret_cast<const std::int32_t*>(col);  // rows < 2^31: the same values
-  // A row's couplings kLanes at a time (one hardware gather of v each), the rest one by one, so the sum is
-  // not one chain of dependent additions; the order is fixed by the row's length alone.
-  auto apply_row = [&](std::size_t i, const double* v) {
-    std::uint32_t k = start[i];
-    const std::uint32_t end = start[i + 1];
-    BatchD acc(0.0);
-    for (; k + kLanes <= end; k += kLanes) acc = xsimd::fma(BatchD::load_unaligned(w + k), gather32(v, col32 + k), acc);
-    double tail = 0;
-    for (; k < end; ++k) tail += w[k] * v[col[k]];
-    return diag[i] * v[i] - c * (xsimd::hadd(acc) + tail);
-  };
-  blockwise(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
-    double bb = 0;
-    for (std::size_t i = i0; i < i1; ++i) {
-      const std::uint32_t node = sys.node_of[i];
-      diag[i] = pb.diag[node];
-      inv[i] = 1.0 / diag[i];
-      b[i] = pb.b[node];
-      x[i] = p[node];
-      bb += b[i] * b[i];
-    }
-    part1[blk] = bb;
-  });
-  const double bnorm = std::sqrt(in_order(sys.part1));
-  for (std::size_t i = 0; i < p.size(); ++i) p[i] = 0;
-  if (m == 0 || bnorm == 0) return res;
+  auto apply_row = [&](std::size_t i, const double* v) { return diag[i] * v[i] - c * row_dot(start, col, w, i, v); };
   // r = b - A x, d = z = r / diag.
-  blockwise(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
+  for_row_blocks(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
     double rz = 0, rr = 0;
     for (std::size_t i = i0; i < i1; ++i) {
       r[i] = b[i] - apply_row(i, x);
@@ -115,12 +89,12 @@ PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSet
     part1[blk] = rz;
     part2[blk] = rr;
   });
-  double rz = in_order(sys.part1);
-  double rnorm = std::sqrt(in_order(sys.part2));
+  double rz = sum_in_order(sys.part1);
+  double rnorm = std::sqrt(sum_in_order(sys.part2));
   int it = 0;
   // Three passes an iteration: q = A d with d.q; x, r updated with r.z and r.r; d = z + beta d.
   while (rnorm > s.tolerance * bnorm && it < s.max_iterations) {
-    blockwise(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
+    for_row_blocks(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
       double dq = 0;
       for (std::size_t i = i0; i < i1; ++i) {
         q[i] = apply_row(i, d);
@@ -128,10 +102,10 @@ PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSet
       }
       part1[blk] = dq;
     });
-    const double dq = in_order(sys.part1);
+    const double dq = sum_in_order(sys.part1);
     if (!(dq > 0)) break;  // loss of positive definiteness: reported as non-convergence below
     const double alpha = rz / dq;
-    blockwise(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
+    for_row_blocks(m, [&](std::size_t blk, std::size_t i0, std::size_t i1) {
       // kLanes rows at a time with one partial sum per lane (blocks start at multiples of kLanes), the block's
       // last rows one by one: a fixed order, whatever the thread count.
       BatchD rz_v(0.0), rr_v(0.0);
@@ -153,11 +127,11 @@ PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSet
       part1[blk] = rz_b;
       part2[blk] = rr_b;
     });
-    const double rz_new = in_order(sys.part1);
-    rnorm = std::sqrt(in_order(sys.part2));
+    const double rz_new = sum_in_order(sys.part1);
+    rnorm = std::sqrt(sum_in_order(sys.part2));
     const double beta = rz_new / rz;
     rz = rz_new;
-    blockwise(m, [&](std::size_t, std::size_t i0, std::size_t i1) {
+    for_row_blocks(m, [&](std::size_t, std::size_t i0, std::size_t i1) {
       for (std::size_t i = i0; i < i1; ++i) d[i] = r[i] * inv[i] + beta * d[i];
     });
     ++it;
@@ -165,7 +139,7 @@ PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSet
   res.iterations = it;
   res.residual = rnorm / bnorm;
   res.converged = std::isfinite(rnorm) && rnorm <= s.tolerance * bnorm;
-  for (std::size_t i = 0; i < m; ++i) p[sys.node_of[i]] = x[i];
+  ppe_store(sys, p);
   return res;
 }
 

@@ -36,6 +36,11 @@ struct CompactPpe {
 // Active rows and their couplings from the neighbour list.
 void ppe_compact(const NeighborPairs& nb, const PpeProblem& pb, CompactPpe& sys);
 
+// Copies the diagonal, the right-hand side and the warm start p into the compact rows (diag, inv, b, x), zeroes p,
+// sizes the solve's vectors; returns |b|. ppe_store writes x back into p on the active nodes.
+double ppe_load(CompactPpe& sys, const PpeProblem& pb, ColumnD& p);
+void ppe_store(const CompactPpe& sys, ColumnD& p);
+
 // Solves from the pressure in p (the last step's: a warm start), into p on active nodes.
 PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSettings& s, ColumnD& p);
 
