@@ -8,8 +8,6 @@
 // Every solve starts from p = 0 to tolerance 1e-8; counters: unknowns, iterations.
 //
 // Run:  ./build/bench/mps_ppe_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
-#include <map>
-#include <memory>
 #include <tuple>
 
 #include <benchmark/benchmark.h>
@@ -19,13 +17,7 @@
 
 namespace {
 
-// One running tank per (dim, side), kept for the whole program.
-gf::LiquidSimulation& tank(int dim, int side) {
-  static std::map<std::pair<int, int>, std::unique_ptr<gf::LiquidSimulation>> cache;
-  auto& s = cache[{dim, side}];
-  if (!s) s = gf::bench::liquid_tank(dim, side);
-  return *s;
-}
+gf::LiquidSimulation& tank(int dim, int side) { return gf::bench::shared_liquid_tank(dim, side); }
 
 struct Case {
   gf::LiquidSimulation* sim;

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "systems/mps/liquid_simulation.hpp"
 
@@ -39,6 +41,14 @@ hi = [%.17g, %.17g, %.17g]
   auto sim = std::make_unique<LiquidSimulation>(LiquidSimulation::from_text(text));
   sim->advance(warm_steps);
   return sim;
+}
+
+// One running tank per (dim, side) with the default solver, made on first use and kept for the whole program.
+inline LiquidSimulation& shared_liquid_tank(int dim, int side) {
+  static std::map<std::pair<int, int>, std::unique_ptr<LiquidSimulation>> cache;
+  auto& s = cache[{dim, side}];
+  if (!s) s = liquid_tank(dim, side);
+  return *s;
 }
 
 }  // namespace gf::bench

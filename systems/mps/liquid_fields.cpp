@@ -32,7 +32,8 @@ const Field kLiquid[] = {
 
 const Field kSolver[] = {
     {"kind", "", kAnyNumber, "`\"parallel_cg\"`, `\"eigen_cg\"`", kNoDefault, "`\"parallel_cg\"`", "pressure solver"},
-    {"preconditioner", "", kAnyNumber, "`\"jacobi\"`, `\"incomplete_cholesky\"` (`eigen_cg` only)", kNoDefault,
+    {"preconditioner", "", kAnyNumber,
+     "`\"jacobi\"`, `\"multigrid\"` (`parallel_cg` only), `\"incomplete_cholesky\"` (`eigen_cg` only)", kNoDefault,
      "`\"jacobi\"`", "preconditioner"},
     {"tolerance", "", {0, 0.1, true, false}, "", 1e-8, "1e-8", "relative residual ‖b − Ap‖/‖b‖ to reach"},
     {"max_iterations", "", {1, 1e6, false, false}, "(integers)", 2000, "",

@@ -11,13 +11,25 @@ namespace gf {
 
 enum class GradientForm { Sum, MinPressure };
 enum class PpeSolverKind { ParallelCg, EigenCg };
-enum class Preconditioner { Jacobi, IncompleteCholesky };
+enum class Preconditioner { Jacobi, IncompleteCholesky, Multigrid };
+
+// The parallel CG's multigrid preconditioner (ppe_multigrid.hpp): nodes grouped by cubes of `aggregate` l0, then
+// cubes of twice the side at every coarser level, down to `coarsest` unknowns solved directly.
+struct MultigridSettings {
+  double aggregate = 2.0;  // l0, side of the finest level's cubes
+  int sweeps = 1;          // damped Jacobi sweeps before and after each coarse correction
+  double omega = 0.7;      // Jacobi damping
+  double correction = 1.5; // the coarse correction's scale (piecewise-constant P undershoots: Braess)
+  int cycle = 2;           // visits of the next level per cycle: 1 (V) or 2 (W)
+  int coarsest = 128;      // unknowns of the directly solved level, at most
+};
 
 struct PpeSettings {
   // The parallel CG is the default: faster end to end than Eigen's CG in every benchmarked tank
   // (bench/mps_step_bench), by using both cores where Eigen's CG runs on one.
   PpeSolverKind kind = PpeSolverKind::ParallelCg;
-  Preconditioner preconditioner = Preconditioner::Jacobi;  // Eigen CG only; the parallel CG is Jacobi
+  Preconditioner preconditioner = Preconditioner::Jacobi;  // Jacobi or multigrid (parallel CG); Jacobi or IC (Eigen)
+  MultigridSettings multigrid;
   double tolerance = 1e-8;  // relative residual |b - A p| / |b|
   int max_iterations = 2000;
 };

@@ -113,11 +113,16 @@ void read_solver(LiquidParams& p, const SceneNode& liq) {
   const FieldTable& T = kLiquidSolverFields;
   p.solver.kind = read_choice(*sv, T.field("kind"), {"parallel_cg", "eigen_cg"}) == "eigen_cg" ? PpeSolverKind::EigenCg
                                                                                                 : PpeSolverKind::ParallelCg;
-  const std::string pc = read_choice(*sv, T.field("preconditioner"), {"jacobi", "incomplete_cholesky"});
-  p.solver.preconditioner = pc == "jacobi" ? Preconditioner::Jacobi : Preconditioner::IncompleteCholesky;
-  if (p.solver.kind == PpeSolverKind::ParallelCg && pc != "jacobi")
-    sv->fail("preconditioner", "the parallel CG is Jacobi-preconditioned only",
-             "use kind = \"eigen_cg\" for incomplete Cholesky, or remove the key");
+  const std::string pc = read_choice(*sv, T.field("preconditioner"), {"jacobi", "incomplete_cholesky", "multigrid"});
+  p.solver.preconditioner = pc == "jacobi"      ? Preconditioner::Jacobi
+                            : pc == "multigrid" ? Preconditioner::Multigrid
+                                                : Preconditioner::IncompleteCholesky;
+  if (p.solver.kind == PpeSolverKind::ParallelCg && pc == "incomplete_cholesky")
+    sv->fail("preconditioner", "the parallel CG takes \"jacobi\" or \"multigrid\"",
+             "use kind = \"eigen_cg\" for incomplete Cholesky, or choose one of those two");
+  if (p.solver.kind == PpeSolverKind::EigenCg && pc == "multigrid")
+    sv->fail("preconditioner", "the multigrid cycle preconditions the parallel CG only",
+             "use kind = \"parallel_cg\" (the default) with it, or \"jacobi\" / \"incomplete_cholesky\" with eigen_cg");
   p.solver.tolerance = read_number(*sv, T.field("tolerance"));
   p.solver.max_iterations = static_cast<int>(read_integer(*sv, T.field("max_iterations")));
 }

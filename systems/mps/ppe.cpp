@@ -199,7 +199,9 @@ PpeResult solve_pressure(FluidNodes& f, const NeighborPairs& nb, const LiquidPar
     res = ppe_solve_eigen(ws.eigen, ws.problem, lp.solver, f.p);
   } else {
     ppe_compact(nb, ws.problem, ws.compact);
-    res = ppe_solve_parallel(ws.compact, ws.problem, lp.solver, f.p);
+    res = lp.solver.preconditioner == Preconditioner::Multigrid
+              ? ppe_solve_multigrid(ws.compact, ws.problem, f, lp, ws.multigrid, f.p)
+              : ppe_solve_parallel(ws.compact, ws.problem, lp.solver, f.p);
     if (ws.problem.closed) remove_mean(ws.problem, f.p);
   }
   for (std::size_t i = 0; i < f.size(); ++i) {

@@ -12,9 +12,9 @@
 // p is removed after the solve: the pressure is defined up to that constant, and only its gradient moves fluid.
 //
 // Two solvers: Eigen's ConjugateGradient on an assembled sparse matrix (Jacobi or incomplete-Cholesky
-// preconditioner, one thread), and a Jacobi-preconditioned CG of our own over a compact copy of the couplings,
-// in parallel with TBB and with deterministic reductions (ppe_parallel_cg.hpp). Both start from the previous
-// pressure.
+// preconditioner, one thread), and a CG of our own over a compact copy of the couplings, in parallel with TBB and
+// with deterministic reductions, preconditioned by Jacobi (ppe_parallel_cg.hpp) or by a multigrid cycle
+// (ppe_multigrid.hpp). Both start from the previous pressure.
 #pragma once
 
 #include <span>
@@ -32,6 +32,7 @@
 #include "systems/mps/fluid_nodes.hpp"
 #include "systems/mps/liquid_params.hpp"
 #include "systems/mps/neighbors.hpp"
+#include "systems/mps/ppe_multigrid.hpp"
 #include "systems/mps/ppe_parallel_cg.hpp"
 
 namespace gf {
@@ -80,6 +81,7 @@ struct PpeWorkspace {
   PpeProblem problem;
   EigenPpe eigen;
   CompactPpe compact;
+  PpeMultigrid multigrid;
 };
 PpeResult solve_pressure(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt, PpeWorkspace& ws,
                          std::span<const double> eps = {});
