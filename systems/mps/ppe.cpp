@@ -9,18 +9,38 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "systems/mps/pair_batch.hpp"
+
 namespace gf {
 
+// A row's pairs kLanes at a time (pair_batch.hpp), the rest one by one; pairs at zero distance or zero weight
+// add nothing (their lanes are masked before the division).
 void compute_divergence(FluidNodes& f, const NeighborPairs& nb, const MpsConstants& k) {
   const double c = k.grad_coef();
+  const PairBatches pairs(f, nb);
+  const BatchD zero(0.0), one(1.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) {
       if (f.kind[i] == kDummy) {
         f.div[i] = 0;
         continue;
       }
+      const BatchD ui(f.u[i]), vi(f.v[i]), wi(f.w[i]);
+      std::uint32_t q = nb.start[i];
+      const std::uint32_t end = nb.start[i + 1];
+      BatchD acc(0.0);
+      for (; q + kLanes <= end; q += kLanes) {
+        BatchD dx, dy, dz;
+        pairs.rel(i, q, dx, dy, dz);
+        const BatchD r2 = dx * dx + dy * dy + dz * dz;
+        const BatchD w = BatchD::load_unaligned(nb.w.data() + q);
+        const auto on = (r2 > zero) && (w != zero);
+        const BatchD dot = dx * (pairs.neighbours(f.u.data(), q) - ui) + dy * (pairs.neighbours(f.v.data(), q) - vi) +
+                           dz * (pairs.neighbours(f.w.data(), q) - wi);
+        acc += xsimd::select(on, dot / xsimd::select(on, r2, one) * w, zero);
+      }
       double s = 0;
-      for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q) {
+      for (; q < end; ++q) {
         double dx, dy, dz;
         nb.rel(f, i, q, dx, dy, dz);
         const double r2 = dx * dx + dy * dy + dz * dz;
@@ -28,7 +48,7 @@ void compute_divergence(FluidNodes& f, const NeighborPairs& nb, const MpsConstan
         const std::uint32_t j = nb.j[q];
         s += (dx * (f.u[j] - f.u[i]) + dy * (f.v[j] - f.v[i]) + dz * (f.w[j] - f.w[i])) / r2 * nb.w[q];
       }
-      f.div[i] = c * s;
+      f.div[i] = c * (xsimd::hadd(acc) + s);
     }
   });
 }
