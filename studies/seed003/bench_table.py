@@ -4,6 +4,10 @@
 
     /usr/bin/python3 studies/seed003/bench_table.py --ppe studies/seed003/results/bench_ppe.json
     /usr/bin/python3 studies/seed003/bench_table.py --step studies/seed003/results/bench_step.json [--before studies/seed003/results/bench_step_before.json]
+    /usr/bin/python3 studies/seed003/bench_table.py --multigrid studies/seed003/results/bench_multigrid.json
+
+--multigrid reads bench/ppe_multigrid_bench.cpp's output run with --benchmark_repetitions=3
+--benchmark_report_aggregates_only=true: each cell is the median of the three with their standard deviation.
 
 With --before, the step table adds each row's time from an earlier build's run of the same benchmark
 (the matrix-free CG that applied the operator from the whole Verlet list stood where the parallel CG is now).
@@ -42,6 +46,42 @@ def footer(ctx):
 
 def g(v):
     return f"{v:.3g}"
+
+
+def multigrid(path):
+    data = json.loads(open(path).read())
+    cells = {}
+    for b in data["benchmarks"]:
+        if b.get("run_type") != "aggregate" or b.get("aggregate_name") not in ("median", "stddev"):
+            continue
+        name = b["run_name"]
+        scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b["time_unit"]]
+        cells.setdefault(name, {})[b["aggregate_name"]] = (b["real_time"] * scale, b)
+    variants = {"BM_Jacobi": "Jacobi CG"}
+    print("| tank | unknowns | preconditioner | cycle | Jacobi sweeps | coarse correction scale | finest cubes (l0) "
+          "| levels | iterations | solve (ms, median ± sd of 3) | Jacobi CG / this |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    jacobi = {}
+    for name, agg in cells.items():
+        args = dict((k, int(v)) for k, v in re.findall(r"(\w+):(\d+)", name))
+        if name.startswith("BM_Jacobi"):
+            jacobi[(args["dim"], args["side"])] = agg["median"][0]
+    def order(item):
+        args = dict((k, int(v)) for k, v in re.findall(r"(\w+):(\d+)", item[0]))
+        return (args["dim"], args["side"], not item[0].startswith("BM_Jacobi"))
+    for name, agg in sorted(cells.items(), key=order):
+        args = dict((k, int(v)) for k, v in re.findall(r"(\w+):(\d+)", name))
+        ms, b = agg["median"]
+        sd = agg["stddev"][0]
+        ref = jacobi[(args["dim"], args["side"])]
+        if name.startswith("BM_Jacobi"):
+            setting = "| Jacobi | — | — | — | — | — "
+        else:
+            setting = (f"| multigrid | {'W' if args['cycle'] == 2 else 'V'} | {args['sweeps']} | {args['scale10'] / 10:g} "
+                       f"| {args['agg10'] / 10:g} | {int(b['levels'])} ")
+        print(f"| {tank(args['dim'], args['side'])} | {int(b['unknowns'])} {setting}| {int(b['iterations'])} "
+              f"| {g(ms)} ± {g(sd)} | {ref / ms:.2f} |")
+    print(footer(data["context"]))
 
 
 def ppe(path):
@@ -84,6 +124,9 @@ def step(path, before=None):
 
 
 if __name__ == "__main__":
+    if len(sys.argv) == 3 and sys.argv[1] == "--multigrid":
+        multigrid(sys.argv[2])
+        sys.exit(0)
     if len(sys.argv) not in (3, 5) or sys.argv[1] not in ("--ppe", "--step") or \
             (len(sys.argv) == 5 and (sys.argv[1] != "--step" or sys.argv[3] != "--before")):
         sys.exit(__doc__)
