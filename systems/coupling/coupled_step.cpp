@@ -13,8 +13,8 @@ namespace {
 std::span<const double> owned(const ColumnD& c, std::size_t n) { return {c.data(), n}; }
 
 struct LiquidForceSystem : SystemBase<LiquidForceSystem> {
-  using Reads = gf::Reads<Velocity, Radius, LiquidAtGrain, Gravity, CouplingState>;
-  using Writes = gf::Writes<LiquidForce, LiquidImpulse>;
+  using Reads = gf::Reads<Velocity, AngularVelocity, Radius, LiquidAtGrain, Gravity, CouplingState>;
+  using Writes = gf::Writes<LiquidForce, LiquidImpulse, LiquidTorque>;
   std::string_view name() const override { return "liquid_force"; }
   void run(World& w, const StepContext& step) override {
     Grains& g = w.grains;
@@ -37,6 +37,20 @@ struct LiquidForceSystem : SystemBase<LiquidForceSystem> {
       f.x[i] = F.x;
       f.y[i] = F.y;
       f.z[i] = F.z;
+    }
+    if (c.rotational_drag) set_torques(g, c);
+  }
+  // T = rotational drag on the spin relative to half the liquid's curl at the step's start.
+  static void set_torques(Grains& g, const CouplingState& c) {
+    LiquidTorque& t = g.extras.get<LiquidTorque>();
+    const LiquidAtGrain& at = g.extras.get<LiquidAtGrain>();
+    for (std::size_t i = 0; i < g.n_owned; ++i) {
+      const V3<double> rel{g.omega.x[i] - 0.5 * at.curl_x[i], g.omega.y[i] - 0.5 * at.curl_y[i],
+                           g.omega.z[i] - 0.5 * at.curl_z[i]};
+      const V3<double> T = rotational_drag_torque(rel, 2.0 * g.radius.r[i], c.liquid.props);
+      t.x[i] = T.x;
+      t.y[i] = T.y;
+      t.z[i] = T.z;
     }
   }
 };
@@ -71,8 +85,14 @@ std::vector<double> share_grains(const Grains& g, const PointSet& carriers, cons
   return solid_volume(c.shares, volume, carriers.size());
 }
 
-void sample_at_grains(Grains& g, const CouplingState& c, const PointSet& velocity) {
+void sample_at_grains(Grains& g, const CouplingState& c, const PointSet& carriers, const PointSet& velocity) {
   const std::vector<double> eps = at_grains(c.shares, c.node_eps);
+  std::vector<V3<double>> curl;
+  if (c.rotational_drag) {
+    const std::size_t n = g.n_owned;
+    const PointSet grains{owned(g.pos.x, n), owned(g.pos.y, n), owned(g.pos.z, n)};
+    curl = curl_at_grains(c.shares, grains, carriers, velocity, {c.liquid.periodic_axis, c.liquid.period_lo, c.liquid.period_hi});
+  }
   const std::vector<double> ux = at_grains(c.shares, velocity.x);
   const std::vector<double> uy = at_grains(c.shares, velocity.y);
   const std::vector<double> uz = at_grains(c.shares, velocity.z);
@@ -83,6 +103,10 @@ void sample_at_grains(Grains& g, const CouplingState& c, const PointSet& velocit
     at.uy[i] = uy[i];
     at.uz[i] = uz[i];
     at.eps[i] = eps[i];
+    const V3<double> w = curl.empty() ? V3<double>{0, 0, 0} : curl[i];
+    at.curl_x[i] = w.x;
+    at.curl_y[i] = w.y;
+    at.curl_z[i] = w.z;
     at.row[i] = static_cast<std::int32_t>(i);
     j.x[i] = j.y[i] = j.z[i] = 0.0;
   }
@@ -109,15 +133,20 @@ void attach_coupling(const CouplingSpec& coupling, const LiquidFacts& liquid, Wo
   w.grains.extras.attach<LiquidForce>(n);
   w.grains.extras.attach<LiquidAtGrain>(n);
   w.grains.extras.attach<LiquidImpulse>(n);
+  w.grains.extras.attach<LiquidTorque>(n);
   CouplingState& c = w.resources.emplace<CouplingState>();
   c.h = coupling.smoothing_radius;
   c.drag = coupling.drag;
+  c.rotational_drag = coupling.rotational_drag;
   c.eps_min = coupling.min_liquid_fraction;
   c.liquid = liquid;
   c.fluid_nodes_only = coupling.fluid_nodes_only;
 }
 
-ForceTerm liquid_force_term() { return force_term<LiquidForce>("liquid_force"); }
+ForceTerm liquid_force_term(const CouplingSpec& coupling) {
+  return coupling.rotational_drag ? force_term<LiquidForce, LiquidTorque>("liquid_force")
+                                  : force_term<LiquidForce>("liquid_force");
+}
 
 void add_liquid_force(Schedule& step) { step.emplace<LiquidForceSystem>(); }
 

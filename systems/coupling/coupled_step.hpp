@@ -28,6 +28,7 @@
 #include "systems/coupling/coupled_liquid.hpp"
 #include "systems/coupling/coupling_settings.hpp"
 #include "systems/coupling/drag.hpp"
+#include "systems/coupling/rotational_drag.hpp"
 #include "systems/coupling/void_fraction.hpp"
 #include "systems/integrate/force_terms.hpp"
 
@@ -42,8 +43,15 @@ struct LiquidForce {
 // grain's row in that step's shares (rows may be re-sorted during the sub-steps).
 struct LiquidAtGrain {
   ColumnD ux, uy, uz, eps;
+  ColumnD curl_x, curl_y, curl_z;  // 1/s, the liquid's curl (with rotational drag; zero without)
   Column<std::int32_t> row;
-  auto columns() { return std::tie(ux, uy, uz, eps, row); }
+  auto columns() { return std::tie(ux, uy, uz, eps, curl_x, curl_y, curl_z, row); }
+};
+// The liquid's torque on each grain (N m): rotational drag (rotational_drag.hpp), with [coupling]
+// rotational_drag only.
+struct LiquidTorque {
+  ColumnD x, y, z;
+  auto columns() { return std::tie(x, y, z); }
 };
 // The impulse (N s) the liquid gave each grain during the current outer step.
 struct LiquidImpulse {
@@ -55,6 +63,7 @@ struct LiquidImpulse {
 struct CouplingState {
   double h = 0;            // m, smoothing radius
   DragModel drag = &drag_laws()[0];
+  bool rotational_drag = false;  // the liquid's torque on spinning grains
   double eps_min = 0.2;
   LiquidFacts liquid;      // the liquid's density, viscosity, carrier volume and periodic axis
   bool fluid_nodes_only = false;  // shares over moving carriers only (coupling.share_with = "fluid_nodes")
@@ -69,8 +78,8 @@ struct CouplingState {
 void attach_coupling(const CouplingSpec& coupling, const LiquidFacts& liquid, World& world);
 
 // The liquid's force on the grains, one more force term of the DEM step (the step itself is assembled
-// with the scene's: systems/setup/coupled_simulation.cpp).
-ForceTerm liquid_force_term();
+// with the scene's: systems/setup/coupled_simulation.cpp), with its torque when the coupling has rotational drag.
+ForceTerm liquid_force_term(const CouplingSpec& coupling);
 // The system that sets that force and tallies its impulse (after the contacts, before the closing kick).
 void add_liquid_force(Schedule& step);
 // The sub-step of grains held fixed (coupling.fixed_grains): the liquid's force and its impulse only.
@@ -82,8 +91,9 @@ namespace coupling_detail {
 // carrier rows); returns the grains' volume shared onto each carrier (m^3).
 std::vector<double> share_grains(const Grains& g, const PointSet& carriers, const std::vector<std::uint32_t>* rows,
                                  CouplingState& c);
-// The liquid's velocity and fraction read at each grain through the shares; the grains' tallies zeroed.
-void sample_at_grains(Grains& g, const CouplingState& c, const PointSet& velocity);
+// The liquid's velocity and fraction (and with rotational drag its curl, from the carriers' positions) read at
+// each grain through the shares; the grains' tallies zeroed.
+void sample_at_grains(Grains& g, const CouplingState& c, const PointSet& carriers, const PointSet& velocity);
 // The grains' tallied impulses shared onto the carriers as reaction per volume (N s/m^3); c.grain_impulse.
 std::vector<V3<double>> reaction_per_volume(Grains& g, CouplingState& c, std::size_t carriers);
 }  // namespace coupling_detail
@@ -107,7 +117,7 @@ void prepare_coupling(World& w) {
   } else {
     c.node_eps = liquid_fraction(solid, c.liquid.carrier_volume, c.eps_min);
   }
-  coupling_detail::sample_at_grains(w.grains, c, {liquid.velocity(0), liquid.velocity(1), liquid.velocity(2)});
+  coupling_detail::sample_at_grains(w.grains, c, carriers, {liquid.velocity(0), liquid.velocity(1), liquid.velocity(2)});
 }
 
 template <CoupledLiquid L>

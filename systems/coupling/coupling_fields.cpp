@@ -11,6 +11,8 @@ const Field kCoupling[] = {
     {"substeps", "", {0, 1e6, false, false}, "(integers; 0: computed), and at least 1 with `fixed_grains`", 0,
      "computed (1 with `fixed_grains`)", "DEM steps k per liquid step"},
     {"drag", "", kAnyNumber, "`\"ergun_wen_yu\"`, `\"blend\"`", kNoDefault, "`\"ergun_wen_yu\"`", "drag law"},
+    {"rotational_drag", "", kAnyNumber, "`\"none\"`, `\"dennis\"`", kNoDefault, "`\"none\"`",
+     "the liquid's torque on a spinning grain (none in the seed)"},
     {"min_liquid_fraction", "", {0, 1, true, false}, "", 0.2, "", "floor of the nodes' liquid fraction"},
     {"share_with", "", kAnyNumber, "`\"all_nodes\"`, `\"fluid_nodes\"`", kNoDefault, "`\"all_nodes\"`",
      "which nodes share a grain"},

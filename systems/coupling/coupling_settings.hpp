@@ -12,6 +12,7 @@ struct CouplingSpec {
   double dem_step_limit = 0;       // s, run.dt_safety times the contact law's smallest period
   double smoothing_radius = 0;     // m
   DragModel drag = &drag_laws()[0];
+  bool rotational_drag = false;    // rotational_drag = "dennis": the liquid's torque on spinning grains
   double min_liquid_fraction = 0.2;
   bool modified_pressure = false;
   bool fixed_grains = false;

@@ -106,6 +106,7 @@ void read_coupling(CoupledScene& s, const SceneNode& root) {
                " m: a grain between nodes would reach none",
            "set smoothing_radius >= l0, e.g. " + short_number(2.5 * l0) + " m (2.5 l0)");
   s.coupling.drag = &drag_law(read_choice(c, T.field("drag"), drag_law_names()));
+  s.coupling.rotational_drag = read_choice(c, T.field("rotational_drag"), {"none", "dennis"}) == "dennis";
   s.coupling.min_liquid_fraction = read_number(c, T.field("min_liquid_fraction"));
   s.coupling.fluid_nodes_only = read_choice(c, T.field("share_with"), {"all_nodes", "fluid_nodes"}) == "fluid_nodes";
   s.coupling.averaged = read_bool(c, T.field("averaged"));

@@ -22,9 +22,9 @@ namespace gf {
 namespace {
 
 // The DEM step of the scene with the liquid's force as one more force term (grains of spheres, no feeds).
-std::unique_ptr<Schedule> coupled_dem_step(const DemScene& scene) {
+std::unique_ptr<Schedule> coupled_dem_step(const DemScene& scene, const CouplingSpec& coupling) {
   ForceTerms terms = dem_force_terms(scene);
-  terms.list.push_back(liquid_force_term());
+  terms.list.push_back(liquid_force_term(coupling));
   auto step = std::make_unique<Schedule>();
   step->emplace<IntegratePositions>(terms);
   step->emplace<Broadphase>();
@@ -49,7 +49,7 @@ CoupledSimulation::CoupledSimulation(CoupledScene scene)
   build_liquid_world(scene_.liquid, w);  // the clock: the liquid's step
   attach_coupling(scene_.coupling, liquid_facts(scene_.liquid), w);
   if (scene_.coupling.averaged) w.resources.emplace<LiquidFraction>();  // the liquid's target: eps n0
-  auto inner = scene_.coupling.fixed_grains ? fixed_grains_step() : coupled_dem_step(scene_.dem);
+  auto inner = scene_.coupling.fixed_grains ? fixed_grains_step() : coupled_dem_step(scene_.dem, scene_.coupling);
   dem_ = &schedule_coupled_step<MpsCoupledLiquid>(*step_, std::move(inner), scene_.coupling.substeps);
   schedule_liquid_step(*step_, scene_.liquid.drive.has_value());
   step_->build(w);
