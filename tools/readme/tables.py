@@ -402,6 +402,8 @@ TABLES = {
     "liquid_sweep_3d": lambda: script("studies/seed003/sweep_table.py", "studies/seed003/results/sweep_3d.csv"),
     "liquid_options": lambda: script("studies/seed003/options_table.py", "studies/seed003/results/options.csv"),
     "liquid_bench_ppe": lambda: script("studies/seed003/bench_table.py", "--ppe", "studies/seed003/results/bench_ppe.json"),
+    "spin_candidates": lambda: script("studies/seed003/spin_candidates.py", "table",
+                                      "studies/seed003/results/spin_candidates.json"),
     "liquid_bench_multigrid": lambda: script("studies/seed003/bench_table.py", "--multigrid",
                                              "studies/seed003/results/bench_multigrid.json"),
     "liquid_bench_step": lambda: script("studies/seed003/bench_table.py", "--step", "studies/seed003/results/bench_step.json",
