@@ -119,6 +119,16 @@ TEST_CASE("coupled step: share_with = fluid_nodes keeps a grain beside a wall of
   }
 }
 
+TEST_CASE("coupled scene: the liquid's eddy viscosity stays out of the drag law", "[coupled]") {
+  // The drag and the rotational drag read the liquid's molecular viscosity: an eddy viscosity stands for
+  // momentum that turbulence mixes, not for a thicker liquid around a grain.
+  gf::CoupledSimulation sim = gf::CoupledSimulation::from_text(scene(), {"liquid.eddy_viscosity=1.0e-4"});
+  const gf::LiquidParams& p = sim.scene().liquid.params;
+  REQUIRE(p.eddy_viscosity == 1.0e-4);
+  const auto& c = sim.world().resources.get<gf::CouplingState>();
+  CHECK(c.liquid.props.viscosity == p.rho * p.nu);
+}
+
 TEST_CASE("coupled step: one graph, the DEM sub-steps inside the liquid's step", "[coupled]") {
   gf::CoupledSimulation sim = gf::CoupledSimulation::from_text(scene());
   const std::vector<std::string> outer = sim.step().names();

@@ -20,7 +20,7 @@ void mps_laplacian(const FluidNodes& f, const NeighborPairs& nb, const MpsConsta
 void predict_velocity(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt,
                       std::span<const double> eps) {
   const std::size_t n = f.size();
-  const double c = lp.nu * lp.k.lap_coef();
+  const double c = (lp.nu + lp.eddy_viscosity) * lp.k.lap_coef();
   const double gx = lp.gravity[0] + lp.body_force[0];
   const double gy = lp.gravity[1] + lp.body_force[1];
   const double gz = lp.gravity[2] + lp.body_force[2];

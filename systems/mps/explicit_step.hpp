@@ -1,5 +1,7 @@
-// Explicit prediction of the semi-implicit step: u* = u + dt (nu <lap u> + g + f_body), r* = r + dt u*, for
-// fluid rows. The viscous term uses the MPS Laplacian (kernel.hpp) with wall and dummy nodes at rest (no slip).
+// Explicit prediction of the semi-implicit step: u* = u + dt ((nu + nu_t) <lap u> + g + f_body), r* = r + dt u*,
+// for fluid rows, nu_t the scene's constant eddy viscosity (0 unless set: the crudest turbulence closure, for
+// a liquid whose momentum turbulence would mix). The viscous term uses the MPS Laplacian (kernel.hpp) with wall
+// and dummy nodes at rest (no slip).
 // In a locally averaged liquid (eps per node, liquid_fraction.hpp; empty: eps = 1) the Laplacian is normalised
 // by the node's n~0 = eps n0: seed 003's eps mu lap u over the liquid's eps rho is nu lap u per unit mass, and
 // the nodes that stand eps n0 apart sum about eps times the full lattice's weights (nu / eps times the n0

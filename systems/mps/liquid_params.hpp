@@ -38,6 +38,7 @@ struct LiquidParams {
   MpsConstants k;                         // dim, l0, re, n0, lambda
   double rho = 1000.0;                    // kg/m^3
   double nu = 1e-6;                       // m^2/s, kinematic viscosity
+  double eddy_viscosity = 0.0;            // m^2/s, added to nu in the momentum diffusion only (not in drag)
   std::array<double, 3> gravity{};        // m/s^2
   std::array<double, 3> body_force{};     // m/s^2, extra acceleration (drives periodic flows)
   double gamma = 0.001;                   // Tanaka's weight of the number-density source term

@@ -137,6 +137,7 @@ void read_liquid(LiquidParams& p, const SceneNode& root) {
   p.k = lattice_constants(dim, l0, re * l0);
   p.rho = read_number(liq, T.field("density"));  // kg/m^3, as a DEM species' bound
   p.nu = read_number(liq, T.field("viscosity"));
+  p.eddy_viscosity = read_number(liq, T.field("eddy_viscosity"));
   p.gamma = read_number(liq, T.field("gamma"));
   p.beta = read_number(liq, T.field("surface_threshold"));
   p.free_surface = read_bool(liq, T.field("free_surface"));
@@ -193,7 +194,7 @@ void read_velocity_scale(LiquidScene& s, const SceneNode& run) {
 
 // The load-time CFL and diffusion numbers against their limits, unless the scene allows an unstable step.
 void check_stability(LiquidScene& s, const SceneNode& run) {
-  const double l0 = s.params.k.l0, nu = s.params.nu;
+  const double l0 = s.params.k.l0, nu = s.params.nu + s.params.eddy_viscosity;
   s.cfl = s.velocity_scale * s.dt / l0;
   s.diffusion = nu * s.dt / (l0 * l0);
   if (s.allow_unstable_dt) return;
@@ -205,7 +206,7 @@ void check_stability(LiquidScene& s, const SceneNode& run) {
                  ", or set allow_unstable_dt = true to run anyway");
   if (s.diffusion > s.diffusion_limit)
     run.fail("dt",
-             "time step " + short_number(s.dt) + " s gives a viscous diffusion number nu dt / l0^2 = " + short_number(s.diffusion) +
+             "time step " + short_number(s.dt) + " s gives a viscous diffusion number (nu + eddy_viscosity) dt / l0^2 = " + short_number(s.diffusion) +
                  " above diffusion_limit = " + short_number(s.diffusion_limit),
              "set dt <= " + short_number(s.diffusion_limit * l0 * l0 / std::max(nu, 1e-300)) +
                  ", or set allow_unstable_dt = true to run anyway");
