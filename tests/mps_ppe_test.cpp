@@ -40,27 +40,7 @@ hi = [0.15, 0.1, 0.0]
 }
 
 // A 2D periodic channel filled completely: no free surface anywhere.
-std::string full_channel(const std::string& extra = "") {
-  return R"(
-[run]
-dt = 1.0e-3
-duration = 0.01
-velocity_scale = 0.1
-[liquid]
-dim = 2
-l0 = 0.005
-density = 1000.0
-viscosity = 1.0e-6
-)" + extra + R"(
-[geometry]
-type = "channel"
-lo = [0.0, 0.0, 0.0]
-hi = [0.1, 0.05, 0.0]
-[[fluid]]
-lo = [0.0, 0.0, 0.0]
-hi = [0.1, 0.05, 0.0]
-)";
-}
+std::string full_channel(const std::string& extra = "") { return test::full_channel_2d(0.1, 0.05, extra); }
 
 struct Prepared {
   LiquidSimulation sim;

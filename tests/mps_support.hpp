@@ -27,6 +27,18 @@ inline void prepare_nodes(LiquidSimulation& sim, NeighborPairs& nb) {
   detect_free_surface(f, lp);
 }
 
+// A 2D periodic channel of water (l0 = 5 mm), length x height metres, filled completely: no free surface, the
+// pressure system closed. `extra`: more [liquid] keys, one per line.
+inline std::string full_channel_2d(double length, double height, const std::string& extra = "") {
+  std::string size = std::to_string(length) + ", " + std::to_string(height) + ", 0.0]\n";
+  std::string text = "[run]\ndt = 1.0e-3\nduration = 0.01\nvelocity_scale = 0.1\n"
+                     "[liquid]\ndim = 2\nl0 = 0.005\ndensity = 1000.0\nviscosity = 1.0e-6\n";
+  text += extra;
+  text += "[geometry]\ntype = \"channel\"\nlo = [0.0, 0.0, 0.0]\nhi = [" + size;
+  text += "[[fluid]]\nlo = [0.0, 0.0, 0.0]\nhi = [" + size;
+  return text;
+}
+
 inline std::string liquid_scene(const std::string& name) {
   // Appended in place: GCC 12 reads `std::string(literal) + "..." + name` as a copy out of bounds
   // (a -Warray-bounds false positive inside libstdc++) when the standard headers are precompiled.

@@ -44,27 +44,7 @@ hi = [0.07, 0.07, 0.07]
 }
 
 // A 2D periodic channel filled completely: no free surface, the system is singular (closed).
-std::string full_channel() {
-  return R"(
-[run]
-dt = 1.0e-3
-duration = 0.01
-velocity_scale = 0.1
-[liquid]
-dim = 2
-l0 = 0.005
-density = 1000.0
-viscosity = 1.0e-6
-clip_negative = false
-[geometry]
-type = "channel"
-lo = [0.0, 0.0, 0.0]
-hi = [0.3, 0.1, 0.0]
-[[fluid]]
-lo = [0.0, 0.0, 0.0]
-hi = [0.3, 0.1, 0.0]
-)";
-}
+std::string full_channel() { return test::full_channel_2d(0.3, 0.1, "clip_negative = false\n"); }
 
 // The scene's nodes stirred by random velocities (a source with every wavelength), the PPE prepared and compacted.
 struct Stirred {

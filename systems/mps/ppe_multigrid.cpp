@@ -311,11 +311,7 @@ PpeResult ppe_solve_multigrid(CompactPpe& sys, const PpeProblem& pb, const Fluid
       for (std::size_t i = i0; i < i1; ++i) d[i] = z[i] + beta * d[i];
     });
   }
-  res.iterations = it;
-  res.residual = rnorm / bnorm;
-  res.converged = std::isfinite(rnorm) && rnorm <= s.tolerance * bnorm;
-  ppe_store(sys, p);
-  return res;
+  return ppe_finish(sys, res, it, rnorm, bnorm, s.tolerance, p);
 }
 
 }  // namespace gf

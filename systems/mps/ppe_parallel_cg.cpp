@@ -59,8 +59,13 @@ double ppe_load(CompactPpe& sys, const PpeProblem& pb, ColumnD& p) {
   return std::sqrt(sum_in_order(sys.part1));
 }
 
-void ppe_store(const CompactPpe& sys, ColumnD& p) {
+PpeResult ppe_finish(const CompactPpe& sys, PpeResult res, int iterations, double rnorm, double bnorm,
+                     double tolerance, ColumnD& p) {
+  res.iterations = iterations;
+  res.residual = rnorm / bnorm;
+  res.converged = std::isfinite(rnorm) && rnorm <= tolerance * bnorm;
   for (std::size_t i = 0; i < sys.node_of.size(); ++i) p[sys.node_of[i]] = sys.x[i];
+  return res;
 }
 
 PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSettings& s, ColumnD& p) {
@@ -136,11 +141,7 @@ PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSet
     });
     ++it;
   }
-  res.iterations = it;
-  res.residual = rnorm / bnorm;
-  res.converged = std::isfinite(rnorm) && rnorm <= s.tolerance * bnorm;
-  ppe_store(sys, p);
-  return res;
+  return ppe_finish(sys, res, it, rnorm, bnorm, s.tolerance, p);
 }
 
 }  // namespace gf

@@ -37,9 +37,11 @@ struct CompactPpe {
 void ppe_compact(const NeighborPairs& nb, const PpeProblem& pb, CompactPpe& sys);
 
 // Copies the diagonal, the right-hand side and the warm start p into the compact rows (diag, inv, b, x), zeroes p,
-// sizes the solve's vectors; returns |b|. ppe_store writes x back into p on the active nodes.
+// sizes the solve's vectors; returns |b|. ppe_finish writes x back into p on the active nodes and completes res
+// with the iterations and the relative residual reached (converged: finite and within the tolerance).
 double ppe_load(CompactPpe& sys, const PpeProblem& pb, ColumnD& p);
-void ppe_store(const CompactPpe& sys, ColumnD& p);
+PpeResult ppe_finish(const CompactPpe& sys, PpeResult res, int iterations, double rnorm, double bnorm,
+                     double tolerance, ColumnD& p);
 
 // Solves from the pressure in p (the last step's: a warm start), into p on active nodes.
 PpeResult ppe_solve_parallel(CompactPpe& sys, const PpeProblem& pb, const PpeSettings& s, ColumnD& p);
