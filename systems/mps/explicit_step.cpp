@@ -18,9 +18,11 @@ void mps_laplacian(const FluidNodes& f, const NeighborPairs& nb, const MpsConsta
 }
 
 void predict_velocity(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt,
-                      std::span<const double> eps) {
+                      std::span<const double> eps, std::span<const double> nut) {
   const std::size_t n = f.size();
-  const double c = (lp.nu + lp.eddy_viscosity) * lp.k.lap_coef();
+  const double nu = lp.nu + lp.eddy_viscosity;
+  const double lap = lp.k.lap_coef();
+  const double c = nu * lap;
   const double gx = lp.gravity[0] + lp.body_force[0];
   const double gy = lp.gravity[1] + lp.body_force[1];
   const double gz = lp.gravity[2] + lp.body_force[2];
@@ -29,14 +31,26 @@ void predict_velocity(FluidNodes& f, const NeighborPairs& nb, const LiquidParams
     for (std::size_t i = r.begin(); i < r.end(); ++i) {
       if (f.kind[i] != kFluid) continue;
       double sx = 0, sy = 0, sz = 0;
-      for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q) {
-        const std::uint32_t j = nb.j[q];
-        const double w = nb.w[q];
-        sx += (f.u[j] - f.u[i]) * w;
-        sy += (f.v[j] - f.v[i]) * w;
-        sz += (f.w[j] - f.w[i]) * w;
+      double ci = eps.empty() ? c : c / eps[i];  // a locally averaged liquid's n~0 = eps n0
+      if (nut.empty()) {
+        for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q) {
+          const std::uint32_t j = nb.j[q];
+          const double w = nb.w[q];
+          sx += (f.u[j] - f.u[i]) * w;
+          sy += (f.v[j] - f.v[i]) * w;
+          sz += (f.w[j] - f.w[i]) * w;
+        }
+      } else {
+        // Pair by pair nu + nu_t,ij (mixing_length.hpp), the pair's viscosity inside the sum.
+        for (std::uint32_t q = nb.start[i]; q < nb.start[i + 1]; ++q) {
+          const std::uint32_t j = nb.j[q];
+          const double w = nb.w[q] * (nu + (f.kind[j] == kFluid ? 0.5 * (nut[i] + nut[j]) : nut[i]));
+          sx += (f.u[j] - f.u[i]) * w;
+          sy += (f.v[j] - f.v[i]) * w;
+          sz += (f.w[j] - f.w[i]) * w;
+        }
+        ci = eps.empty() ? lap : lap / eps[i];
       }
-      const double ci = eps.empty() ? c : c / eps[i];  // a locally averaged liquid's n~0 = eps n0
       f.ax[i] = ci * sx + gx;
       f.ay[i] = ci * sy + gy;
       f.az[i] = ci * sz + gz;

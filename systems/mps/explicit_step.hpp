@@ -18,8 +18,9 @@
 
 namespace gf {
 
+// nut: a per-node eddy viscosity (mixing_length.hpp), empty for none.
 void predict_velocity(FluidNodes& f, const NeighborPairs& nb, const LiquidParams& lp, double dt,
-                      std::span<const double> eps = {});
+                      std::span<const double> eps = {}, std::span<const double> nut = {});
 
 // <lap phi>_i for every row into out (size rows), phi read from a column (tests and the viscous term).
 void mps_laplacian(const FluidNodes& f, const NeighborPairs& nb, const MpsConstants& k, const ColumnD& phi,

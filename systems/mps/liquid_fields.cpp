@@ -17,6 +17,8 @@ const Field kLiquid[] = {
     {"re", "l0", {1.5, 5, false, false}, "", 2.1, "", "kernel radius"},
     {"density", "kg/m³", {0, 1e6, true, false}, "", kNoDefault, "", "liquid density ρ"},
     {"viscosity", "m²/s", kNonNegativeNumber, "", kNoDefault, "", "kinematic viscosity ν"},
+    {"turbulence", "", kAnyNumber, "`\"none\"`, `\"mixing_length\"` (a `pipe` only)", kNoDefault, "`\"none\"`",
+     "eddy viscosity per node: Prandtl's mixing length with Nikuradse's profile, in the momentum diffusion only"},
     {"eddy_viscosity", "m²/s", {0, 1, false, false}, "", 0.0, "",
      "constant eddy viscosity ν_t, added to ν in the liquid's momentum diffusion only (a coupled drag law keeps ν)"},
     {"gamma", "", kFraction, "", 0.001, "", "weight γ of the number-density term in the pressure source"},

@@ -34,11 +34,20 @@ struct PpeSettings {
   int max_iterations = 2000;
 };
 
+// Prandtl's mixing length in a pipe along x (the liquid's `turbulence = "mixing_length"`, mixing_length.hpp):
+// the eddy viscosity nu_t = l_m(y)^2 |S| with Nikuradse's l_m of the wall distance y = R - r.
+struct MixingLength {
+  bool on = false;
+  double cy = 0, cz = 0;  // m, the pipe's axis passes through (., cy, cz)
+  double radius = 0;      // m
+};
+
 struct LiquidParams {
   MpsConstants k;                         // dim, l0, re, n0, lambda
   double rho = 1000.0;                    // kg/m^3
   double nu = 1e-6;                       // m^2/s, kinematic viscosity
   double eddy_viscosity = 0.0;            // m^2/s, added to nu in the momentum diffusion only (not in drag)
+  MixingLength mixing_length;             // a turbulent pipe's eddy viscosity per node, also diffusion only
   std::array<double, 3> gravity{};        // m/s^2
   std::array<double, 3> body_force{};     // m/s^2, extra acceleration (drives periodic flows)
   double gamma = 0.001;                   // Tanaka's weight of the number-density source term

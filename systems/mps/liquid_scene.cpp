@@ -127,6 +127,16 @@ void read_solver(LiquidParams& p, const SceneNode& liq) {
   p.solver.max_iterations = static_cast<int>(read_integer(*sv, T.field("max_iterations")));
 }
 
+// liquid.turbulence, after the geometry: the mixing length needs a pipe's axis and radius.
+void read_turbulence(LiquidScene& s, const SceneNode& root) {
+  const SceneNode liq = root.table("liquid");
+  if (read_choice(liq, kLiquidFields.field("turbulence"), {"none", "mixing_length"}) == "none") return;
+  if (s.geometry.kind != LiquidGeometry::Kind::Pipe)
+    liq.fail("turbulence", "the mixing length is defined by the distance from a pipe's wall",
+             "use it with [geometry] type = \"pipe\", or use eddy_viscosity (a constant) in other geometries");
+  s.params.mixing_length = {true, s.geometry.center[1], s.geometry.center[2], s.geometry.radius};
+}
+
 // [liquid]: the lattice, the material and the solver.
 void read_liquid(LiquidParams& p, const SceneNode& root) {
   const FieldTable& T = kLiquidFields;
@@ -241,6 +251,7 @@ LiquidScene load_liquid_scene(const SceneDoc& doc, bool check_unused_keys) {
   const SceneNode run = root.table("run");
   read_run(s, run);
   read_geometry(s, root);
+  read_turbulence(s, root);
   s.drive = read_flow_drive(root, s.params);  // after the geometry: its periodic axis
   read_fluid(s, root);
   const Field& margin = kLiquidRunFields.field("domain_margin");  // default: 10 l0, as the table says

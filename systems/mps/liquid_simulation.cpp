@@ -1,6 +1,7 @@
 #include "systems/mps/liquid_simulation.hpp"
 
 #include "systems/mps/liquid_step.hpp"
+#include "systems/mps/mixing_length.hpp"
 #include "systems/mps/neighbors.hpp"
 #include "systems/mps/ppe.hpp"
 
@@ -18,6 +19,7 @@ void build_liquid_world(const LiquidScene& scene, World& w) {
   w.resources.emplace<NeighborPairs>();
   w.resources.emplace<PpeWorkspace>();
   w.resources.emplace<LiquidDiagnostics>();
+  if (scene.params.mixing_length.on) w.resources.emplace<EddyViscosity>();
   w.resources.emplace<StabilityLimits>(scene.limits());
   if (scene.drive) w.resources.emplace<FlowDrive>(*scene.drive);
 }

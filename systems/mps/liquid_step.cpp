@@ -3,6 +3,7 @@
 #include "systems/mps/boundaries.hpp"
 #include "systems/mps/collision.hpp"
 #include "systems/mps/explicit_step.hpp"
+#include "systems/mps/mixing_length.hpp"
 #include "systems/mps/flow_drive.hpp"
 #include "systems/mps/free_surface.hpp"
 #include "systems/mps/liquid_fraction.hpp"
@@ -44,10 +45,17 @@ struct NumberDensity : SystemBase<NumberDensity> {
 
 struct ExplicitStep : SystemBase<ExplicitStep> {
   using Reads = gf::Reads<LiquidParams, NeighborPairs, LiquidFraction>;
-  using Writes = gf::Writes<FluidNodes>;
+  using Writes = gf::Writes<FluidNodes, EddyViscosity>;
   std::string_view name() const override { return "explicit_step"; }
   void run(World& w, const StepContext& step) override {
-    predict_velocity(nodes(w), res<NeighborPairs>(w), res<LiquidParams>(w), step.dt, liquid_fraction_of(w));
+    const LiquidParams& lp = res<LiquidParams>(w);
+    std::span<const double> nut;
+    if (lp.mixing_length.on) {
+      EddyViscosity& e = res<EddyViscosity>(w);
+      mixing_length_viscosity(nodes(w), res<NeighborPairs>(w), lp, e.nut);
+      nut = e.nut;
+    }
+    predict_velocity(nodes(w), res<NeighborPairs>(w), lp, step.dt, liquid_fraction_of(w), nut);
   }
 };
 
