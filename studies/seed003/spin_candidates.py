@@ -20,7 +20,8 @@ al.); no friction between grains and the pipe's wall (what the wall's contacts g
 between grains (the wall's kept at 0.2: what the grains' own collisions give it); a constant eddy viscosity
 5.7e-4 m^2/s, a developed turbulent pipe's near its axis at 2 m/s (kappa u* R / 6 with u* = 0.083 m/s from the
 smooth-pipe friction factor 0.0137 at Re_D = 4e5): the momentum turbulence would carry into the notch that the
-grains' cloud cuts into the liquid.
+grains' cloud cuts into the liquid; Prandtl's mixing length with Nikuradse's profile (liquid.turbulence), the
+eddy viscosity a turbulent pipe has, small at the wall and in the flat core.
 """
 import argparse
 import concurrent.futures
@@ -44,6 +45,7 @@ CANDIDATES = {
     "wall_frictionless": ["contact.wall={friction=0.0}"],
     "grains_frictionless": ["contact.friction=0.0", "contact.wall={friction=0.2}"],
     "eddy_viscosity": ["liquid.eddy_viscosity=5.7e-4"],
+    "mixing_length": ['liquid.turbulence="mixing_length"'],
 }
 
 
@@ -123,6 +125,7 @@ LABELS = {
     "wall_frictionless": "no grain-wall friction",
     "grains_frictionless": "no grain-grain friction (wall 0.2)",
     "eddy_viscosity": "eddy viscosity 5.7e-4 m²/s",
+    "mixing_length": "mixing-length eddy viscosity (Nikuradse)",
 }
 
 
