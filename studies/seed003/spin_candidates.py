@@ -47,12 +47,16 @@ CANDIDATES = {
     "eddy_viscosity": ["liquid.eddy_viscosity=5.7e-4"],
     "mixing_length": ['liquid.turbulence="mixing_length"'],
 }
+# The mixing length at the seed's other transport speeds (the same 2 s from rest): its trend with the speed.
+SPEEDS = {f"mixing_length_u{u}": u for u in (3, 4, 5)}
+for _name in SPEEDS:
+    CANDIDATES[_name] = ['liquid.turbulence="mixing_length"']
 
 
 def run_one(name, binary, threads):
     folder = os.path.join(RUNS, name)
     shutil.rmtree(folder, ignore_errors=True)
-    sets = tp.overrides(SPEED, 0.0, DURATION) + CANDIDATES[name]
+    sets = tp.overrides(SPEEDS.get(name, SPEED), 0.0, DURATION) + CANDIDATES[name]
     cmd = [binary, "run", os.path.join(ROOT, tp.SCENE), "--out", folder, "--threads", str(threads)]
     for s in sets:
         cmd += ["--set", s]
@@ -107,11 +111,12 @@ def collect():
             continue
         rows = tp.read_rows(os.path.join(folder, "frames.csv"))
         curl = half_curl(folder)
-        out["candidates"][name] = {"overrides": sets, **{k: m[k] for k in (
+        speed = SPEEDS.get(name, SPEED)
+        out["candidates"][name] = {"speed_m_s": speed, "overrides": sets, **{k: m[k] for k in (
             "status", "frames", "to_s", "spin", "r_variance", "r_variance_frame_sd", "phi_peak_r", "phi_peak",
             "grain_speed", "wall_seconds")},
             "half_curl_at_grains": sum(curl) / len(curl) if curl else None,
-            "centre_liquid_over_U": m["u_profile"][0] / SPEED,
+            "centre_liquid_over_U": m["u_profile"][0] / speed,
             "spin_per_frame": [[round(r["time"], 3), round(r["spin"], 3)] for r in rows]}
     with open(OUT, "w") as fh:
         json.dump(out, fh, indent=1)
@@ -126,21 +131,23 @@ LABELS = {
     "grains_frictionless": "no grain-grain friction (wall 0.2)",
     "eddy_viscosity": "eddy viscosity 5.7e-4 m²/s",
     "mixing_length": "mixing-length eddy viscosity (Nikuradse)",
+    **{n: "mixing-length eddy viscosity (Nikuradse)" for n in SPEEDS},
 }
 
 
 def table(path):
     data = json.load(open(path))
-    seed = data["seed_2_m_s"]
-    print("| run | mean spin (rad/s) | half the curl at the grains (rad/s) | var(r/R) (frames' sd) | peak r/R (%) "
+    print("| run | U (m/s) | mean spin (rad/s) | half the curl at the grains (rad/s) | var(r/R) (frames' sd) | peak r/R (%) "
           "| grains' mean speed (m/s) | centre liquid / U |")
-    print("|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|")
     for name, c in data["candidates"].items():
-        print(f"| {LABELS.get(name, name)} | {c['spin']:.2f} | {c['half_curl_at_grains']:.2f} "
+        print(f"| {LABELS.get(name, name)} | {c.get('speed_m_s', data['speed_m_s']):g} | {c['spin']:.2f} | {c['half_curl_at_grains']:.2f} "
               f"| {c['r_variance']:.4f} (± {c['r_variance_frame_sd']:.4f}) | {c['phi_peak_r']:.2f} ({c['phi_peak']:.1f}) "
               f"| {c['grain_speed']:.2f} | {c['centre_liquid_over_U']:.3f} |")
-    print(f"| the paper, after 100 s | {seed['spin']:.2f} | — | {seed['r_variance']:.4f} "
-          f"| {seed['phi_peak_r']:.2f} ({seed['phi_peak_percent']:.1f}) | — | above 1 |")
+    for u in (2, 3, 4, 5):
+        var, pr, pp, spin = tp.SEED[u]
+        peak = "—" if pr is None else f"{pr:.2f} ({pp:.1f})"
+        print(f"| the paper, after 100 s | {u} | {spin:.2f} | — | {var:.4f} | {peak} | — | above 1 |")
 
 
 def main():
