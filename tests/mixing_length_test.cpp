@@ -72,14 +72,15 @@ TEST_CASE("the mixing-length eddy viscosity of a parabolic pipe flow is l_m^2 |d
       continue;
     }
     const double r = std::hypot(f.y[i], f.z[i]);
-    // Away from the axis (where du/dr vanishes) and two kernel radii from the wall (the gradient model's
-    // support is whole there): the MPS gradient of a quadratic field is exact on a cubic lattice to the
-    // curvature term, about (l0/r) of the gradient.
+    // Away from the axis (where du/dr vanishes) and two kernel radii from the wall, where a node's neighbours
+    // are a whole cubic lattice around it: there the MPS gradient of a quadratic field is exact (the
+    // curvature's term is odd in r_ij and cancels; the linear term is normalised by the full lattice's n0),
+    // so what remains is rounding. Measured: equal to the printed digits at all 760 nodes checked.
     if (r < 0.3 * R || r > R - 2.0 * lp.k.re) continue;
     const double lm = R * nikuradse_length((R - r) / R);
     const double expected = lm * lm * 2.0 * umax * r / (R * R);
     CAPTURE(r, nut[i], expected);
-    CHECK(nut[i] == Approx(expected).epsilon(0.05));
+    CHECK(nut[i] == Approx(expected).epsilon(1e-9));
     ++checked;
   }
   CHECK(checked > 50);
