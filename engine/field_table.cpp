@@ -58,14 +58,50 @@ std::string FieldTable::markdown() const {
   return out;
 }
 
-double read_number(const SceneNode& t, const Field& f) {
-  if (std::isnan(f.fallback)) return t.get_double(f.key, f.range);
-  return t.get_double(f.key, f.fallback, f.range);
+namespace {
+
+// Units a value is often typed in by mistake, and the factor that turns that unit into the field's.
+struct UnitSlip {
+  std::string_view unit, typed;
+  double factor;
+};
+constexpr UnitSlip kUnitSlips[] = {
+    {"kg/m³", "g/cm³", 1e3}, {"m", "mm", 1e-3}, {"Pa", "GPa", 1e9}, {"Pa", "MPa", 1e6},
+};
+
+// "is it in g/cm³? 2.5 g/cm³ is 2500 kg/m³": where the value fits the interval in a unit often typed by
+// mistake; empty where none fits.
+std::string unit_slip(const Field& f, double v) {
+  for (const UnitSlip& u : kUnitSlips)
+    if (f.unit == u.unit && f.range.contains(v * u.factor)) {
+      std::string s = "is it in ";
+      s.append(u.typed).append("? ").append(number_text(v)).append(" ").append(u.typed).append(" is ");
+      s.append(number_text(v * u.factor)).append(" ").append(f.unit).append("; otherwise ");
+      return s;
+    }
+  return {};
 }
 
+// The number at `f`'s key, or `fallback` where absent (NaN: required), checked against `f`'s interval.
+double read_checked(const SceneNode& t, const Field& f, double fallback) {
+  const bool given = t.has(f.key);
+  const double v = std::isnan(fallback) ? t.get_double(f.key, Range::any()) : t.get_double(f.key, fallback, Range::any());
+  if (!given || f.range.contains(v)) return v;  // a default may lie outside (`stop`'s infinity: no end)
+  std::string problem = "value ";
+  problem.append(number_text(v));
+  if (!f.unit.empty()) problem.append(" ").append(f.unit);
+  problem.append(" is out of range: it must be ").append(f.range.describe());
+  std::string fix = unit_slip(f, v);
+  fix.append("set `").append(f.key).append("` to a value that is ").append(f.range.describe());
+  t.fail(f.key, problem, fix);
+}
+
+}  // namespace
+
+double read_number(const SceneNode& t, const Field& f) { return read_checked(t, f, f.fallback); }
+
 double read_number(const SceneNode& t, const Field& f, const double* inherited) {
-  if (inherited) return t.get_double(f.key, *inherited, f.range);
-  return read_number(t, f);
+  return read_checked(t, f, inherited ? *inherited : f.fallback);
 }
 
 std::int64_t read_integer(const SceneNode& t, const Field& f) {

@@ -7,9 +7,9 @@ namespace gf {
 namespace {
 
 const Field kOutputTimes[] = {
-    {"series_interval", "s", kNonNegativeNumber, "0, or ≥ `run.dt`", 0.0, "", "one `series.csv` row per interval; 0: no series"},
-    {"frame_interval", "s", kNonNegativeNumber, "0, or ≥ `run.dt`", 0.0, "", "one frame per interval; 0: no frames"},
-    {"checkpoint_interval", "s", kNonNegativeNumber, "0, or ≥ `run.dt`", 0.0, "",
+    {"series_interval", "s", range::time_span, "0, or ≥ `run.dt`", 0.0, "", "one `series.csv` row per interval; 0: no series"},
+    {"frame_interval", "s", range::time_span, "0, or ≥ `run.dt`", 0.0, "", "one frame per interval; 0: no frames"},
+    {"checkpoint_interval", "s", range::time_span, "0, or ≥ `run.dt`", 0.0, "",
      "a checkpoint every interval; 0: only at the end"},
     {"checkpoint_keep_all", "", kAnyNumber, "true, false", kNoDefault, "false",
      "keep every checkpoint as `checkpoint_<step>.gfc`, not only the last"},

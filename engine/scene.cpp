@@ -28,11 +28,29 @@ std::string short_number(double v) {
   return os.str();
 }
 
+std::string number_text(double v) {
+  char buf[64];
+  auto res = std::to_chars(buf, buf + sizeof buf, v);
+  std::string s(buf, res.ptr);
+  // "1e-05" -> "1e-5": scene files write exponents the short way, so messages should too.
+  if (auto e = s.find('e'); e != std::string::npos) {
+    std::size_t d = e + 1;
+    if (d < s.size() && (s[d] == '-' || s[d] == '+')) ++d;
+    std::size_t z = d;
+    while (z + 1 < s.size() && s[z] == '0') ++z;
+    s.erase(d, z - d);
+    if (s[e + 1] == '+') s.erase(e + 1, 1);
+  }
+  return s;
+}
+
 void require_acceleration(const SceneNode& node, std::string_view key, const std::array<double, 3>& g) {
   const double a = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  if (!(a <= 1e6))
-    node.fail(key, "|" + std::string(key) + "| = " + short_number(a) + " m/s^2 is more than 1e6 m/s^2 (1e5 g)",
-              "give the acceleration in m/s^2, e.g. [0, -9.81, 0]");
+  constexpr double g0 = 9.80665;
+  if (!(a <= 200 * g0))
+    node.fail(key, "|" + std::string(key) + "| = " + short_number(a) + " m/s^2 is " + short_number(a / g0) +
+                       " g, more than the 200 g of a geotechnical centrifuge",
+              "is it in mm/s^2? Give the acceleration in m/s^2, e.g. [0, -9.81, 0] for Earth's gravity");
 }
 
 void check_step_count(const SceneNode& node, std::string_view key, double seconds, double dt) {
@@ -72,21 +90,6 @@ using detail::SceneState;
 
 constexpr std::uint64_t kAfterFile = std::uint64_t{1} << 40;  // sorts command-line-only keys after all file keys
 
-std::string fmt_num(double v) {
-  char buf[64];
-  auto res = std::to_chars(buf, buf + sizeof buf, v);
-  std::string s(buf, res.ptr);
-  // "1e-05" -> "1e-5": scene files write exponents the short way, so messages should too.
-  if (auto e = s.find('e'); e != std::string::npos) {
-    std::size_t d = e + 1;
-    if (d < s.size() && (s[d] == '-' || s[d] == '+')) ++d;
-    std::size_t z = d;
-    while (z + 1 < s.size() && s[z] == '0') ++z;
-    s.erase(d, z - d);
-    if (s[e + 1] == '+') s.erase(e + 1, 1);
-  }
-  return s;
-}
 
 std::string fmt_int(std::int64_t v) { return std::to_string(v); }
 
@@ -125,7 +128,7 @@ std::string show_value(const toml::node& n) {
     return " (\"" + clipped(s->get(), 37) + "\")";
   }
   if (auto* i = n.as_integer()) return " (" + fmt_int(i->get()) + ")";
-  if (auto* f = n.as_floating_point()) return " (" + fmt_num(f->get()) + ")";
+  if (auto* f = n.as_floating_point()) return " (" + number_text(f->get()) + ")";
   if (auto* b = n.as_boolean()) return b->get() ? " (true)" : " (false)";
   return "";
 }
@@ -241,6 +244,19 @@ struct detail::SceneAccess {
   }
 
   [[noreturn]] static void missing(const SceneNode& sn, std::string_view key) {
+    // A misspelt required key ("fricton") is the likelier mistake than a forgotten one: name the key as typed.
+    // Keys of up to four letters are left out: "kt" is one edit from "kn", and a table may hold both.
+    const toml::table& t = tbl(sn);
+    const auto& read = sn.st_->accepted[&t];
+    for (auto&& [k, v] : t) {
+      const std::string typed(k.str());
+      if (typed.size() < 5 || std::find(read.begin(), read.end(), typed) != read.end() ||
+          closest(typed, {std::string(key)}).empty())
+        continue;
+      fail_at(*sn.st_, &v, sn.path(typed), "unknown key " + gf::quoted(typed),
+              "did you mean '" + std::string(key) + "'? It is required in " + table_label(sn.path_) +
+                  ": write `" + key_text(key) + " = ...`");
+    }
     fail_at(*sn.st_, &tbl(sn), sn.path(key), "missing required key '" + std::string(key) + "'",
             "add `" + key_text(key) + " = ...` to " + table_label(sn.path_));
   }
@@ -267,8 +283,13 @@ struct detail::SceneAccess {
     if (auto* i = n.as_integer()) v = double(i->get());
     else if (auto* f = n.as_floating_point()) v = f->get();
     else wrong_type(sn, n, path, key, "a number", example);
+    // A denormal passes an interval open at 0, and then turns masses, time-step terms and forces into 0 or inf.
+    if (std::fpclassify(v) == FP_SUBNORMAL)
+      fail_node(sn, n, path, "value " + number_text(v) + " is below the smallest normal double (2.2e-308): no "
+                "physical input is that small, so it is a typo",
+                "set `" + key_text(key) + "` to a physical value in the key's unit (0 where the key allows it)");
     if (!r.contains(v))
-      fail_node(sn, n, path, "value " + fmt_num(v) + " is out of range: it must be " + r.describe(),
+      fail_node(sn, n, path, "value " + number_text(v) + " is out of range: it must be " + r.describe(),
                 "set `" + key_text(key) + "` to a value that is " + r.describe());
     return v;
   }
@@ -291,7 +312,7 @@ struct detail::SceneAccess {
       else fail_node(sn, e, ep, "expected a number, got " + got(e),
                      "write " + entry + " as a number, e.g. `" + key_text(key) + " = " + std::string(example) + "`");
       if (!std::isfinite(v))
-        fail_node(sn, e, ep, "value " + fmt_num(v) + " is out of range: it must be finite",
+        fail_node(sn, e, ep, "value " + number_text(v) + " is out of range: it must be finite",
                   "set " + entry + " to a finite number");
       out.push_back(v);
     }
@@ -339,9 +360,9 @@ std::string Range::describe() const {
   const bool lo_inf = lo == -kInf && lo_open;
   const bool hi_inf = hi == kInf && hi_open;
   if (lo_inf && hi_inf) return "finite";
-  if (hi_inf) return (lo_open ? "> " : ">= ") + fmt_num(lo);
-  if (lo_inf) return (hi_open ? "< " : "<= ") + fmt_num(hi);
-  return std::string("in ") + (lo_open ? "(" : "[") + fmt_num(lo) + ", " + fmt_num(hi) + (hi_open ? ")" : "]");
+  if (hi_inf) return (lo_open ? "> " : ">= ") + number_text(lo);
+  if (lo_inf) return (hi_open ? "< " : "<= ") + number_text(hi);
+  return std::string("in ") + (lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + (hi_open ? ")" : "]");
 }
 
 // ---------------------------------------------------------------------------------------------------------------------

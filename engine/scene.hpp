@@ -41,6 +41,8 @@ class SceneError : public std::runtime_error {
 
 // A number for a message: four significant digits ("0.0001", "2.5e+04").
 std::string short_number(double v);
+// A number as typed, in full ("2.5", "1e-5"): the shortest text that reads back as the same double.
+std::string number_text(double v);
 
 
 
@@ -118,9 +120,9 @@ class SceneNode {
 // simulated time at `key` of `node` past that, naming the key and the fix.
 void check_step_count(const SceneNode& node, std::string_view key, double seconds, double dt);
 
-// A body acceleration (`key` of `node`: gravity, a body force per mass) of at most 1e6 m/s^2 (1e5 g,
-// past any centrifuge): a larger one is a typo that moves grains through walls, or liquid out of its
-// tank, in the first step, reported then as an instability.
+// A body acceleration (`key` of `node`: gravity, a body force per mass) of at most 200 g (a geotechnical
+// centrifuge's): a larger one is a typo, most often mm/s^2 for m/s^2, that moves grains through walls,
+// or liquid out of its tank, in the first step, reported then as an instability.
 void require_acceleration(const SceneNode& node, std::string_view key, const std::array<double, 3>& g);
 
 // When on, check_all_used() also prints read_keys() to standard output, one "key: PATH" line each

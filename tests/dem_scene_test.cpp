@@ -206,7 +206,7 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
     const fs::path f = dir.write("negative_diameter.toml", text);
     const std::string e = scene_error(f);
     CHECK_THAT(e, Contains(at(f, line_of(text, "diameter = -2.0e-3")) + " key 'species[0].diameter'"));
-    CHECK_THAT(e, Contains("-0.002 is out of range") && Contains("(0, 100]"));
+    CHECK_THAT(e, Contains("-0.002 m is out of range") && Contains("[1e-8, 100]"));
   }
   SECTION("a negative radius") {
     const std::string text =
@@ -219,12 +219,14 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
   }
   SECTION("a duration of more steps than a run can count") {
     // 1e14 s at 1e-5 s is 1e19 steps, past the 64-bit step count (it used to wrap to a negative count
-    // and 'complete' after 0 steps); a time step of 1e-320 s gives infinitely many.
+    // and 'complete' after 0 steps): refused by the duration's interval now; within it, 1e11 s is still
+    // 1e16 steps. A time step of 1e-320 s gave infinitely many: refused as a denormal at the step.
     const fs::path f = dir.write("long.toml", kScene);
-    CHECK_THAT(scene_error(f, {"run.duration=1e14"}),
+    CHECK_THAT(scene_error(f, {"run.duration=1e14"}), Contains("key 'run.duration'") && Contains("[0, 1e12]"));
+    CHECK_THAT(scene_error(f, {"run.duration=1e11"}),
                Contains("key 'run.duration'") && Contains("steps") && Contains("Fix: at most 1e15 steps"));
     CHECK_THAT(scene_error(f, {"run.dt=1e-320", "run.allow_unstable_dt=true"}),
-               Contains("key 'run.duration'") && Contains("inf steps"));
+               Contains("key 'run.dt'") && Contains("below the smallest normal double"));
   }
   SECTION("an acceleration past any centrifuge, and fills that place nothing") {
     // Both were found by the input fuzzer: gravity 1e308 m/s^2 passed check and moved every grain
@@ -232,7 +234,7 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
     // without a line.
     const fs::path f = dir.write("g.toml", kScene);
     CHECK_THAT(scene_error(f, {"run.gravity=[1e308,1e308,1e308]"}),
-               Contains("key 'run.gravity'") && Contains("more than 1e6 m/s^2") && Contains("Fix:"));
+               Contains("key 'run.gravity'") && Contains("more than the 200 g") && Contains("Fix:"));
     // A drum turning 1e9 rad/s moved its wall 750 m per step, a radius of 1e308 overflowed the
     // series' arrays: both refused at their keys.
     const fs::path drum = fs::path(GRAINFLOW_SOURCE_DIR) / "scenes/drum_seed000_settled.toml";
@@ -285,6 +287,38 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
                  Contains(std::string("key 'output.") + key + "'") && Contains("shorter than the time step") &&
                      Contains("Fix:"));
     CHECK(scene_error(f, {"output.checkpoint_interval=0"}, true).empty());
+  }
+  SECTION("a unit slip is named as the likely mistake, before the time step or the fill") {
+    const fs::path f = dir.write("units.toml", kScene);
+    // g/cm^3 for kg/m^3: once "set dt <= 1.06e-6", as if the step were wrong.
+    CHECK_THAT(scene_error(f, {"species.0.density=2.5"}),
+               Contains("key 'species[0].density'") && Contains("is it in g/cm³? 2.5 g/cm³ is 2500 kg/m³"));
+    // mm/s^2 for m/s^2: once accepted.
+    CHECK_THAT(scene_error(f, {"run.gravity=[0,-9810,0]"}),
+               Contains("key 'run.gravity'") && Contains("1000 g") && Contains("is it in mm/s^2?"));
+    // A diameter in mm: once "could not place grain 1 ... lower the count".
+    const std::string mm = with(kScene, "diameter = 2.0e-3", "diameter = 2.0");
+    const fs::path fm = dir.write("mm.toml", mm);
+    CHECK_THAT(scene_error(fm),
+               Contains(at(fm, line_of(mm, "diameter = 2.0")) + " key 'species[0].diameter'") &&
+                   Contains("wider than fill[0]'s region") && Contains("is the diameter in millimetres?"));
+    // A denormal passed the interval (0, 1e6] and the run then "blew up".
+    CHECK_THAT(scene_error(f, {"species.0.density=1e-320"}),
+               Contains("key 'species[0].density'") && Contains("below the smallest normal double"));
+    CHECK_THAT(scene_error(f, {"contact.kn=1e-320"}), Contains("key 'contact.kn'") && Contains("Fix:"));
+    // A drum radius in mm: once "lower omega or run.dt"; now the radius is named.
+    const fs::path drum = fs::path(GRAINFLOW_SOURCE_DIR) / "scenes/drum_quick.toml";
+    CHECK_THAT(scene_error(drum, {"wall.0.radius=40"}),
+               Contains("key 'wall[0].radius'") && Contains("is the radius in millimetres? 40 mm is 0.04 m"));
+    CHECK_THAT(scene_error(drum, {"wall.0.omega=1e4"}),
+               Contains("key 'wall[0].omega'") && Contains("Fix: lower omega"));
+  }
+  SECTION("a misspelt required key is reported as unknown, not as missing") {
+    const std::string text = with(kScene, "friction = ", "fricton = ");
+    const fs::path f = dir.write("fricton.toml", text);
+    const std::string e = scene_error(f);
+    CHECK_THAT(e, Contains(at(f, line_of(text, "fricton = ")) + " key 'contact.fricton'"));
+    CHECK_THAT(e, Contains("unknown key 'fricton'") && Contains("did you mean 'friction'?"));
   }
   SECTION("a value given on the command line is located there") {
     const fs::path f = dir.write("ok.toml", kScene);

@@ -109,9 +109,13 @@ TEST_CASE("bad liquid scene input is a SceneError naming the file, line, key and
   t.replace(t.find("[liquid]\n"), 9, "[liquid]\ngama = 0.01\n");
   REQUIRE_THROWS_WITH(load(t), Catch::Contains("s.toml:") && Catch::Contains("gama") && Catch::Contains("gamma") &&
                                    Catch::Contains("Fix:"));
-  // Misspelt required key: missing.
+  // Misspelt required key: unknown, with the required key it most likely is (not "missing").
   t = base;
   t.replace(t.find("viscosity ="), 9, "viscosty");
+  REQUIRE_THROWS_WITH(load(t), Catch::Contains("unknown key 'viscosty'") && Catch::Contains("did you mean 'viscosity'"));
+  // Left out: missing.
+  t = base;
+  t.replace(t.find("viscosity ="), 9, "# viscosity");
   REQUIRE_THROWS_WITH(load(t), Catch::Contains("missing required key 'viscosity'"));
   // Unknown geometry type.
   t = base;
@@ -129,10 +133,16 @@ TEST_CASE("bad liquid scene input is a SceneError naming the file, line, key and
   // No liquid placed.
   t = base.substr(0, base.find("[[fluid]]"));
   REQUIRE_THROWS_WITH(load(t), Catch::Contains("places no liquid"));
-  // A time step so short that the duration is more steps than a run can count (it wrapped the count).
+  // A time step so short that the duration is more steps than a run can count (it wrapped the count):
+  // 1e-300 s is below the step's interval; 1e-15 s is within it, and 100 s of it are 1e17 steps.
   const std::string dt = "dt = ";
   t = base;
   t.insert(t.find(dt) + dt.size(), "1e-300 # ");
+  t.replace(t.find("[run]\n"), 6, "[run]\nallow_unstable_dt = true\n");
+  REQUIRE_THROWS_WITH(load(t), Catch::Contains("run.dt") && Catch::Contains("[1e-15, 1000]"));
+  t = base;
+  t.insert(t.find(dt) + dt.size(), "1e-15 # ");
+  t.insert(t.find("duration = ") + 11, "100 # ");
   t.replace(t.find("[run]\n"), 6, "[run]\nallow_unstable_dt = true\n");
   REQUIRE_THROWS_WITH(load(t), Catch::Contains("run.duration") && Catch::Contains("at most 1e15 steps"));
   // A geometry of 1e5 m (1e10, 1e30: the same) where 0.584 m was meant: refused before any node is
@@ -149,12 +159,15 @@ TEST_CASE("bad liquid scene input is a SceneError naming the file, line, key and
   REQUIRE_THROWS_WITH(load(t), Catch::Contains("liquid.density") && Catch::Contains("Fix:"));
   t = base;
   t.replace(t.find("[run]"), 5, "[run]\nbody_force = [1e308, 0.0, 0.0]");
-  REQUIRE_THROWS_WITH(load(t), Catch::Contains("run.body_force") && Catch::Contains("more than 1e6 m/s^2"));
-  // A spacing larger than the geometry (1e308 m used to fail with no fix at all).
+  REQUIRE_THROWS_WITH(load(t), Catch::Contains("run.body_force") && Catch::Contains("more than the 200 g"));
+  // A spacing larger than the geometry (1e308 m used to fail with no fix at all): past the lengths'
+  // interval, refused there; within it, against the geometry.
   t = base;
   {
     const std::size_t at = t.find("l0 = ");
     t.replace(at, t.find('\n', at) - at, "l0 = 1e308");
+    REQUIRE_THROWS_WITH(load(t), Catch::Contains("liquid.l0") && Catch::Contains("out of range"));
+    t.replace(at, t.find('\n', at) - at, "l0 = 100");
     REQUIRE_THROWS_WITH(load(t), Catch::Contains("liquid.l0") && Catch::Contains("not smaller than the geometry"));
   }
   // A block thinner than one spacing places no node: refused when the nodes are made (check makes them).

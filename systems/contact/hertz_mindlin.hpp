@@ -42,23 +42,23 @@ namespace gf {
 // read from its [[species]] table.
 inline constexpr Field kHertzMindlinRows[] = {
     {"restitution", "", {0, 1, true, false}, "", kNoDefault, "", "coefficient of restitution e"},
-    {"friction", "", kNonNegativeNumber, "", kNoDefault, "",
+    {"friction", "", range::coefficient, "", kNoDefault, "",
      "sliding friction coefficient μ: the tangential force is capped at μ times the normal force"},
-    {"rolling_friction", "", kNonNegativeNumber, "", 0.0, "",
+    {"rolling_friction", "", range::coefficient, "", 0.0, "",
      "μ_r: the constant rolling torque μ_r times the normal force times the radius"},
-    {"impact_speed", "m/s", kPositiveNumber, "", 1.0, "",
+    {"impact_speed", "m/s", range::speed, "", 1.0, "",
      "the speed at which the Hertz contact time of the critical step is computed"},
 };
 inline constexpr FieldTable kHertzMindlinFields{"[contact] model = \"hertz_mindlin\"", "scene-files.md", kHertzMindlinRows};
 inline constexpr Field kHertzMaterialRows[] = {
-    {"youngs_modulus", "Pa", kPositiveNumber, "", kNoDefault, "required with `hertz_mindlin`",
+    {"youngs_modulus", "Pa", range::modulus, "", kNoDefault, "required with `hertz_mindlin`",
      "Young's modulus (read only by the Hertz–Mindlin law)"},
     {"poisson_ratio", "", {-0.99, 0.5, false, false}, "", kNoDefault, "required with `hertz_mindlin`",
      "Poisson's ratio (read only by the Hertz–Mindlin law)"},
 };
 inline constexpr FieldTable kHertzMaterialFields{"[[species]] material", "", kHertzMaterialRows};
 inline constexpr Field kHertzWallRows[] = {
-    {"youngs_modulus", "Pa", kPositiveNumber, "", kNoDefault, "rigid wall",
+    {"youngs_modulus", "Pa", range::modulus, "", kNoDefault, "rigid wall",
      "the wall's Young's modulus; give it with `poisson_ratio`, or neither for a rigid wall"},
     {"poisson_ratio", "", {-0.99, 0.5, false, false}, "", kNoDefault, "rigid wall",
      "the wall's Poisson's ratio, with `youngs_modulus`"},

@@ -66,15 +66,15 @@ inline double collision_period(double m_eff, double k, double e) {
 // The law's keys in [contact]; [contact.wall] and [[contact.pair]] take the same keys, each defaulting
 // to the [contact] value.
 inline constexpr Field kLinearSpringDashpotRows[] = {
-    {"kn", "N/m", kPositiveNumber, "", kNoDefault, "", "normal spring"},
-    {"kt", "N/m", kNonNegativeNumber, "", kNoDefault, "", "tangential spring"},
+    {"kn", "N/m", range::stiffness, "", kNoDefault, "", "normal spring"},
+    {"kt", "N/m", range::stiffness_or_zero, "", kNoDefault, "", "tangential spring"},
     {"en", "", kFraction, "", kNoDefault, "", "normal restitution"},
     {"et", "", kFraction, "", kNoDefault, "", "tangential restitution"},
-    {"friction", "", kNonNegativeNumber, "", kNoDefault, "",
+    {"friction", "", range::coefficient, "", kNoDefault, "",
      "sliding friction coefficient f_s: the tangential force is capped at f_s times the normal force"},
-    {"kr", "N m/rad", kNonNegativeNumber, "", 0.0, "", "rolling spring (0: none)"},
+    {"kr", "N m/rad", range::torsion_or_zero, "", 0.0, "", "rolling spring (0: none)"},
     {"er", "", kFraction, "", kNoDefault, "`en`", "rolling restitution"},
-    {"rolling_friction", "m", kNonNegativeNumber, "", 0.0, "",
+    {"rolling_friction", "m", range::length_or_zero, "", 0.0, "",
      "f_r: the rolling torque is capped at f_r times the normal force"},
 };
 inline constexpr FieldTable kLinearSpringDashpotFields{"[contact] model = \"linear_spring_dashpot\"", "scene-files.md",

@@ -61,22 +61,22 @@ namespace gf {
 // value. [contact.wall] has its own coefficients, whose defaults are the published wall values, not
 // [contact]'s.
 inline constexpr Field kRepresentativeVolumeRows[] = {
-    {"kd", "", kPositiveNumber, "", 0.25, "", "decay length k_d of the force amplitude, in units of R*"},
-    {"kr", "", kNonNegativeNumber, "", 15.0, "",
+    {"kd", "", range::positive_factor, "", 0.25, "", "decay length k_d of the force amplitude, in units of R*"},
+    {"kr", "", range::coefficient, "", 15.0, "",
      "approach factor k_r: the approach force is (1 + k_r) times the separation force"},
-    {"kp", "", kNonNegativeNumber, "", 0.15, "", "friction coefficient k_p"},
+    {"kp", "", range::coefficient, "", 0.15, "", "friction coefficient k_p"},
     {"cutoff", "", {0, 0.5, true, false}, "", 0.001, "", "the amplitude A_c below which no force acts"},
-    {"slip_speed", "m/s", kNonNegativeNumber, "", 0.01, "",
+    {"slip_speed", "m/s", range::speed_or_zero, "", 0.01, "",
      "friction regularisation v_e (0: the unit vector of the published law)"},
 };
 inline constexpr FieldTable kRepresentativeVolumeFields{"[contact] model = \"representative_volume\"", "scene-files.md",
                                                         kRepresentativeVolumeRows};
 inline constexpr Field kRepresentativeVolumeWallRows[] = {
-    {"kd", "", kPositiveNumber, "", 0.2, "", "the wall's k_d^u"},
-    {"kr", "", kNonNegativeNumber, "", 10.0, "", "the wall's approach factor k_r^u"},
-    {"kp", "", kNonNegativeNumber, "", 0.1, "", "the wall's friction k_p^u"},
+    {"kd", "", range::positive_factor, "", 0.2, "", "the wall's k_d^u"},
+    {"kr", "", range::coefficient, "", 10.0, "", "the wall's approach factor k_r^u"},
+    {"kp", "", range::coefficient, "", 0.1, "", "the wall's friction k_p^u"},
     {"cutoff", "", {0, 0.5, true, false}, "", kNoDefault, "`[contact]`'s", "as in `[contact]`"},
-    {"slip_speed", "m/s", kNonNegativeNumber, "", kNoDefault, "`[contact]`'s", "as in `[contact]`"},
+    {"slip_speed", "m/s", range::speed_or_zero, "", kNoDefault, "`[contact]`'s", "as in `[contact]`"},
 };
 inline constexpr FieldTable kRepresentativeVolumeWallFields{"[contact.wall] model = \"representative_volume\"",
                                                             "scene-files.md", kRepresentativeVolumeWallRows};

@@ -6,7 +6,7 @@ namespace {
 
 // The drag laws' names as drag_laws() lists them, the first the default (tests/coupled_step_test.cpp).
 const Field kCoupling[] = {
-    {"smoothing_radius", "m", kPositiveNumber, "and at least `l0`", kNoDefault, "",
+    {"smoothing_radius", "m", range::length, "and at least `l0`", kNoDefault, "",
      "radius h over which a grain's volume and force are shared with the nodes"},
     {"substeps", "", {0, 1e6, false, false}, "(integers; 0: computed), and at least 1 with `fixed_grains`", 0,
      "computed (1 with `fixed_grains`)", "DEM steps k per liquid step"},

@@ -13,10 +13,10 @@ constexpr std::string_view kBool = "true, false";
 
 const Field kLiquid[] = {
     {"dim", "", {2, 3, false, false}, "(integers); 3 in a coupled scene", kNoDefault, "", "space dimension"},
-    {"l0", "m", kPositiveNumber, "and smaller than the geometry's narrowest extent", kNoDefault, "", "initial particle spacing"},
+    {"l0", "m", range::length, "and smaller than the geometry's narrowest extent", kNoDefault, "", "initial particle spacing"},
     {"re", "l0", {1.5, 5, false, false}, "", 2.1, "", "kernel radius"},
-    {"density", "kg/m³", {0, 1e6, true, false}, "", kNoDefault, "", "liquid density ρ"},
-    {"viscosity", "m²/s", kNonNegativeNumber, "", kNoDefault, "", "kinematic viscosity ν"},
+    {"density", "kg/m³", range::density, "", kNoDefault, "", "liquid density ρ"},
+    {"viscosity", "m²/s", range::kinematic_viscosity, "", kNoDefault, "", "kinematic viscosity ν"},
     {"turbulence", "", kAnyNumber, "`\"none\"`, `\"mixing_length\"` (a `pipe` only)", kNoDefault, "`\"none\"`",
      "eddy viscosity per node: Prandtl's mixing length with Nikuradse's profile, in the momentum diffusion only"},
     {"eddy_viscosity", "m²/s", {0, 1, false, false}, "", 0.0, "",
@@ -27,7 +27,7 @@ const Field kLiquid[] = {
     {"gradient", "", kAnyNumber, "`\"sum\"`, `\"min\"`", kNoDefault, "`\"sum\"`",
      "pressure-gradient form: symmetric `(p_j + p_i)` or Koshizuka's `(p_j − p_min)`"},
     {"clip_negative", "", kAnyNumber, kBool, kNoDefault, "true", "set negative pressures to 0 after the solve"},
-    {"compressibility", "1/Pa", kNonNegativeNumber, "", 0.0, "", "Ikeda's α; > 0 makes a closed liquid's matrix definite"},
+    {"compressibility", "1/Pa", range::compressibility, "", 0.0, "", "Ikeda's α; > 0 makes a closed liquid's matrix definite"},
     {"collision_distance", "l0", kFraction, "", 0.8, "", "distance below which the collision model acts"},
     {"collision_restitution", "", kFraction, "", 0.2, "", "restitution of the collision model"},
     {"skin", "l0", {0, 2, false, false}, "", 0.5, "", "Verlet skin of the neighbour list (search radius `re + skin`)"},
@@ -45,14 +45,14 @@ const Field kSolver[] = {
 };
 
 const Field kRun[] = {
-    {"dt", "s", kPositiveNumber, "and within the CFL and diffusion limits", kNoDefault, "",
+    {"dt", "s", range::time_step, "and within the CFL and diffusion limits", kNoDefault, "",
      "the liquid's step (the outer step of a coupled scene)"},
-    {"duration", "s", kNonNegativeNumber, "and at most 1e15 steps", kNoDefault, "", "simulated time"},
+    {"duration", "s", range::time_span, "and at most 1e15 steps", kNoDefault, "", "simulated time"},
     {"gravity", "m/s²", kAnyNumber, "3 numbers, magnitude ≤ 1e6; z = 0 in 2D", kNoDefault,
      "[0, 0, 0]; required in a coupled scene", "gravity"},
     {"body_force", "m/s²", kAnyNumber, "3 numbers, magnitude ≤ 1e6; z = 0 in 2D", kNoDefault, "[0, 0, 0]",
      "extra acceleration of the liquid; with `[drive]`, the start of the control"},
-    {"velocity_scale", "m/s", kPositiveNumber, "", kNoDefault,
+    {"velocity_scale", "m/s", range::speed, "", kNoDefault,
      "free fall over the liquid's height, `sqrt(2 g H)` with g the size of `gravity`; required without gravity",
      "speed for the load-time CFL check"},
     {"cfl_limit", "", kLimit, "", 0.5, "", "largest CFL number, at load and during the run"},
@@ -60,7 +60,7 @@ const Field kRun[] = {
     {"density_limit", "", {1, 10, true, false}, "", 1.5, "", "largest `n*/n0` before the run stops"},
     {"allow_unstable_dt", "", kAnyNumber, kBool, kNoDefault, "false",
      "run despite the load-time checks (and, coupled, a too-small `substeps`)"},
-    {"domain_margin", "m", kNonNegativeNumber, "", kNoDefault, "10 l0", "how far a fluid node may leave the geometry's bounds"},
+    {"domain_margin", "m", range::length_or_zero, "", kNoDefault, "10 l0", "how far a fluid node may leave the geometry's bounds"},
 };
 
 const Field kGeometry[] = {
@@ -74,8 +74,8 @@ const Field kGeometry[] = {
      kNoDefault, "required (not `pipe`)", "high corner of the inner faces"},
     {"center", "m", kAnyNumber, "3 numbers", kNoDefault, "required (`pipe`)",
      "the pipe's axis runs along x through (·, y, z) and starts at x"},
-    {"radius", "m", kPositiveNumber, "and at least 2 l0", kNoDefault, "required (`pipe`)", "inner radius"},
-    {"length", "m", kPositiveNumber, "and a whole number of `l0`, at least 3 search radii", kNoDefault, "required (`pipe`)",
+    {"radius", "m", range::length, "and at least 2 l0", kNoDefault, "required (`pipe`)", "inner radius"},
+    {"length", "m", range::length, "and a whole number of `l0`, at least 3 search radii", kNoDefault, "required (`pipe`)",
      "periodic length along x"},
 };
 

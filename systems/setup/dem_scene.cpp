@@ -67,18 +67,47 @@ void read_contacts(DemScene& s, const SceneNode& root, const SceneNode& ct) {
   s.contacts = std::make_shared<ContactTable>(make_contact_table<Law>(bodies, names, pp, pw));
 }
 
-// A wall surface moving `speed` (m/s) may travel at most 0.1 of the smallest diameter per step:
-// faster, it passes through grains between two contact evaluations (1e9 rad/s moved the seed drum's
-// wall 750 m per step, reported as an overlap instability).
-void require_wall_step(const DemScene& s, const SceneNode& w, double speed) {
+// A wall surface moving at `omega` times `radius` may travel at most 0.1 of the smallest diameter per
+// step: faster, it passes through grains between two contact evaluations (1e9 rad/s moved the seed
+// drum's wall 750 m per step, reported as an overlap instability). A radius of more than 500 of the
+// largest grains is named as the likelier mistake: a radius typed in millimetres.
+void require_wall_step(const DemScene& s, const SceneNode& w, double omega, double radius) {
   if (s.species.empty()) return;  // composite grains: read_bodies checks against the thinnest shape
-  double smallest = s.species.front().diameter;
-  for (const SpeciesSpec& sp : s.species) smallest = std::min(smallest, sp.diameter);
-  const double step = speed * s.dt;
-  if (step > 0.1 * smallest)
-    w.fail("omega", "the wall's surface moves " + short_number(step) + " m per step, more than 0.1 of the smallest "
-                    "diameter (" + short_number(smallest) + " m)",
-           "lower omega (rad/s) or run.dt");
+  double smallest = s.species.front().diameter, largest = 0.0;
+  for (const SpeciesSpec& sp : s.species) smallest = std::min(smallest, sp.diameter), largest = std::max(largest, sp.diameter);
+  const double step = std::abs(omega) * radius * s.dt;
+  if (step <= 0.1 * smallest) return;
+  const std::string moves = "the wall's surface moves " + short_number(step) + " m per step, more than 0.1 of the "
+                            "smallest diameter (" + short_number(smallest) + " m)";
+  if (radius > 500 * largest)
+    w.fail("radius", moves + ", and its radius " + number_text(radius) + " m is " + short_number(radius / largest) +
+                         " diameters of the largest grain",
+           "is the radius in millimetres? " + number_text(radius) + " mm is " + number_text(radius * 1e-3) +
+               " m; otherwise lower omega (rad/s) or run.dt");
+  w.fail("omega", moves, "lower omega (rad/s) or run.dt");
+}
+
+// The narrowest width of a fill region (m): a grain wider than it cannot be placed.
+double narrowest(const Region& r) {
+  if (r.kind == Region::Kind::Box)
+    return std::min({r.hi[0] - r.lo[0], r.hi[1] - r.lo[1], r.hi[2] - r.lo[2]});
+  return std::min({2.0 * r.radius, r.length, r.radius + r.max_height});
+}
+
+// A grain wider than the region it is poured into: most often a diameter typed in millimetres. Named at the
+// species' diameter, before the fill's placement attempts say "lower the count".
+void require_grains_fit(const DemScene& s, const SceneNode& root, const SceneNode& fill, const FillSpec& spec) {
+  const double room = narrowest(spec.region);
+  for (const auto& [sp, n] : spec.counts) {
+    const double d = s.species[sp].diameter;
+    if (n == 0 || d <= room) continue;
+    root.tables("species")[sp].fail(
+        "diameter", "species '" + s.species[sp].name + "' has diameter " + number_text(d) + " m, wider than " +
+                        spec.where + "'s region (" + short_number(room) + " m at its narrowest, line " +
+                        std::to_string(fill.line()) + ")",
+        "is the diameter in millimetres? " + number_text(d) + " mm is " + number_text(d * 1e-3) +
+            " m; otherwise enlarge the region");
+  }
 }
 
 // [periodic] x|y|z = [min, max] (m): faces of the box along that axis are periodic. The box must
@@ -172,7 +201,7 @@ void read_walls(DemScene& s, const SceneNode& root) {
       // A kilometre-wide drum is a typo (a radius of 1e308 overflowed the series' arrays).
       c.radius = read_number(w, t.field("radius"));
       c.omega = read_number(w, t.field("omega"));
-      require_wall_step(s, w, std::abs(c.omega) * c.radius);
+      require_wall_step(s, w, c.omega, c.radius);
       c.rot_point = c.center;
       c.rot_axis = c.axis;
       if (type == "drum") {
@@ -257,6 +286,7 @@ void read_fills(DemScene& s, const SceneNode& root) {
         }
         spec.counts.emplace_back(sp, n);
       }
+      require_grains_fit(s, root, f, spec);
     } else {
       spec.kind = FillSpec::Kind::File;
       spec.path = root.doc().resolve(f.get_string("path"));

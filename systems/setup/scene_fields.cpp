@@ -18,8 +18,8 @@ const Field kRegion[] = {
     {"hi", "m", kAnyNumber, "three numbers, each above `lo`'s", kNoDefault, "required for a box", "the box's upper corner"},
     {"center", "m", kAnyNumber, "three numbers", kNoDefault, "required for a cylinder", "the cylinder's centre"},
     {"axis", "", kAnyNumber, "non-zero vector", kNoDefault, "required for a cylinder", "the cylinder's axis direction"},
-    {"radius", "m", kPositiveNumber, "", kNoDefault, "required for a cylinder", "the cylinder's radius"},
-    {"length", "m", kPositiveNumber, "", kNoDefault, "required for a cylinder", "the cylinder's length, half to each side of the centre"},
+    {"radius", "m", range::length, "", kNoDefault, "required for a cylinder", "the cylinder's radius"},
+    {"length", "m", range::length, "", kNoDefault, "required for a cylinder", "the cylinder's length, half to each side of the centre"},
     {"max_height", "m", kAnyNumber, "any number; cylinders only", kInf, "no limit",
      "keeps the part whose height above the centre (against gravity) is at most this (0: the lower half)"},
 };
@@ -46,40 +46,40 @@ const Field kFeed[] = {
      "inline table of species name = mass fraction, e.g. `{ sand = 0.7, salt = 0.3 }`; at least one species"},
     {"region.", "", kAnyNumber, "", kNoDefault, "", "", &kRegionFields},
     {"velocity", "m/s", kAnyNumber, "three numbers", kNoDefault, "[0, 0, 0]", "velocity of a new grain"},
-    {"start", "s", kNonNegativeNumber, "", 0.0, "", "time of the first feed event"},
-    {"stop", "s", kPositiveNumber, "and > `start`", kInf, "no end", "no events after this time"},
-    {"interval", "s", kPositiveNumber, "and ≥ `run.dt`", 0.01, "", "time between feed events"},
+    {"start", "s", range::time_span, "", 0.0, "", "time of the first feed event"},
+    {"stop", "s", range::time_step, "and > `start`", kInf, "no end", "no events after this time"},
+    {"interval", "s", range::time_step, "and ≥ `run.dt`", 0.01, "", "time between feed events"},
     {"seed", "", kAnyNumber, "0 to 2^63 − 1", kNoDefault, "`run.seed` + 1000 + the feed's index",
      "seed of the placement generator"},
 };
 
 const Field kOutlet[] = {
     {"region.", "", kAnyNumber, "", kNoDefault, "", "", &kRegionFields},
-    {"interval", "s", kPositiveNumber, "and ≥ `run.dt`", 0.01, "", "time between checks"},
+    {"interval", "s", range::time_step, "and ≥ `run.dt`", 0.01, "", "time between checks"},
 };
 
 const Field kLayers[] = {
     {"inlet", "m", kAnyNumber, "three numbers", kNoDefault, "", "the point from which distances are measured"},
     {"axis", "", kAnyNumber, "non-zero vector", kNoDefault, "", "direction from the inlet along the mixer"},
     {"distances", "m", kAnyNumber, "1 to 10,000 numbers", kNoDefault, "", "distances L of the layers from the inlet"},
-    {"thickness", "m", {0, 1e3, true, false}, "", kNoDefault, "the largest species diameter",
+    {"thickness", "m", range::length, "", kNoDefault, "the largest species diameter",
      "thickness of a layer (the seed's choice is the default)"},
-    {"cell", "m", {0, 1e3, true, false}, "", kNoDefault, "", "edge of the square sample cells in a layer"},
+    {"cell", "m", range::length, "", kNoDefault, "", "edge of the square sample cells in a layer"},
     {"min_grains", "", {1, 1e6, false, false}, "(integers)", 5, "",
      "cells with fewer grains (visits, over the pool) are left out"},
-    {"interval", "s", kPositiveNumber, "and ≥ `run.dt`", kNoDefault, "", "time between samples"},
+    {"interval", "s", range::time_step, "and ≥ `run.dt`", kNoDefault, "", "time between samples"},
     {"pool", "", {1, 1e6, false, false}, "(integers)", 1, "", "samples pooled per row of `layers.csv`"},
 };
 
 const Field kRun[] = {
-    {"dt", "s", kPositiveNumber, "", kNoDefault, "",
+    {"dt", "s", range::time_step, "", kNoDefault, "",
      "the time step. It must not exceed `dt_safety` of the contact law's smallest time-step term (printed by "
      "`grainflow check`) unless `allow_unstable_dt`"},
-    {"duration", "s", kNonNegativeNumber, "and at most 1e15 steps", kNoDefault, "required, or `end_angle`",
+    {"duration", "s", range::time_span, "and at most 1e15 steps", kNoDefault, "required, or `end_angle`",
      "length of the main stage; give exactly one of `duration` and `end_angle`"},
-    {"end_angle", "rad", kNonNegativeNumber, "and at most 1e15 steps", kNoDefault, "required, or `duration`",
+    {"end_angle", "rad", range::angle_span, "and at most 1e15 steps", kNoDefault, "required, or `duration`",
      "length of the main stage as the rotation angle of the first rotating wall (needs a wall with `omega` ≠ 0)"},
-    {"skin", "m", kPositiveNumber, "", kNoDefault, "", "Verlet skin: the neighbour list holds pairs closer than r_i + r_j + skin"},
+    {"skin", "m", range::length, "", kNoDefault, "", "Verlet skin: the neighbour list holds pairs closer than r_i + r_j + skin"},
     {"gravity", "m/s²", kAnyNumber, "three numbers, magnitude ≤ 1e6", kNoDefault, "`[0, -9.81, 0]`", "gravity"},
     {"dt_safety", "", {0, 1, true, false}, "", 0.1, "", "`dt` may be at most this fraction of the smallest time-step term"},
     {"allow_unstable_dt", "", kAnyNumber, "true, false", kNoDefault, "false", "run even when `dt` exceeds the limit"},
@@ -92,8 +92,8 @@ const Field kRun[] = {
 
 const Field kSpecies[] = {
     {"name", "", kAnyNumber, "unique text", kNoDefault, "", "the name fills, pairs and `[analysis]` refer to"},
-    {"diameter", "m", {0, 100, true, false}, "", kNoDefault, "", "grain diameter"},
-    {"density", "kg/m³", {0, 1e6, true, false}, "", kNoDefault, "",
+    {"diameter", "m", range::diameter, "", kNoDefault, "", "grain diameter"},
+    {"density", "kg/m³", range::density, "", kNoDefault, "",
      "solid density; mass and moment of inertia (2/5 m r²) follow"},
     {"rotates", "", kAnyNumber, "true, false", kNoDefault, "true",
      "false: the grains only translate and their torques are not integrated; when no species rotates the grains "
@@ -125,17 +125,17 @@ const Field kOutput[] = {
     {"frame_force", "", kAnyNumber, "true, false", kNoDefault, "false", "frames hold `force`"},
     {"picture_angles", "rad", kAnyNumber, "list of numbers ≥ 0, at least 0.01 apart", kNoDefault, "none",
      "draw a picture when the first rotating wall reaches each angle, e.g. `[2, 10, 18, 30]`"},
-    {"picture_interval", "rad", kNonNegativeNumber, "0, or ≥ 0.01", 0.0, "", "draw a picture every interval of rotation; 0: none"},
+    {"picture_interval", "rad", range::angle_span, "0, or ≥ 0.01", 0.0, "", "draw a picture every interval of rotation; 0: none"},
     {"picture_colour", "", kAnyNumber, "`\"species\"`, `\"speed\"`", kNoDefault, "`\"species\"`",
      "colour grains by species or by speed"},
     {"picture_size", "px", {16, 8192, false, false}, "(integers)", 800, "", "picture width and height"},
-    {"picture_speed_max", "m/s", kPositiveNumber, "", 0.5, "", "the speed at the top of the speed colours"},
+    {"picture_speed_max", "m/s", range::speed, "", 0.5, "", "the speed at the top of the speed colours"},
 };
 
 const Field kAnalysis[] = {
     {"species", "", kAnyNumber, "a species name", kNoDefault, "the larger (the first on equal diameters)",
      "the species whose fraction the segregation, Lacey and radial indices and the pattern classifier follow"},
-    {"mixing_cell", "m", {0, 1e3, true, false}, "and at least one diameter of `species`", kNoDefault,
+    {"mixing_cell", "m", range::length, "and at least one diameter of `species`", kNoDefault,
      "three diameters of `species`", "the edge of Lacey's cubic cells"},
     {"mixing_min_grains", "", {2, 1e6, false, false}, "(integers)", 10, "",
      "cells with fewer grains are left out of Lacey's index"},
@@ -144,7 +144,7 @@ const Field kAnalysis[] = {
 };
 
 const Field kSettle[] = {
-    {"time", "s", kNonNegativeNumber, "and at most 1e15 steps", kNoDefault, "", "simulated time of settling"},
+    {"time", "s", range::time_span, "and at most 1e15 steps", kNoDefault, "", "simulated time of settling"},
 };
 
 }  // namespace

@@ -4,7 +4,7 @@ namespace gf {
 
 namespace {
 
-constexpr Range kLength{0, 1e3, true, false};  // (0, 1000] m: a kilometre-wide wall is a typo
+constexpr Range kLength{1e-9, 1e3, false, false};  // m: a kilometre-wide wall is a typo
 
 const Field kWall[] = {
     {"type", "", kAnyNumber, "`\"plane\"`, `\"box\"`, `\"cylinder\"`, `\"drum\"`, `\"mesh\"`", kNoDefault, "",
@@ -41,7 +41,7 @@ const Field kWall[] = {
     {"cells", "", kAnyNumber, "two whole numbers ≥ 1, product ≤ 1e7", kNoDefault, "`[1, 1]`",
      "mesh plate: cells along the two directions, two triangles per cell"},
     {"outer_radius", "m", kLength, "", kNoDefault, "required (mesh annulus)", "the annulus's outer radius"},
-    {"inner_radius", "m", kNonNegativeNumber, "and below `outer_radius`", 0.0, "",
+    {"inner_radius", "m", range::length_or_zero, "and below `outer_radius`", 0.0, "",
      "mesh annulus: the inner radius (0 for a disc)"},
     {"segments", "", {3, 1e5, false, false}, "(integers)", 64, "", "mesh annulus and cylinder: segments around the axis"},
     {"rings", "", {1, 1e5, false, false}, "(integers)", 1, "", "mesh cylinder: rings along the axis"},
