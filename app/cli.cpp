@@ -16,13 +16,15 @@ std::filesystem::path CliOptions::out_dir() const {
 std::string usage(std::string_view program) {
   const std::string p(program);
   return "usage:\n"
-         "  " + p + " run SCENE [--out DIR] [--threads N] [--steps N] [--set key=value]... [--resume CHECKPOINT]\n"
-         "  " + std::string(p.size() + 5, ' ') + "[--rebalance RATIO] [--quiet]\n"
+         "  " + p + " run SCENE [--out DIR] [--overwrite] [--threads N] [--steps N] [--set key=value]...\n"
+         "  " + std::string(p.size() + 5, ' ') + "[--resume CHECKPOINT] [--rebalance RATIO] [--quiet]\n"
          "  " + p + " check SCENE [--set key=value]... [--keys]\n"
          "  " + p + " --help | --version\n"
          "check validates a scene (and builds its fills) and prints what a run would do; run writes series.csv,\n"
          "frames, pictures, checkpoints and summary.json to DIR (default runs/<scene name>). An option takes its\n"
          "value as --opt value or --opt=value.\n"
+         "  --overwrite  clear DIR first when it holds an earlier run (a run into a folder that holds files is\n"
+         "               refused otherwise, unless it resumes)\n"
          "  --threads    1 to " + std::to_string(kMaxThreads) + " (default: all cores)\n"
          "  --steps      main-stage steps instead of the scene's duration\n"
          "  --set        override a scene key, e.g. --set run.dt=2e-5 --set fill.0.count.small=1000\n"
@@ -78,6 +80,7 @@ CLI::App* add_command(CLI::App& app, const std::string& name, Typed& t, CliOptio
     c->add_flag("--keys", o.keys);
     return c;
   }
+  c->add_flag("--overwrite", o.overwrite);
   for (auto [flag, into] : {std::pair{"--out", &t.out}, {"--threads", &t.threads}, {"--steps", &t.steps},
                             {"--resume", &t.resume}, {"--rebalance", &t.rebalance}})
     c->add_option(flag, *into);

@@ -1,6 +1,6 @@
 // The command line of both programs, parsed once (CLI11):
-//   grainflow run SCENE [--out DIR] [--threads N] [--steps N] [--set key=value]... [--resume CHECKPOINT]
-//                       [--rebalance RATIO] [--quiet]
+//   grainflow run SCENE [--out DIR] [--overwrite] [--threads N] [--steps N] [--set key=value]...
+//                       [--resume CHECKPOINT] [--rebalance RATIO] [--quiet]
 //   grainflow check SCENE [--set key=value]... [--keys]
 //   grainflow --help | --version
 // grainflow_mpi takes the same words (its `check` runs as grainflow's does). Options take their value as
@@ -24,6 +24,7 @@ struct CliOptions {
   std::string command;  // "run", "check", or "help" / "version" (print and exit 0)
   std::filesystem::path scene;
   std::optional<std::filesystem::path> out;  // default: runs/<scene name>
+  bool overwrite = false;                    // clear an earlier run's folder (app/out_dir.hpp)
   int threads = 0;                           // 0: all cores
   std::optional<std::int64_t> steps;         // main-stage steps instead of the scene's duration
   std::vector<std::string> overrides;        // key=value

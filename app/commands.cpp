@@ -1,5 +1,6 @@
 #include "app/commands.hpp"
 
+#include "app/out_dir.hpp"
 #include "systems/setup/coupled_scene.hpp"
 
 namespace gf {
@@ -24,6 +25,7 @@ SceneModel scene_model(const SceneDoc& doc) {
 }
 
 int run_command(const CliOptions& opt) {
+  claim_out_dir(opt);
   // Parsing twice is cheap next to any run, and keeps each model's loader the only reader of its keys.
   switch (scene_model(SceneDoc::load(opt.scene, opt.overrides))) {
     case SceneModel::Liquid:

@@ -24,6 +24,7 @@
 #include "app/mpi/rank_body_app.hpp"
 #include "app/mpi/rank_sphere_app.hpp"
 #include "engine/mpi/mpi_context.hpp"
+#include "app/out_dir.hpp"
 #include "engine/run_loop.hpp"
 #include "systems/setup/mpi/rank_simulation.hpp"
 
@@ -31,6 +32,17 @@ namespace {
 
 // A scene on the ranks: grains (rank_sphere_app.hpp) or composite bodies (rank_body_app.hpp).
 int run_ranks(const gf::CliOptions& opt, const gf::MpiContext& mpi) {
+  // Rank 0 claims the output folder before any rank writes; the others wait for its verdict.
+  int claimed = 0;
+  if (mpi.rank() == 0) {
+    try {
+      gf::claim_out_dir(opt);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "grainflow_mpi: error: %s\n", e.what());
+      claimed = 2;
+    }
+  }
+  if (mpi.max(static_cast<double>(claimed)) > 0) return 2;
   gf::DemScene scene;
   try {
     scene = gf::RankSimulation::load_scene(opt.scene, opt.overrides);

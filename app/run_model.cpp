@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <utility>
 
@@ -134,7 +135,7 @@ void main_stage(Run& run) {
   const auto run0 = WallClock::now();
   run.guard([&] {
     run.main = m.run(so);
-    if (run.main.interrupted) run.outcome.status = "interrupted";
+    if (run.main.interrupted) run.outcome.interrupt(stop_signal() != 0 ? stop_signal() : SIGTERM);
   });
   if (run.outcome.failed()) {  // a stage that threw: the steps it took, and its wall time
     run.main.steps = world.clock.step - first;

@@ -1,6 +1,6 @@
 // How a run's main stage ends, recorded and reported the same way by every model: the status
 // ("completed", "interrupted" or "failed" with its message), the checkpoint written at the end, the
-// exit status (3 for a failure), the steps and wall time of this run; and the lines every run prints
+// exit status (3 for a failure, 128 + the signal for a stop), the steps and wall time of this run; and the lines every run prints
 // as it resumes and as it ends.
 #pragma once
 
@@ -35,6 +35,12 @@ struct RunOutcome {
     status = "failed";
     failure = std::move(why);
     rc = 3;
+  }
+  // Stopped by `signal` after the step in flight, its results kept: the shell's status of a process
+  // stopped by that signal (130 for SIGINT, 143 for SIGTERM), so scripts and `timeout` see the stop.
+  void interrupt(int signal) {
+    status = "interrupted";
+    rc = 128 + signal;
   }
   // A write after an earlier failure: the first message stays, this one follows it.
   void fail_also(const std::string& why) { fail(failure.empty() ? why : failure + "; then " + why); }

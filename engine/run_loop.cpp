@@ -10,8 +10,8 @@
 namespace gf {
 
 namespace {
-std::atomic<bool> g_stop{false};
-extern "C" void on_stop_signal(int) { g_stop.store(true); }
+std::atomic<int> g_stop{0};  // the signal that asked the run to stop; 0: none
+extern "C" void on_stop_signal(int sig) { g_stop.store(sig); }
 std::function<bool(bool)> g_agree;
 
 std::string human_seconds(double s) {
@@ -43,7 +43,8 @@ void install_stop_handlers() {
   // with EFBIG and the run stops with a message, its files whole.
   std::signal(SIGXFSZ, SIG_IGN);
 }
-bool stop_requested() { return g_stop.load(); }
+bool stop_requested() { return g_stop.load() != 0; }
+int stop_signal() { return g_stop.load(); }
 void install_stop_agreement(std::function<bool(bool)> any) { g_agree = std::move(any); }
 
 StageReport run_stage(World& world, Schedule& step, const StageOptions& opt) {

@@ -46,6 +46,8 @@ StageReport run_stage(World& world, Schedule& step, const StageOptions& opt);
 // instead of killing the process. Installed once by the CLI.
 void install_stop_handlers();
 bool stop_requested();
+// The signal that asked the run to stop (SIGINT, SIGTERM); 0 when none did.
+int stop_signal();
 
 // Processes that step one state together (grainflow_mpi's body scenes) must stop after the same
 // step. With an agreement installed, run_stage asks it before every step whether any process wants

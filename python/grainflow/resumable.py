@@ -122,6 +122,16 @@ def wait_or_stop(p, deadline, folder, stop, poll_s):
             return reason
 
 
+def clear_for_fresh_start(folder):
+    """Empties the folder of an earlier attempt that left no checkpoint (nothing to go on from), so that
+    a fresh run may start in it; returns the texts of its log.txt and pieces.jsonl, which are kept."""
+    if not folder.is_dir() or not any(folder.iterdir()):
+        return {}
+    kept = {n: (folder / n).read_text() for n in ("log.txt", "pieces.jsonl") if (folder / n).is_file()}
+    shutil.rmtree(folder)
+    return kept
+
+
 def run_piece(name, binary, scene, folder, overrides, threads, budget_s, done, stop=None, poll_s=20.0):
     """Runs one piece of the case unless done(series) says it is finished; returns the piece's record
     (None when there was nothing to do). With `stop`, the piece is also ended (SIGINT, so with its
@@ -136,12 +146,22 @@ def run_piece(name, binary, scene, folder, overrides, threads, budget_s, done, s
             print(f"{name}: already done", file=sys.stderr)
             return None
         cmd += ["--resume", str(ckpt)]
+    kept = clear_for_fresh_start(folder) if not ckpt.is_file() else {}
     folder.mkdir(parents=True, exist_ok=True)
     print(f"{name}: {' '.join(cmd)}", file=sys.stderr)
     t0 = time.time()
-    with open(folder / "log.txt", "a") as log:
+    # grainflow refuses a fresh run into a folder that holds files, so a fresh piece logs beside the
+    # folder and the log joins it afterwards; a resumed piece logs in it.
+    log_path = folder / "log.txt" if ckpt.is_file() else folder.parent / f".{folder.name}.log.txt"
+    with open(log_path, "a") as log:
         p = subprocess.Popen(cmd, stdout=log, stderr=log)
         stopped = wait_or_stop(p, t0 + budget_s, folder, stop, poll_s)
+    if log_path != folder / "log.txt":
+        folder.mkdir(parents=True, exist_ok=True)
+        (folder / "log.txt").write_text(kept.get("log.txt", "") + log_path.read_text())
+        log_path.unlink()
+        if "pieces.jsonl" in kept:
+            (folder / "pieces.jsonl").write_text(kept["pieces.jsonl"])
     if not (folder / "summary.json").is_file():  # refused before it ran: the log says why
         tail = (folder / "log.txt").read_text().splitlines()[-3:]
         print(f"{name}: grainflow exited with status {p.returncode} before running:\n  " + "\n  ".join(tail),

@@ -25,6 +25,10 @@ from pathlib import Path
 a = sys.argv[1:]
 out = Path(a[a.index("--out") + 1])
 start = int(Path(a[a.index("--resume") + 1]).read_text()) if "--resume" in a else 0
+if "--resume" not in a and out.is_dir() and any(out.iterdir()):  # as grainflow refuses it
+    print("the output folder already holds files", file=sys.stderr)
+    sys.exit(1)
+print(f"ran from {start}", file=sys.stderr)
 out.mkdir(parents=True, exist_ok=True)
 with open(out / "series.csv", "a") as f:
     if start == 0:
@@ -49,6 +53,9 @@ class ResumableTest(FakeBinaryTest):
 
     def pieces_archive_restore(self):
         folder = self.dir / "runs" / "case"
+        # an earlier attempt that left only its log: the fresh piece starts in an emptied folder, log kept
+        folder.mkdir(parents=True)
+        (folder / "log.txt").write_text("refused: a typo\n")
         piece = r.run_piece("case", self.binary, "tiny.toml", folder, ["a=1"], 1, 30, lambda s: False)
         self.assertEqual(piece["status"], "completed")
         self.assertEqual(piece["steps"], 3)
@@ -56,6 +63,7 @@ class ResumableTest(FakeBinaryTest):
         r.run_piece("case", self.binary, "tiny.toml", folder, [], 1, 30, lambda s: False)  # resumes
         self.assertEqual(r.load_series(folder)["time"].tolist(), [0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
         self.assertIsNone(r.run_piece("case", self.binary, "tiny.toml", folder, [], 1, 30, lambda s: True))
+        self.assertEqual((folder / "log.txt").read_text(), "refused: a typo\nran from 0\nran from 3\n")
         # a row still being written is left out
         with open(folder / "series.csv", "a") as f:
             f.write("0.7,0.")

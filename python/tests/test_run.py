@@ -59,6 +59,7 @@ class RunSceneTest(FakeBinaryTest):
                       quiet=False)
         self.assertEqual(cmd, ["gf", "run", "tiny.toml", "--out", "o", "--set", "run.dt=1e-05",
                                "--resume", "o/checkpoints/checkpoint.gfc"])
+        self.assertEqual(command("tiny.toml", "o", binary="gf", overwrite=True)[-2:], ["--overwrite", "--quiet"])
 
     def test_failure_raises_with_stderr(self):
         with self.assertRaises(RunError) as e:
@@ -71,6 +72,9 @@ class RunSceneTest(FakeBinaryTest):
         self.assertEqual(run.status, "completed")
         with self.assertRaises(RunError):
             run_scene("tiny.toml", self.dir / "bad", sets=["fail=true"], binary=self.binary, check=False)
+        # refused (status 1 or 2) into a folder of an earlier run: raises, not the older run's folder
+        with self.assertRaises(RunError):
+            run_scene("tiny.toml", self.dir / "unstable", sets=["fail=true"], binary=self.binary, check=False)
         with self.assertRaisesRegex(RunError, "became unstable"):
             run_scene("tiny.toml", self.dir / "unstable", sets=["unstable=true"], binary=self.binary)
 
