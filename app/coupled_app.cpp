@@ -214,7 +214,9 @@ int check_coupled_command(const CliOptions& opt) {
 }
 
 int run_coupled_command(const CliOptions& opt) {
-  CoupledModel model(load_coupled_scene(SceneDoc::load(opt.scene, opt.overrides)));
+  const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
+  CoupledModel model(load_coupled_scene(doc));
+  model.scene_json = doc.resolved_json();
   return run_model(model, opt);
 }
 

@@ -247,9 +247,15 @@ class SphereModel final : public ScheduledModel {
 }  // namespace
 
 int run_dem_command(const CliOptions& opt) {
-  const DemScene s = load_dem_scene(SceneDoc::load(opt.scene, opt.overrides));
-  if (s.bodies) return run_body_command(opt, s);
+  const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
+  const DemScene s = load_dem_scene(doc);
+  if (s.bodies) {
+    BodyRunHooks hooks;
+    hooks.scene_json = doc.resolved_json();
+    return run_body_command(opt, s, hooks);
+  }
   SphereModel model(s);
+  model.scene_json = doc.resolved_json();
   return run_model(model, opt);
 }
 

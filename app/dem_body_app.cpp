@@ -393,6 +393,7 @@ int run_body_command(const CliOptions& opt, const DemScene& s, const BodyRunHook
   std::unique_ptr<BodyModel> model;
   if (hooks.together) hooks.together([&] { model = std::make_unique<BodyModel>(s, hooks.install); });
   else model = std::make_unique<BodyModel>(s, hooks.install);
+  model->scene_json = hooks.scene_json;
   return run_model(*model, opt, place);
 }
 

@@ -26,6 +26,7 @@ struct BodyRunHooks {
   bool writer = true;
   int ranks = 1;
   std::string program = "grainflow";  // the name the lines it prints start with
+  std::string scene_json;              // the scene as read, for summary.json (SceneDoc::resolved_json)
 };
 
 int run_body_command(const CliOptions& opt, const DemScene& s, const BodyRunHooks& hooks = {});

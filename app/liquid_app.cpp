@@ -131,8 +131,10 @@ int check_liquid_command(const CliOptions& opt) {
 }
 
 int run_liquid_command(const CliOptions& opt) {
-  const LiquidScene s = load_liquid_scene(SceneDoc::load(opt.scene, opt.overrides));
+  const SceneDoc doc = SceneDoc::load(opt.scene, opt.overrides);
+  const LiquidScene s = load_liquid_scene(doc);
   LiquidModel model(s);
+  model.scene_json = doc.resolved_json();
   return run_model(model, opt);
 }
 

@@ -95,6 +95,7 @@ void open_summary(Run& run, RunCounts at_start) {
   if (const std::string w = m.warning(); !w.empty()) std::fprintf(stderr, "%s: warning: %s\n", run.program(), w.c_str());
   if (run.opt.resume) say_resuming(run.place.program, *run.opt.resume, m.world().clock, m.resumed_note());
   summary_opening(run.summary, run.opt, m.kind(), at_start, run.place.ranks, threads_in_use());
+  if (!m.scene_json.empty()) run.summary["scene_resolved"] = nlohmann::json::parse(m.scene_json);
   m.open_summary(run.summary);
   run.summary["status"] = "running";
   if (run.opt.resume) run.summary["resumed_from"] = resumed_from_json(*run.opt.resume, m.world().clock);

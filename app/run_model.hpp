@@ -39,6 +39,9 @@ class Model {
  public:
   virtual ~Model() = default;
 
+  // The scene as its systems read it (SceneDoc::resolved_json), for summary.json; empty: not recorded.
+  std::string scene_json;
+
   // ---- What it is.
   virtual std::string_view kind() const = 0;  // summary.json "model": spheres, bodies, liquid, coupled
   virtual World& world() = 0;

@@ -2,6 +2,7 @@
 
 #include <tbb/global_control.h>
 
+#include "app/build_commit.hpp"
 #include "engine/schedule.hpp"
 
 namespace gf {
@@ -10,6 +11,7 @@ void summary_opening(nlohmann::json& summary, const CliOptions& opt, std::string
                      int ranks, std::size_t threads) {
   summary["program"] = "grainflow";
   summary["version"] = GRAINFLOW_VERSION;
+  summary["commit"] = build_commit();
   summary["model"] = std::string(model);
   summary["scene"] = opt.scene.string();
   summary["overrides"] = opt.overrides;

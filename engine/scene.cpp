@@ -77,6 +77,9 @@ struct SceneState : std::enable_shared_from_this<SceneState> {
   mutable std::unordered_set<const toml::node*> used;
   // Key names each table was asked for, in asking order, present or not: the "accepts" list of an unknown-key fix.
   mutable std::unordered_map<const toml::table*, std::vector<std::string>> accepted;
+  // The defaults reading calls took for absent keys, per table: with the file and the overrides, the scene the
+  // run read (SceneDoc::resolved_json).
+  mutable std::unordered_map<const toml::table*, toml::table> defaults;
   // Handed out by SceneNode::doc(). Non-owning (it would otherwise keep its own state alive forever); SceneDoc's
   // copy constructor re-derives an owning pointer through shared_from_this, so copies of it are safe.
   SceneDoc self{std::shared_ptr<SceneState>{}};
@@ -238,6 +241,12 @@ struct detail::SceneAccess {
 
   static void mark(const SceneNode& sn, const toml::node* n) { sn.st_->used.insert(n); }
 
+  // The default a reading call took for an absent key (non-finite numbers, "no end", are left out).
+  template <class T>
+  static void record_default(const SceneNode& sn, std::string_view key, T&& value) {
+    sn.st_->defaults[&tbl(sn)].insert_or_assign(key, std::forward<T>(value));
+  }
+
   [[noreturn]] static void fail_node(const SceneNode& sn, const toml::node& n, std::string_view path,
                                      std::string_view problem, std::string_view fix) {
     fail_at(*sn.st_, &n, path, problem, fix);
@@ -380,7 +389,10 @@ double SceneNode::get_double(std::string_view key, Range r) const {
 
 double SceneNode::get_double(std::string_view key, double fallback, Range r) const {
   const toml::node* n = SceneAccess::find(*this, key);
-  if (!n) return fallback;
+  if (!n) {
+    if (std::isfinite(fallback)) SceneAccess::record_default(*this, key, fallback);
+    return fallback;
+  }
   SceneAccess::mark(*this, n);
   return SceneAccess::number(*this, *n, path(key), key, r);
 }
@@ -411,6 +423,7 @@ std::int64_t SceneNode::get_int(std::string_view key, std::int64_t lo, std::int6
 std::int64_t SceneNode::get_int(std::string_view key, std::int64_t fallback, std::int64_t lo, std::int64_t hi) const {
   if (!has(key)) {
     SceneAccess::find(*this, key);  // still an accepted name
+    SceneAccess::record_default(*this, key, fallback);
     return fallback;
   }
   return get_int(key, lo, hi);
@@ -428,6 +441,7 @@ bool SceneNode::get_bool(std::string_view key) const {
 bool SceneNode::get_bool(std::string_view key, bool fallback) const {
   if (!has(key)) {
     SceneAccess::find(*this, key);
+    SceneAccess::record_default(*this, key, fallback);
     return fallback;
   }
   return get_bool(key);
@@ -449,6 +463,7 @@ std::string SceneNode::get_string(std::string_view key) const {
 std::string SceneNode::get_string(std::string_view key, std::string fallback) const {
   if (!has(key)) {
     SceneAccess::find(*this, key);
+    SceneAccess::record_default(*this, key, fallback);
     return fallback;
   }
   return get_string(key);
@@ -467,6 +482,7 @@ std::string SceneNode::get_choice(std::string_view key, std::vector<std::string>
                                   std::string fallback) const {
   if (!has(key)) {
     SceneAccess::find(*this, key);
+    SceneAccess::record_default(*this, key, fallback);
     return fallback;
   }
   return get_choice(key, std::move(choices));
@@ -488,6 +504,7 @@ std::array<double, 3> SceneNode::get_vec3(std::string_view key) const {
 std::array<double, 3> SceneNode::get_vec3(std::string_view key, std::array<double, 3> fallback) const {
   if (!has(key)) {
     SceneAccess::find(*this, key);
+    SceneAccess::record_default(*this, key, toml::array{fallback[0], fallback[1], fallback[2]});
     return fallback;
   }
   return get_vec3(key);
@@ -922,6 +939,41 @@ std::vector<std::string> SceneDoc::read_keys() const {
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
+}
+
+namespace {
+
+toml::table resolved_table(const SceneState& st, const toml::table& t);
+
+toml::array resolved_array(const SceneState& st, const toml::array& a) {
+  toml::array out;
+  for (const toml::node& e : a) {
+    if (auto* sub = e.as_table()) out.push_back(resolved_table(st, *sub));
+    else if (auto* arr = e.as_array()) out.push_back(resolved_array(st, *arr));
+    else out.push_back(e);
+  }
+  return out;
+}
+
+// A copy of `t` with the defaults its readers took added.
+toml::table resolved_table(const SceneState& st, const toml::table& t) {
+  toml::table out;
+  for (auto&& [k, v] : t) {
+    if (auto* sub = v.as_table()) out.insert(k, resolved_table(st, *sub));
+    else if (auto* arr = v.as_array()) out.insert(k, resolved_array(st, *arr));
+    else out.insert(k, v);
+  }
+  if (auto it = st.defaults.find(&t); it != st.defaults.end())
+    for (auto&& [k, v] : it->second) out.insert(k, v);  // insert keeps a key that is present
+  return out;
+}
+
+}  // namespace
+
+std::string SceneDoc::resolved_json() const {
+  std::ostringstream os;
+  os << toml::json_formatter{resolved_table(*st_, st_->root)};
+  return os.str();
 }
 
 void SceneDoc::check_all_used() const {

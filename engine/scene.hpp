@@ -158,6 +158,10 @@ class SceneDoc {
   // first one in file order, with a fix listing the keys that table accepts and a "did you mean" when one is close.
   void check_all_used() const;
 
+  // The scene as its systems read it, as JSON text: the file with the --set overrides applied, and every default a
+  // reading call took for an absent key (summary.json's "scene_resolved"). Complete once every system has read it.
+  std::string resolved_json() const;
+
   // Every key a reading call asked for, present in the file or not, as dotted paths with array indices
   // ("run.dt", "wall[0].omega", "fill[1].region.lo"), sorted: what this scene's systems accept.
   std::vector<std::string> read_keys() const;
