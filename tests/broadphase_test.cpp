@@ -661,11 +661,11 @@ struct SlidingPair {
     std::ostringstream csv;
     csv.precision(17);
     csv << "id,type,diameter,x,y,z\n";
-    csv << "1,1," << 2 * r << "," << ax << "," << ay << ",0\n";
-    csv << "2,1," << 2 * r << "," << bx << "," << by << ",0\n";
+    csv << "0,1," << 2 * r << "," << ax << "," << ay << ",0\n";
+    csv << "1,1," << 2 * r << "," << bx << "," << by << ",0\n";
     // C sits between the walls (clear of both) at the lowest y, so it fixes the origin's y; A has
     // the lowest x, so A and B share the x cell column whatever the origin's x.
-    csv << "3,1," << 2 * r << "," << ax + r << "," << 0.0 << ",0\n";
+    csv << "2,1," << 2 * r << "," << ax + r << "," << 0.0 << ",0\n";
     const fs::path file = dir.write("pair.csv", csv.str());
     std::ostringstream s;
     s.precision(17);

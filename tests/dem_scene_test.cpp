@@ -467,7 +467,33 @@ TEST_CASE("dem scene: fills that cannot be made name the scene file and the fill
     const std::string twice = kScene.substr(0, kScene.find("[[fill]]")) + file_fill + file_fill +
                               kScene.substr(kScene.find("[output]"));
     e = scene_error(dir.write("twice.toml", twice), {}, true);
-    CHECK_THAT(e, Contains("grains 0 and 2 of the fills") && Contains("one on the other") && Contains("Fix:"));
+    // Named by the file's lines, not by rows counted over the fills.
+    CHECK_THAT(e, Contains("the grain at line 2 of " + csv.string() + " and the grain at line 2 of " + csv.string()) &&
+                      Contains("one on the other") && Contains("Fix:"));
+
+    // Two files giving one id: refused with both lines (ids from state files are kept).
+    dir.write("other.csv", "id,type,diameter,x,y,z\n7,1,0.002,0.003,0.006,0.003\n2,1,0.002,0.006,0.006,0.003\n");
+    std::string other_fill = file_fill;
+    other_fill.replace(other_fill.find("grains.csv"), 10, "other.csv");
+    const std::string two = kScene.substr(0, kScene.find("[[fill]]")) + file_fill + other_fill +
+                            kScene.substr(kScene.find("[output]"));
+    e = scene_error(dir.write("two.toml", two), {}, true);
+    CHECK_THAT(e, Contains("id 2 is given to the grain at line 3 of " + csv.string()) &&
+                      Contains("line 3 of " + (dir.path / "other.csv").string()) && Contains("Fix:"));
+
+    // Kept: the file's ids (7 and 2), and a random fill's grains numbered on from past the largest.
+    const std::string mixed =
+        kScene.substr(0, kScene.find("[[fill]]")) + other_fill + kScene.substr(kScene.find("[[fill]]"));
+    gf::DemSimulation sim(gf::load_dem_scene(gf::SceneDoc::load(dir.write("mixed.toml", mixed))));
+    const gf::Grains& g = sim.grains();
+    std::vector<std::int64_t> ids(g.n_owned);
+    for (std::size_t i = 0; i < g.n_owned; ++i) ids[i] = g.pid.id[i];
+    std::sort(ids.begin(), ids.end());
+    REQUIRE(ids.size() == 52);
+    CHECK(ids[0] == 2);
+    CHECK(ids[1] == 7);
+    for (std::size_t i = 2; i < ids.size(); ++i) CHECK(ids[i] == static_cast<std::int64_t>(6 + i));
+    CHECK(g.next_id == 58);
 
     // Two grains half a diameter into each other: no step has been taken, so the input is at fault
     // (it was reported as an instability with "reduce run.dt"); check refuses it as run does.
@@ -563,6 +589,13 @@ TEST_CASE("cli: run writes the series, the frames and the summary", "[dem_scene]
   CHECK(summary.at("grains") == 50);
   CHECK(summary.at("particle_steps_per_second").get<double>() > 0.0);
   CHECK(summary.at("critical_term") == "tangential, glass-glass");
+  // The build's commit, and the scene as read: the file's keys, and the defaults the readers took.
+  CHECK(!summary.at("commit").get<std::string>().empty());
+  const auto& read_scene = summary.at("scene_resolved");
+  CHECK(read_scene.at("run").at("dt") == 1.0e-5);                            // from the file
+  CHECK(read_scene.at("run").at("dt_safety") == 0.1);                        // a default
+  CHECK(read_scene.at("contact").at("model") == "linear_spring_dashpot");
+  CHECK(summary.at("counts").at("grains_at_start") == 50);
   std::map<std::string, std::int64_t> calls;
   for (const auto& t : summary.at("time_per_system")) {
     calls[t.at("system").get<std::string>()] = t.at("calls").get<std::int64_t>();

@@ -220,7 +220,7 @@ TEST_CASE("an impossible fill says what it reached and what to change", "[fill]"
     const std::string m = e.what();
     INFO(m);
     CHECK(m.find("placed") != std::string::npos);
-    CHECK(m.find("of type 7") != std::string::npos);
+    CHECK(m.find("of species 7") != std::string::npos);
     CHECK(m.find("requested") != std::string::npos);
     CHECK(m.find("of 0.70") != std::string::npos);
     CHECK(m.find("Fix") != std::string::npos);

@@ -194,11 +194,11 @@ TEST_CASE("vtp frame round-trips positions, ids and fields bit-exactly", "[outpu
   REQUIRE(ids.size() == 5);
   for (std::size_t i = 0; i < 5; ++i) CHECK(ids[i] == g.pid.id[i]);
 
-  REQUIRE(v.arrays.count("type"));
-  CHECK(v.arrays.at("type").type == "Int32");
-  const auto types = values<std::int32_t>(v.arrays.at("type"));
-  REQUIRE(types.size() == 5);
-  for (std::size_t i = 0; i < 5; ++i) CHECK(types[i] == g.species.type[i] + 1);  // written from 1, in scene order
+  REQUIRE(v.arrays.count("species"));
+  CHECK(v.arrays.at("species").type == "Int32");
+  const auto species = values<std::int32_t>(v.arrays.at("species"));
+  REQUIRE(species.size() == 5);
+  for (std::size_t i = 0; i < 5; ++i) CHECK(species[i] == g.species.type[i]);  // from 0, in [[species]] order
 
   check_bits(values<double>(v.arrays.at("radius")), radius);
   check_bits(values<double>(v.arrays.at("diameter")), diameter);
@@ -227,7 +227,7 @@ TEST_CASE("vtp frame honours FrameFields and writes only owned rows", "[output]"
   CHECK(v.arrays.count("speed") == 0);
   CHECK(v.arrays.count("angular_velocity") == 0);
   CHECK(v.arrays.count("force") == 0);
-  for (const char* name : {"Points", "id", "type", "radius", "diameter", "connectivity", "offsets"})
+  for (const char* name : {"Points", "id", "species", "radius", "diameter", "connectivity", "offsets"})
     CHECK(v.arrays.count(name) == 1);
   const auto ids = values<std::int64_t>(v.arrays.at("id"));
   REQUIRE(ids.size() == 3);

@@ -32,7 +32,7 @@ from grainflow.vtp import read_vtp  # noqa: E402
 
 BOUNDS = [0.0] + list(geometry.PARTITIONS) + [geometry.LENGTH]
 NAMES = ["stage I", "stage II", "stage III", "outlet (no blades)"]
-KEY_TYPE = 2  # frames number species from 1; the scenes list the carrier first, the key second
+KEY_SPECIES = 1  # frames number species from 0; the scenes list the carrier first, the key second
 
 
 def frame_times(run):
@@ -44,10 +44,10 @@ def frame_times(run):
 def measure(frame):
     """Per compartment: (key fraction, wall-minus-top key fraction, grains) of one frame."""
     rows = []
-    for (x, y, z), r, t in zip(frame["Points"], frame["radius"], frame["type"]):
+    for (x, y, z), r, t in zip(frame["Points"], frame["radius"], frame["species"]):
         for c in range(len(NAMES)):
             if BOUNDS[c] <= x < BOUNDS[c + 1]:
-                rows.append((c, geometry.RADIUS - math.hypot(y, z), r ** 3, t == KEY_TYPE))
+                rows.append((c, geometry.RADIUS - math.hypot(y, z), r ** 3, t == KEY_SPECIES))
     result = []
     for c in range(len(NAMES)):
         mine = sorted((d, v, k) for cc, d, v, k in rows if cc == c)

@@ -176,7 +176,7 @@ std::string describe_progress(const std::vector<FillSpecies>& species,
   double requested_volume = 0.0;
   os << "placed";
   for (std::size_t s = 0; s < species.size(); ++s) {
-    os << (s == 0 ? " " : ", ") << placed[s] << " of " << species[s].count << " of type "
+    os << (s == 0 ? " " : ", ") << placed[s] << " of " << species[s].count << " of species "
        << species[s].type << " (radius " << species[s].radius << " m)";
     placed_volume += static_cast<double>(placed[s]) * sphere_volume(species[s].radius);
     requested_volume += static_cast<double>(species[s].count) * sphere_volume(species[s].radius);
@@ -203,7 +203,7 @@ std::vector<PlacedGrain> place_random(const Region& region, std::vector<FillSpec
   for (const FillSpecies& s : species) {
     if (!(s.radius > 0.0) || !std::isfinite(s.radius)) {
       std::ostringstream os;
-      os << "random fill: species of type " << s.type << " has radius " << s.radius
+      os << "random fill: species " << s.type << " has radius " << s.radius
          << " m. Fix: give a finite radius > 0 in m";
       throw FillError(os.str());
     }
@@ -284,7 +284,7 @@ std::vector<PlacedGrain> place_random(const Region& region, std::vector<FillSpec
     }
     if (!done) {
       std::ostringstream os;
-      os << "random fill: could not place grain " << n + 1 << " of " << total << " (type "
+      os << "random fill: could not place grain " << n + 1 << " of " << total << " (species "
          << sp.type << ", radius " << sp.radius << " m) in " << max_attempts_per_grain
          << " attempts";
       if (outside == max_attempts_per_grain) {

@@ -24,6 +24,8 @@ struct PlacedGrain {
   std::int32_t type;
   double radius;  // m
   std::array<double, 3> v{}, w{};  // m/s, rad/s: at rest unless a state file gives them
+  std::int64_t id = -1;             // a state file's id, kept; -1: the run gives one
+  int line = 0;                     // the state file's line; 0: placed at random
 };
 
 // The request cannot be met (or is malformed); the message says what was reached and what to change.

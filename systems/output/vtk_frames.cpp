@@ -101,8 +101,8 @@ std::string vtp_bytes(const Grains& g, const FrameFields& fields, std::span<cons
   xml += ">\n";
   const std::string_view in = "        ";
   data.add<std::int64_t>(xml, in, "id", 1, n, [&](std::size_t i, std::size_t) { return g.pid.id[i]; });
-  data.add<std::int32_t>(xml, in, "type", 1, n,
-                         [&](std::size_t i, std::size_t) { return g.species.type[i] + 1; });
+  // Species as every output and message numbers them: 0-based, in [[species]] order (`species.0` in --set).
+  data.add<std::int32_t>(xml, in, "species", 1, n, [&](std::size_t i, std::size_t) { return g.species.type[i]; });
   data.add<double>(xml, in, "radius", 1, n, [&](std::size_t i, std::size_t) { return g.radius.r[i]; });
   // Diameter too, because ParaView's Glyph filter scales a unit sphere by diameter, not radius.
   data.add<double>(xml, in, "diameter", 1, n,

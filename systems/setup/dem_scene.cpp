@@ -668,6 +668,19 @@ namespace {
 // limit in the first step: refused, naming both. Sorted by position, coincident grains are neighbours.
 // `first[k]` is the index of fill k's first grain in `placed`; the message is placed at the fill of the
 // later grain.
+std::size_t fill_of(const std::vector<std::size_t>& first, std::size_t grain) {
+  return static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), grain) - first.begin() - 1);
+}
+
+// "at line 12 of state.csv" for a state file's grain, "placed 7th by fill[1]" for a random one.
+std::string where_placed(const DemScene& s, const std::vector<PlacedGrain>& placed, const std::vector<std::size_t>& first,
+                         std::size_t grain) {
+  const std::size_t fill = fill_of(first, grain);
+  const FillSpec& f = s.fills[fill];
+  if (placed[grain].line > 0) return "at line " + std::to_string(placed[grain].line) + " of " + f.path.string();
+  return "number " + std::to_string(grain - first[fill]) + " (from 0) of " + f.where;
+}
+
 void require_apart(const DemScene& s, const std::vector<PlacedGrain>& placed, const std::vector<std::size_t>& first) {
   std::vector<std::size_t> order(placed.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -678,16 +691,41 @@ void require_apart(const DemScene& s, const std::vector<PlacedGrain>& placed, co
     const double r = std::min(a.radius, b.radius);
     if (std::abs(a.x[0] - b.x[0]) < 1e-6 * r && std::abs(a.x[1] - b.x[1]) < 1e-6 * r &&
         std::abs(a.x[2] - b.x[2]) < 1e-6 * r) {
-      const std::size_t later = std::max(order[k - 1], order[k]);
-      const auto fill = std::upper_bound(first.begin(), first.end(), later) - first.begin() - 1;
-      fill_error(s, s.fills[static_cast<std::size_t>(fill)],
-                 "grains " + std::to_string(std::min(order[k - 1], order[k])) + " and " + std::to_string(later) +
-                     " of the fills (counted in fill order) sit at (" + short_number(a.x[0]) + ", " +
+      const std::size_t earlier = std::min(order[k - 1], order[k]), later = std::max(order[k - 1], order[k]);
+      fill_error(s, s.fills[fill_of(first, later)],
+                 "the grain " + where_placed(s, placed, first, earlier) + " and the grain " +
+                     where_placed(s, placed, first, later) + " sit at (" + short_number(a.x[0]) + ", " +
                      short_number(a.x[1]) + ", " + short_number(a.x[2]) +
                      ") m, one on the other. Fix: a state file listed twice, or two fills that repeat grains: "
                      "give each grain once");
     }
   }
+}
+
+// The grains' ids, in placement order: a state file's ids are kept (one id in two files is refused, naming both
+// lines), and the run numbers the other grains on from past the largest.
+std::vector<std::int64_t> grain_ids(const DemScene& s, const std::vector<PlacedGrain>& placed,
+                                    const std::vector<std::size_t>& first) {
+  std::vector<std::pair<std::int64_t, std::size_t>> given;
+  for (std::size_t i = 0; i < placed.size(); ++i)
+    if (placed[i].id >= 0) given.emplace_back(placed[i].id, i);
+  std::sort(given.begin(), given.end());
+  for (std::size_t k = 1; k < given.size(); ++k)
+    if (given[k].first == given[k - 1].first)
+      fill_error(s, s.fills[fill_of(first, given[k].second)],
+                 "id " + std::to_string(given[k].first) + " is given to the grain " +
+                     where_placed(s, placed, first, given[k - 1].second) + " and to the grain " +
+                     where_placed(s, placed, first, given[k].second) +
+                     ". Fix: give the grains of different state files different ids");
+  constexpr std::int64_t kLargestId = std::int64_t{1} << 62;  // room for the ids the run hands out after
+  if (!given.empty() && given.back().first > kLargestId)
+    fill_error(s, s.fills[fill_of(first, given.back().second)],
+               "id " + std::to_string(given.back().first) + " of the grain " +
+                   where_placed(s, placed, first, given.back().second) + " is above 2^62. Fix: renumber the file's ids");
+  std::int64_t next = given.empty() ? 0 : given.back().first + 1;
+  std::vector<std::int64_t> ids(placed.size());
+  for (std::size_t i = 0; i < placed.size(); ++i) ids[i] = placed[i].id >= 0 ? placed[i].id : next++;
+  return ids;
 }
 
 }  // namespace
@@ -759,7 +797,7 @@ std::vector<PlacedGrain> file_fill_grains(const DemScene& s, const FillSpec& f) 
                        ", " + short_number(r.x[1]) + ", " + short_number(r.x[2]) + ") m is outside wall '" +
                        w.name + "'. Fix: move the grain inside the walls, or correct the walls");
     }
-    out.push_back({r.x, sp, 0.5 * r.diameter, r.v, r.w});
+    out.push_back({r.x, sp, 0.5 * r.diameter, r.v, r.w, r.id, r.line});
   }
   return out;
 }
@@ -802,6 +840,7 @@ void build_dem_world(const DemScene& s, World& world) {
   }
 
   require_apart(s, placed, first);
+  const std::vector<std::int64_t> ids = grain_ids(s, placed, first);
   // Again with the state files' rows counted, before the grain arrays and the neighbour list exist.
   require_memory(s, placed.size());
   const std::size_t n = placed.size();
@@ -823,7 +862,7 @@ void build_dem_world(const DemScene& s, World& world) {
     g.mass.inv_m[i] = 1.0 / sp.mass;
     g.mass.inv_inertia[i] = sp.rotates ? 1.0 / sp.inertia : 0.0;
     g.species.type[i] = p.type;
-    g.pid.id[i] = static_cast<std::int64_t>(i);
+    g.pid.id[i] = ids[i];
     g.vel.x[i] = p.v[0];
     g.vel.y[i] = p.v[1];
     g.vel.z[i] = p.v[2];
@@ -833,7 +872,7 @@ void build_dem_world(const DemScene& s, World& world) {
       g.omega.z[i] = p.w[2];
     }
   }
-  g.next_id = static_cast<std::int64_t>(n);
+  g.next_id = n == 0 ? 0 : *std::max_element(ids.begin(), ids.end()) + 1;
   g.extras.attach<WallHistory>(n).shape(s.walls.size(), n);
 
   world.clock = Clock{0.0, s.dt, 0};
