@@ -37,6 +37,7 @@ Usage: mixer_scene.py [--out scenes]                 (writes the three designs)
        mixer_scene.py --dem F [--design 1] [--out scenes]   (writes mixer_seed004_dem_fF_designD.toml)
 """
 import argparse
+import re
 import math
 import pathlib
 
@@ -171,7 +172,11 @@ impact_speed = 1.0     # m/s: a grain thrown by a blade
 """
 
 
-def scene(design, dem=None):
+STEADY_STATE = "data/mixer_design1_steady.csv"  # design 1 at its hold-up, turned back to angle 0
+STEADY_DURATION = 100.0  # s from the steady state: five pooled rows of layers.csv
+
+
+def scene(design, dem=None, steady=False):
     lengths = DESIGNS[design]
     vk = KEY_VOLUME_FRACTION
     key_mass = vk * KEY[2] / (vk * KEY[2] + (1 - vk) * CARRIER[2])
@@ -180,11 +185,11 @@ def scene(design, dem=None):
     out = [f"""# Seed 004's continuous drum-blade mixer, blade design {design} (blade lengths {', '.join(f'{l*1000:.0f}' for l in lengths)} mm
 # at stages I, II, III), with {what}. Written by
 # scenes/generators/mixer_scene.py, which states what the seed does not give (housing, speed, feed, where
-# the stages sit). Starts empty; the feed fills it and the end ring's hole lets the mixture out.
+# the stages sit). {{start}}
 # layers.csv holds Vc of transverse layers at L = 0.025 .. 0.475 m, pooled over 20 s of samples.
 # Units: SI (m, kg, s, N, rad).
 
-""" + physics(dem).replace("{seed}", str(design)), housing(),
+""".replace("{start}", STARTS[steady]) + physics(dem).replace("{seed}", str(design)), housing(),
            ring("inlet-wall", 0.0, 0.0)]
     for i, x in enumerate(PARTITIONS):
         out.append(ring(f"partition-{i + 1}", x, PARTITION_HOLE))
@@ -192,6 +197,12 @@ def scene(design, dem=None):
     for s, (x, l) in enumerate(zip(STAGES, lengths)):
         for k in range(4):
             out.append(blade("I" * (s + 1) if s < 3 else str(s), k, x, l))
+    if steady:
+        out.append(f"""[[fill]]
+kind = "file"
+path = "{STEADY_STATE}"
+types = {{ 1 = "carrier", 2 = "key" }}   # the file's types, as final_state.csv numbers them (species + 1)
+""")
     out.append(f"""[[feed]]
 mass_rate = {RATE}       # kg/s
 fractions = {{ key = {key_mass:.6f}, carrier = {1 - key_mass:.6f} }}   # by mass: key volume fraction {vk}
@@ -219,7 +230,15 @@ series_interval = 1.0
 frame_interval = 10.0
 checkpoint_interval = 20.0
 """)
-    return "\n".join(out)
+    text = "\n".join(out)
+    if steady:
+        text = re.sub(r"duration = [0-9.]+ +# s: [^\n]*", f"duration = {STEADY_DURATION}       # s from the steady state", text)
+    return text
+
+
+STARTS = {False: "Starts empty; the feed fills it and the end ring's hole lets the mixture out.",
+          True: "Starts from its steady hold-up (" + STEADY_STATE + "), so layers.csv\n# reads from the first pooled row; the "
+                "feed goes on and the end ring's hole lets the mixture out."}
 
 
 def main():
@@ -227,7 +246,13 @@ def main():
     ap.add_argument("--out", default=str(pathlib.Path(__file__).resolve().parents[2] / "scenes"))
     ap.add_argument("--dem", type=float, help="sphere DEM, diameters divided by this factor")
     ap.add_argument("--design", type=int, default=1, choices=sorted(DESIGNS))
+    ap.add_argument("--steady", action="store_true", help="design 1 from its steady state instead of empty")
     args = ap.parse_args()
+    if args.steady:
+        p = pathlib.Path(args.out) / "mixer_seed004_design1_steady.toml"
+        p.write_text(scene(1, steady=True))
+        print("wrote", p)
+        return
     if args.dem:
         p = pathlib.Path(args.out) / f"mixer_seed004_dem_f{args.dem:g}_design{args.design}.toml"
         p.write_text(scene(args.design, args.dem))

@@ -50,7 +50,8 @@ OVERRIDES = []
 
 
 def letter_set(letter):
-    sets = ["--set", 'shape.0.letter="%s"' % letter]
+    # The committed results' step, 0.129 of the rim contacts' period (the scene now takes 7.5e-5 s, within 0.1).
+    sets = ["--set", 'shape.0.letter="%s"' % letter, "--set", "run.dt=1e-4"]
     for o in OVERRIDES:
         sets += ["--set", o]
     return sets

@@ -25,7 +25,7 @@ namespace {
 // bodies: poured onto the closed gate for 0.4 s (settling), then the gate is taken away.
 gf::DemSimulation hopper() {
   return gf::DemSimulation::from_file(std::string(GRAINFLOW_SOURCE_DIR) + "/scenes/hopper_mixed_prisms_spheres.toml",
-                                      {"bodies.2.count=60", "fill.0.count.glass=30", "settle.time=0.4"});
+                                      {"bodies.2.count=60", "fill.0.count.glass=30", "settle.time=0.4", "run.dt=4e-5"});
 }
 
 void install_split(gf::World& world, const gf::MpiContext& mpi, std::size_t& shares) {
