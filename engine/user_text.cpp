@@ -33,6 +33,11 @@ std::string clipped(std::string_view s, std::size_t max) {
   return out;
 }
 
+std::string shown_path(std::string_view path, std::size_t max) {
+  if (path.size() <= max) return escaped(path, false);
+  return "..." + escaped(path.substr(path.size() - max), false);
+}
+
 std::string quoted(std::string_view s, std::size_t max) {
   // Built by appends: GCC 12 warns (-Wrestrict, a known false positive) on "'" + std::string.
   std::string out;

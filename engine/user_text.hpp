@@ -16,6 +16,9 @@ std::string clipped(std::string_view s, std::size_t max = 60);
 // passes through it, so no file content can cut a message short or reach the terminal as a command.
 std::string printable(std::string_view s);
 std::string quoted(std::string_view s, std::size_t max = 60);
+// A path for a message, its last `max` characters when longer ("..." marks the cut): the file's name is
+// the part a reader needs, and a 2 MB path typed into a scene must not become a 2 MB line.
+std::string shown_path(std::string_view path, std::size_t max = 160);
 
 // ASCII lower case.
 std::string lower(std::string_view s);

@@ -277,6 +277,12 @@ TEST_CASE("dem scene: bad keys and values name the file, the line and the key", 
     e = scene_error(dir.write("ok_long.toml", kScene), {"run." + huge + "=1"});
     CHECK(e.size() < 1000);
     CHECK_THAT(e, Contains("command line (--set run.qqq") && Contains("Fix:"));
+    // A state file's path of 100 kB: once echoed whole (a 2 MB path made a 2 MB line); its end is kept.
+    const std::string long_path = kScene.substr(0, kScene.find("[[fill]]")) + "[[fill]]\nkind = \"file\"\npath = \"" +
+                                  huge + "/grains.csv\"\ntypes = { 1 = \"glass\" }\n\n" + kScene.substr(kScene.find("[output]"));
+    e = scene_error(dir.write("long_path.toml", long_path), {}, true);
+    CHECK(e.size() < 1000);
+    CHECK_THAT(e, Contains("...qqq") && Contains("/grains.csv") && Contains("Fix:"));
   }
   SECTION("output intervals shorter than the time step") {
     // A checkpoint interval below run.dt once wrote a checkpoint every step, and with

@@ -35,7 +35,7 @@ std::string header_of(std::size_t width) {
 
 [[noreturn]] void fail(const std::filesystem::path& file, int line, const std::string& problem,
                        const std::string& fix) {
-  std::string msg = file.string();
+  std::string msg = shown_path(file.string());
   if (line > 0) msg += ":" + std::to_string(line);
   msg += ": " + problem + ". Fix: " + fix;
   throw StateCsvError(msg);

@@ -303,7 +303,7 @@ std::vector<BodyPlacement> frame_file_placements(const SceneNode& t, std::size_t
   std::istringstream in(text);
   std::string line;
   if (!std::getline(in, line) || line != header)
-    t.fail("file", file.string() + " does not start with the body frame header '" + header + "'",
+    t.fail("file", shown_path(file.string()) + " does not start with the body frame header '" + header + "'",
            "give a frames/frame_NNNNNN.csv that grainflow run wrote");
   std::vector<BodyPlacement> out;
   int number = 1;
@@ -314,7 +314,7 @@ std::vector<BodyPlacement> frame_file_placements(const SceneNode& t, std::size_t
     std::istringstream fields(line);
     for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
     auto bad = [&](const std::string& what) {
-      t.fail("file", file.string() + ":" + std::to_string(number) + ": " + what,
+      t.fail("file", shown_path(file.string()) + ":" + std::to_string(number) + ": " + what,
              "give a frame file that grainflow run wrote, unchanged");
     };
     if (f.size() != 18) bad("expected 18 fields, found " + std::to_string(f.size()));
@@ -338,7 +338,7 @@ std::vector<BodyPlacement> frame_file_placements(const SceneNode& t, std::size_t
     out.push_back(p);
   }
   if (out.empty())
-    t.fail("file", file.string() + " holds no moving body of shape '" + name + "'",
+    t.fail("file", shown_path(file.string()) + " holds no moving body of shape '" + name + "'",
            "give the frame of a run with this shape, or another [[shape]]");
   return out;
 }

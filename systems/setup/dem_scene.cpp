@@ -677,7 +677,7 @@ std::string where_placed(const DemScene& s, const std::vector<PlacedGrain>& plac
                          std::size_t grain) {
   const std::size_t fill = fill_of(first, grain);
   const FillSpec& f = s.fills[fill];
-  if (placed[grain].line > 0) return "at line " + std::to_string(placed[grain].line) + " of " + f.path.string();
+  if (placed[grain].line > 0) return "at line " + std::to_string(placed[grain].line) + " of " + shown_path(f.path.string());
   return "number " + std::to_string(grain - first[fill]) + " (from 0) of " + f.where;
 }
 
@@ -771,7 +771,7 @@ std::vector<PlacedGrain> file_fill_grains(const DemScene& s, const FillSpec& f) 
     fill_error(s, f, e.what());
   }
   if (rows.empty())
-    fill_error(s, f, f.path.string() + ": the state file holds no grains. Fix: give a file with rows, or remove the fill");
+    fill_error(s, f, shown_path(f.path.string()) + ": the state file holds no grains. Fix: give a file with rows, or remove the fill");
   std::vector<PlacedGrain> out;
   for (const StateRow& r : rows) {
     std::int32_t sp = -1;
@@ -779,12 +779,12 @@ std::vector<PlacedGrain> file_fill_grains(const DemScene& s, const FillSpec& f) 
       if (t == r.type) sp = idx;
     if (sp < 0)
       fill_error(s, f,
-                 f.path.string() + ":" + std::to_string(r.line) + ": type " + std::to_string(r.type) +
+                 shown_path(f.path.string()) + ":" + std::to_string(r.line) + ": type " + std::to_string(r.type) +
                      " is not mapped to a species. Fix: add it to the fill's 'types' table");
     const double d = s.species[sp].diameter;
     if (std::abs(r.diameter - d) > 1e-9 * d)
       fill_error(s, f,
-                 f.path.string() + ":" + std::to_string(r.line) + ": diameter " + short_number(r.diameter) +
+                 shown_path(f.path.string()) + ":" + std::to_string(r.line) + ": diameter " + short_number(r.diameter) +
                      " m does not match species '" + s.species[sp].name + "' (" + short_number(d) +
                      " m). Fix: map the type to a species of that diameter");
     // A centre outside a wall is a grain outside the domain (a settled grain may touch a wall,
@@ -793,7 +793,7 @@ std::vector<PlacedGrain> file_fill_grains(const DemScene& s, const FillSpec& f) 
       Vec3d n;
       if (wall_gap(w, to_v(r.x), n) <= 0.0)
         fill_error(s, f,
-                   f.path.string() + ":" + std::to_string(r.line) + ": the grain's centre (" + short_number(r.x[0]) +
+                   shown_path(f.path.string()) + ":" + std::to_string(r.line) + ": the grain's centre (" + short_number(r.x[0]) +
                        ", " + short_number(r.x[1]) + ", " + short_number(r.x[2]) + ") m is outside wall '" +
                        w.name + "'. Fix: move the grain inside the walls, or correct the walls");
     }

@@ -225,8 +225,8 @@ TriangleSoup parse_stl(std::string_view bytes, const std::string& name) {
 TriangleSoup read_stl(const std::filesystem::path& file) {
   std::string data;
   FileProblem why;
-  if (!read_regular_file(file, kMaxStlBytes, data, why)) fail(file.string(), "mesh file: " + why.problem, why.fix);
-  return parse_stl(data, file.string());
+  if (!read_regular_file(file, kMaxStlBytes, data, why)) fail(shown_path(file.string()), "mesh file: " + why.problem, why.fix);
+  return parse_stl(data, shown_path(file.string()));
 }
 
 void write_stl_binary(const std::filesystem::path& file, const TriangleSoup& soup) {
