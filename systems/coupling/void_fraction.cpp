@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/scene.hpp"
 #include "systems/broadphase/cell_grid.hpp"
 
 namespace gf {
@@ -47,9 +48,9 @@ GrainShares compute_shares(const PointSet& grains, const PointSet& nodes, double
           }
         }
     if (!(sum > 0.0))
-      throw std::runtime_error("coupling: grain " + std::to_string(p) + " at (" + std::to_string(q[0]) + ", " +
-                               std::to_string(q[1]) + ", " + std::to_string(q[2]) +
-                               ") m has no liquid node within the smoothing radius " + std::to_string(h) +
+      throw std::runtime_error("coupling: grain " + std::to_string(p) + " at (" + short_number(q[0]) + ", " +
+                               short_number(q[1]) + ", " + short_number(q[2]) +
+                               ") m has no liquid node within the smoothing radius " + short_number(h) +
                                " m. Fix: a larger smoothing radius, or keep the grains inside the liquid's domain");
     for (std::size_t e = first; e < s.share.size(); ++e) s.share[e] /= sum;
     s.start.push_back(static_cast<std::uint32_t>(s.node.size()));

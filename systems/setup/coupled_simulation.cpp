@@ -65,7 +65,12 @@ CoupledSimulation CoupledSimulation::from_text(std::string_view toml, const std:
 
 void CoupledSimulation::prime() {
   World& w = *world_;
-  prepare_coupling<MpsCoupledLiquid>(w);
+  const int line = scene_.dem.fills.empty() ? 0 : scene_.dem.fills.front().line;
+  try {
+    prepare_coupling<MpsCoupledLiquid>(w);
+  } catch (const std::runtime_error& e) {  // a grain placed where no liquid node reaches it
+    throw SceneError(scene_.file.string() + ":" + std::to_string(line) + ": the fills' initial state: " + e.what());
+  }
   StepContext now = next_step(w.clock);
   now.dt /= scene_.coupling.substeps;
   now.substeps = scene_.coupling.substeps;
@@ -73,7 +78,6 @@ void CoupledSimulation::prime() {
   try {
     dem_->inner().run_step(now);
   } catch (const StabilityError& e) {
-    const int line = scene_.dem.fills.empty() ? 0 : scene_.dem.fills.front().line;
     throw SceneError(scene_.file.string() + ":" + std::to_string(line) + ": the fills' initial state: " + e.what());
   }
   primed_ = true;
