@@ -160,14 +160,21 @@ class Fuzzer {
   }
 
  private:
-  // Files of base `b` (with `text` and `csv`) in the work folder; returns the scene's path.
+  // Files of base `b` (with `text` and `csv`) in the work folder; returns the scene's path. The scene sits two
+  // folders down, so that a state file the scene names up a folder ("../data/x.csv") lands inside the work
+  // folder too, never in one that another fuzzing process shares.
   fs::path place(const Base& b, const std::string& text, const std::string& csv) const {
+    const fs::path home = dir_.path / "in" / "scenes";
+    fs::create_directories(home);
     if (!b.csv_name.empty() && b.csv_name.find('\0') == std::string::npos) {
-      const fs::path p = dir_.path / b.csv_name;
+      const fs::path p = (home / b.csv_name).lexically_normal();
+      const fs::path inside = fs::relative(p, dir_.path);
+      if (inside.empty() || *inside.begin() == "..")
+        throw std::logic_error("the state file " + b.csv_name + " lies outside the fuzzer's work folder");
       fs::create_directories(p.parent_path());
-      dir_.write(fs::relative(p, dir_.path).string(), csv);
+      dir_.write(inside.string(), csv);
     }
-    return dir_.write(b.file, text);
+    return dir_.write(fs::relative(home / b.file, dir_.path).string(), text);
   }
 
   // The run's overrides: none, or no settling for a scene that settles first, so that a few steps

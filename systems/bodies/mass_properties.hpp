@@ -86,7 +86,7 @@ struct MassProperties {
 // The background-grid mass properties of the union of `members` at density rho (kg/m^3) with voxel
 // edge h (m). The grid spans the union's bounding box (the cores' vertex box grown by r), whole
 // voxels centred on it. Throws std::invalid_argument for no members, rho or h not positive and
-// finite, or a grid of more than 2^31 voxels.
+// finite, or a grid of more than 2^22 voxels.
 MassProperties voxel_mass_properties(std::span<const DilatedPolyhedron> members, double rho, double h);
 
 // The mass properties of one ellipsoid with semi-axes (a, b, c) along x, y, z, centred on the origin,

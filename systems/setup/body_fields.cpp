@@ -26,7 +26,7 @@ const Field kShape[] = {
      "", "the dilation radius r shared by every part (edge rounding; a sphere's or clump sphere's radius)"},
     {"density", "kg/m³", range::density, "", kNoDefault, "", "the material's density"},
     {"grid", "m", range::length,
-     "and at most 2^31 voxels over the bounding box, at least 8 inside the shape; refused for `sphere` and for "
+     "and at most 2^22 voxels over the bounding box, at least 8 inside the shape; refused for `sphere` and for "
      "`ellipsoid` with `radius` 0 (exact)",
      kNoDefault, "a tenth of the shape's smallest bounding-box edge", "voxel edge of the mass-property grid"},
     {"size", "m", kAnyNumber,

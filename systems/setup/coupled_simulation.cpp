@@ -79,6 +79,10 @@ void CoupledSimulation::prime() {
     dem_->inner().run_step(now);
   } catch (const StabilityError& e) {
     throw SceneError(scene_.file.string() + ":" + std::to_string(line) + ": the fills' initial state: " + e.what());
+  } catch (const std::invalid_argument& e) {  // the drag of a state packed past any void fraction, say
+    throw SceneError(scene_.file.string() + ":" + std::to_string(line) + ": the fills' initial state: " + e.what() +
+                     ". Fix: check the state file's positions and diameters: grains packed past any liquid fraction, "
+                     "or placed where no liquid is, leave none in (0, 1]");
   }
   primed_ = true;
   // Priming advanced the contact springs by v_t dt; a new state's springs start from zero.

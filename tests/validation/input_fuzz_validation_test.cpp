@@ -18,6 +18,12 @@ TEST_CASE("100,000 mutated inputs over every scene: no crash, bounded time and m
   const char* pieces_env = std::getenv("GRAINFLOW_FUZZ_PIECES");
   const fs::path dir = dir_env ? fs::path(dir_env) : fs::path();
   const int pieces = pieces_env ? std::atoi(pieces_env) : 100;
+  // GRAINFLOW_FUZZ_FIRST=k starts at piece k (two processes can share the pieces between them); the summary
+  // then sums pieces k .. pieces only, so the last call, from 1, writes the whole run's.
+  const char* first_env = std::getenv("GRAINFLOW_FUZZ_FIRST");
+  const int first = first_env ? std::max(1, std::atoi(first_env)) : 1;
+  // GRAINFLOW_FUZZ_WRITTEN_ONLY=1 runs nothing: the summary sums the pieces written so far (a run stopped part way).
+  const bool written_only = std::getenv("GRAINFLOW_FUZZ_WRITTEN_ONLY") != nullptr;
   if (!dir.empty()) fs::create_directories(dir);
 
   gf::fuzz::Settings s;
@@ -30,12 +36,16 @@ TEST_CASE("100,000 mutated inputs over every scene: no crash, bounded time and m
   REQUIRE(s.scenes.size() >= 16);
 
   gf::fuzz::Report all;
-  for (int k = 1; k <= pieces; ++k) {
+  int summed = 0;
+  for (int k = first; k <= pieces; ++k) {
     const fs::path piece = dir.empty() ? fs::path() : dir / ("piece_" + std::to_string(k) + ".json");
     if (!piece.empty() && fs::exists(piece)) {
       all.merge(nlohmann::json::parse(gf::test::read_file(piece)));
+      ++summed;
       continue;
     }
+    if (written_only) continue;
+    ++summed;
     s.seed = static_cast<std::uint64_t>(k);
     gf::fuzz::Fuzzer f(s);
     const nlohmann::json j = f.run().json(s);
@@ -45,10 +55,10 @@ TEST_CASE("100,000 mutated inputs over every scene: no crash, bounded time and m
     }
     all.merge(j);
   }
-  s.seed = 0;  // the pieces' seeds are 1 .. pieces
-  s.inputs = static_cast<std::size_t>(pieces) * 1000;
+  s.seed = 0;  // the pieces' seeds are their numbers
+  s.inputs = static_cast<std::size_t>(summed) * 1000;
   nlohmann::json summary = all.json(s);
-  summary["pieces"] = pieces;
+  summary["pieces"] = summed;
   if (!dir.empty()) std::ofstream(dir / "summary.json") << gf::fuzz::dump(summary);
   INFO(gf::fuzz::dump(summary));
   for (const std::string& d : all.defects) UNSCOPED_INFO(d);
