@@ -28,11 +28,13 @@ from grainflow.vtp import _TYPES, appended_arrays
 WRITTEN_WHEN = {
     "series.csv": "output.series_interval > 0",
     "surface.csv": "the scene has a drum or cylinder wall and exactly two species",
+    "walls.csv": "output.series_interval > 0 and the scene has walls",
     "summary.json": "always, at the start of the run",
     "final_state.csv": "always, at the end of the run",
     "residence.csv": "the scene has an [[outlet]]",
     "layers.csv": "the scene has [analysis.layers]",
     "frames.pvd": "output.frame_interval > 0",
+    "walls.pvd": "output.frame_interval > 0 and the scene has walls",
 }
 
 
@@ -106,6 +108,27 @@ def _read_vtp_arrays(path):
     return points, data
 
 
+class WallSurface(NamedTuple):
+    """The walls at one frame: points (n, 3), triangles (m, 3) of point indices, and wall (m,), each
+    triangle's wall index in the order of walls.csv."""
+    points: np.ndarray
+    triangles: np.ndarray
+    wall: np.ndarray
+
+
+def read_wall_surface(path):
+    """One walls/walls_NNNNNN.vtp as a WallSurface."""
+    path = Path(path)
+    if not path.is_file():
+        raise MissingOutputError(f"{path}: no such walls file")
+    n, order, arrays = appended_arrays(path)
+    got = {}
+    for a in arrays:
+        code, width = _TYPES[a["type"]]
+        got[a["name"]] = np.frombuffer(a["bytes"], dtype=np.dtype(order + code)).reshape(-1, a["components"])
+    return WallSurface(got["Points"].reshape(n, 3), got["connectivity"].reshape(-1, 3), got["wall"].reshape(-1))
+
+
 def read_frame(path):
     """The points and point-data arrays of one frame: a .vtp, or a .pvtp of grainflow_mpi whose
     pieces (one .vtp per rank) are joined in rank order. Returns Frame(points, data)."""
@@ -177,6 +200,21 @@ class Run:
         return self._cached("surface.csv", read_csv)
 
     @property
+    def walls(self):
+        """walls.csv as {wall: {"time", "fx", "fy", "fz", "tx", "ty", "tz", "power": array}}: what each wall
+        feels, the mean over each series row's interval."""
+        def split(p):
+            cols = read_csv(p)
+            out = {}
+            for name, values in cols.items():
+                if name == "time":
+                    continue
+                wall, _, quantity = name.rpartition(".")
+                out.setdefault(wall, {"time": cols["time"]})[quantity] = values
+            return out
+        return self._cached("walls.csv", split)
+
+    @property
     def summary(self):
         """summary.json as a dict."""
         return self._cached("summary.json", lambda p: json.loads(p.read_text()))
@@ -208,6 +246,13 @@ class Run:
         if not frames:
             raise MissingOutputError(f"{self.folder / 'frames.pvd'}: lists no frame")
         return read_frame(frames[index][1])
+
+    def wall_surface(self, index=-1):
+        """The walls at one frame of walls.pvd (default the last) as a WallSurface."""
+        listed = read_pvd(self.path("walls.pvd"))
+        if not listed:
+            raise MissingOutputError(f"{self.folder / 'walls.pvd'}: lists no frame")
+        return read_wall_surface(listed[index][1])
 
     def pictures(self):
         """The PNG pictures of the folder, sorted by name."""

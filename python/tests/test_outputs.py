@@ -54,6 +54,16 @@ class RunFolderTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, r"bad.csv:3"):
             read_csv(self.dir / "bad.csv")
 
+    def test_walls_by_wall(self):
+        (self.run.folder / "walls.csv").write_text(
+            "time,drum.fx,drum.fy,drum.fz,drum.tx,drum.ty,drum.tz,drum.power,box-y.fx,box-y.fy,box-y.fz,"
+            "box-y.tx,box-y.ty,box-y.tz,box-y.power\n0,1,2,3,4,5,6,7,0,-0.5,0,0,0,0,0\n0.1,1,2,3,4,5,-6,8,0,-0.25,0,0,0,0,0\n")
+        w = self.run.walls
+        self.assertEqual(list(w), ["drum", "box-y"])
+        np.testing.assert_allclose(w["drum"]["tz"], [6, -6])
+        np.testing.assert_allclose(w["box-y"]["fy"], [-0.5, -0.25])
+        np.testing.assert_allclose(w["box-y"]["time"], [0, 0.1])
+
     def test_summary(self):
         self.assertEqual(self.run.summary, helpers.SUMMARY)
         self.assertEqual(self.run.status, "completed")

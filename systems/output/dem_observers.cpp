@@ -49,24 +49,33 @@ SeriesOutput::SeriesOutput(SeriesSettings s) : s_(std::move(s)) {
     csv_ = std::make_unique<SeriesCsv>(*s_.csv, std::move(columns));
   if (s_.pattern && !s_.resume_rows)
     surface_csv_ = std::make_unique<SeriesCsv>(s_.csv->parent_path() / "surface.csv", surface_columns());
+  if (!s_.wall_names.empty() && !s_.resume_rows)
+    walls_csv_ = std::make_unique<WallLoadsCsv>(s_.csv->parent_path() / "walls.csv", s_.wall_names, s_.analytic_walls,
+                                                std::numeric_limits<double>::quiet_NaN());
 }
 
 void SeriesOutput::save(CheckpointWriter& out) const {
   out.value("series_output.next", next_);
   out.value("series_output.rows", static_cast<std::uint64_t>(rows_));
+  if (walls_csv_) walls_csv_->save(out);
 }
 void SeriesOutput::restore(const CheckpointReader& in) {
   next_ = in.value<double>("series_output.next");
   rows_ = in.value<std::uint64_t>("series_output.rows");
-  if (!s_.csv || !s_.pattern) return;
-  // Its rows are those of series.csv kept by the checkpoint: those before its clock, and the row at
+  if (!s_.csv || (!s_.pattern && s_.wall_names.empty())) return;
+  // Their rows are those of series.csv kept by the checkpoint: those before its clock, and the row at
   // its clock when that was a sampled step (a final row off the grid is dropped, as series.csv's is).
-  // A run that wrote no surface.csv (an older build) starts one here.
+  // A run that wrote no surface.csv or walls.csv (an older build) starts one here.
   const double t = s_.resume_time;
   if (!std::isfinite(t)) throw std::logic_error("series: resuming surface.csv without the checkpoint's time");
   const double last = sampled_at(t, in.value<double>("clock.dt")) ? t : std::nextafter(t, -INFINITY);
-  surface_csv_ = std::make_unique<SeriesCsv>(
-      SeriesCsv::resume_through(s_.csv->parent_path() / "surface.csv", surface_columns(), last));
+  if (s_.pattern)
+    surface_csv_ = std::make_unique<SeriesCsv>(
+        SeriesCsv::resume_through(s_.csv->parent_path() / "surface.csv", surface_columns(), last));
+  if (s_.wall_names.empty()) return;
+  walls_csv_ = std::make_unique<WallLoadsCsv>(s_.csv->parent_path() / "walls.csv", s_.wall_names, s_.analytic_walls,
+                                              last);
+  walls_csv_->restore(in);
 }
 
 // The grid time sampled last is next_ - interval; the step at t sampled it when it is the first
@@ -115,6 +124,7 @@ void SeriesOutput::sample(World& world, double t) {
   if (s_.flow) sample_flow(world, row);
   row.valid = true;
   if (csv_) write(row);
+  if (walls_csv_) walls_csv_->write(t, &walls.loads, world.resources.find<MeshWallLoads>());
 }
 
 void SeriesOutput::sample_mixing(const Grains& g, SeriesRow& row) const {
@@ -204,6 +214,28 @@ void FrameOutput::restore(const CheckpointReader& in) {
   std::vector<double> times;
   in.vector(key_ + ".times", times);
   series_.resume(times);
+  resumed_times_ = times;
+}
+
+void FrameOutput::write(World& world, double t) {
+  series_.write(world.grains, t, fields_);
+  last_written_ = t;
+  if (!walls_checked_) {
+    walls_checked_ = true;
+    const Walls* walls = world.resources.find<Walls>();
+    const MeshWalls* meshes = world.resources.find<MeshWalls>();
+    if ((walls == nullptr || walls->list.empty()) && (meshes == nullptr || meshes->list.empty())) return;
+    static const Walls kNone;
+    const Walls& w = walls ? *walls : kNone;
+    box_ = scene_box(world.grains, w, meshes);
+    walls_ = std::make_unique<FrameSeries>(series_.pvd_path().parent_path(), "walls", "walls", !walls_move(w, meshes));
+    if (!resumed_times_.empty()) walls_->resume(resumed_times_);
+  }
+  if (!walls_) return;
+  static const Walls kNone;
+  const Walls* walls = world.resources.find<Walls>();
+  const MeshWalls* meshes = world.resources.find<MeshWalls>();
+  walls_->write_with(t, [&] { return wall_surface_vtp(wall_surface(walls ? *walls : kNone, meshes, t, box_)); });
 }
 
 bool FrameOutput::samples(const World&, const StepContext& now) const { return sample_due(now.t, next_, now.dt); }
@@ -212,14 +244,12 @@ void FrameOutput::run(World& world, const StepContext& now) {
   const double t = now.t;
   if (!sample_due(t, next_, now.dt)) return;
   next_ = next_sample(t, next_, interval_, now.dt);
-  series_.write(world.grains, t, fields_);
-  last_written_ = t;
+  write(world, t);
 }
 
 void FrameOutput::finish(World& world) {
   if (world.clock.t == last_written_) return;
-  series_.write(world.grains, world.clock.t, fields_);
-  last_written_ = world.clock.t;
+  write(world, world.clock.t);
 }
 
 PictureOutput::PictureOutput(PictureSettings s) : s_(std::move(s)) {}

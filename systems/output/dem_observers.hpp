@@ -24,6 +24,8 @@
 #include "systems/integrate/integrate.hpp"
 #include "systems/output/drum_picture.hpp"
 #include "systems/output/series_csv.hpp"
+#include "systems/output/wall_loads_csv.hpp"
+#include "systems/output/wall_surfaces.hpp"
 #include "systems/output/vtk_frames.hpp"
 #include "systems/walls/walls.hpp"
 
@@ -73,6 +75,9 @@ struct SeriesSettings {
   double mixing_cell = 0;      // m; > 0: Lacey's index of segregation_type over cells of this edge
   int mixing_min_grains = 10;  // cells with fewer grains are left out of it
   bool flow = false;           // hold-up columns from the FlowState resource (a scene with feeds or outlets)
+  // walls.csv beside the csv (wall_loads_csv.hpp): the walls' names, the analytic ones first.
+  std::vector<std::string> wall_names;
+  std::size_t analytic_walls = 0;
 };
 
 // Rotation angle (rad) of the first rotating wall at time t, else of the first rotating mesh wall
@@ -89,7 +94,7 @@ class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
  public:
   using Reads =
       gf::Reads<Position, Velocity, AngularVelocity, Radius, Mass, Species, NeighborList, Walls, MeshWalls, Gravity,
-                FlowState>;
+                FlowState, MeshWallLoads>;
   using Writes = gf::Writes<SeriesRow>;
   explicit SeriesOutput(SeriesSettings s);
   std::string_view name() const override { return "series_output"; }
@@ -111,13 +116,15 @@ class SeriesOutput : public SystemBase<SeriesOutput>, public Checkpointable {
   SeriesSettings s_;
   std::unique_ptr<SeriesCsv> csv_;
   std::unique_ptr<SeriesCsv> surface_csv_;  // surface.csv; opened by restore() when resuming
+  std::unique_ptr<WallLoadsCsv> walls_csv_;  // walls.csv; the same
   double next_ = 0;
   std::size_t rows_ = 0;  // written to the csv by this run and the runs it continues
 };
 
 class FrameOutput : public SystemBase<FrameOutput>, public Checkpointable {
  public:
-  using Reads = gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ParticleId, Force, WallForce>;
+  using Reads =
+      gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ParticleId, Force, WallForce, Walls, MeshWalls>;
   using Writes = gf::Writes<FrameSeries>;
   // `key` names its sections in a checkpoint (another when a checkpoint holds two frame series).
   FrameOutput(std::filesystem::path dir, double interval, FrameFields fields, std::string key = "frame_output");
@@ -131,12 +138,19 @@ class FrameOutput : public SystemBase<FrameOutput>, public Checkpointable {
   void restore(const CheckpointReader& in) override;
 
  private:
+  void write(World& world, double t);
   FrameSeries series_;
   double interval_;
   FrameFields fields_;
   std::string key_;
   double next_ = 0;
   double last_written_ = -1;
+  // The walls at the frames' times (walls.pvd, wall_surfaces.hpp), opened at the first frame of a
+  // world with walls; one file when nothing moves.
+  std::unique_ptr<FrameSeries> walls_;
+  bool walls_checked_ = false;
+  SceneBox box_;
+  std::vector<double> resumed_times_;
 };
 
 // The PNG files a PictureOutput writes (a tag for the schedule).

@@ -11,72 +11,14 @@
 #include <system_error>
 
 #include "engine/atomic_file.hpp"
+#include "systems/output/vtk_appended.hpp"
 
 namespace gf {
 namespace {
 
-// The data are written in the machine's own byte order and the header says which, so no
-// per-value swapping is needed and readers on either kind of machine convert if they must.
-constexpr const char* kByteOrder =
-    std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
-
-template <class T>
-constexpr const char* vtk_type();
-template <>
-constexpr const char* vtk_type<double>() { return "Float64"; }
-template <>
-constexpr const char* vtk_type<std::int64_t>() { return "Int64"; }
-template <>
-constexpr const char* vtk_type<std::int32_t>() { return "Int32"; }
-
-// Shortest text that reads back as the same double, so .pvd times are exact.
-std::string shortest(double v) {
-  char buf[32];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
-
-// Collects the appended binary block while emitting the matching DataArray elements. Each
-// array's block is a UInt64 byte count then the values; `offset` counts from the byte after
-// the '_' that opens the appended data.
-class AppendedArrays {
- public:
-  // `get(i, c)` gives component c of tuple i.
-  template <class T, class Get>
-  void add(std::string& xml, std::string_view indent, std::string_view name, int components,
-           std::size_t tuples, Get&& get) {
-    xml += indent;
-    xml += "<DataArray type=\"";
-    xml += vtk_type<T>();
-    xml += "\" Name=\"";
-    xml += name;
-    xml += "\" NumberOfComponents=\"";
-    xml += std::to_string(components);
-    xml += "\" format=\"appended\" offset=\"";
-    xml += std::to_string(blob_.size());
-    xml += "\"/>\n";
-
-    const auto ncomp = static_cast<std::size_t>(components);
-    const std::uint64_t nbytes = tuples * ncomp * sizeof(T);
-    const std::size_t start = blob_.size();
-    // One resize and memcpy per value rather than string appends: frames of millions of
-    // grains are written during the run, and this loop is their whole cost.
-    blob_.resize(start + sizeof nbytes + nbytes);
-    char* p = blob_.data() + start;
-    std::memcpy(p, &nbytes, sizeof nbytes);
-    p += sizeof nbytes;
-    for (std::size_t i = 0; i < tuples; ++i)
-      for (std::size_t c = 0; c < ncomp; ++c) {
-        const T v = get(i, c);
-        std::memcpy(p, &v, sizeof v);
-        p += sizeof v;
-      }
-  }
-  const std::string& blob() const { return blob_; }
-
- private:
-  std::string blob_;
-};
+using vtk::AppendedArrays;
+using vtk::kByteOrder;
+using vtk::shortest;
 
 }  // namespace
 
@@ -154,12 +96,17 @@ std::string vtp_bytes(const Grains& g, const FrameFields& fields, std::span<cons
   return xml;
 }
 
-FrameSeries::FrameSeries(std::filesystem::path out_dir) : dir_(std::move(out_dir)) {
-  ensure_directory(dir_ / "frames");
+FrameSeries::FrameSeries(std::filesystem::path out_dir, std::string name, std::string stem, bool one_file)
+    : dir_(std::move(out_dir)), name_(std::move(name)), stem_(std::move(stem)), one_file_(one_file) {
+  ensure_directory(dir_ / name_);
 }
 
 std::filesystem::path FrameSeries::write(const Grains& g, double time, const FrameFields& fields,
                                          std::span<const PointScalars> extra) {
+  return add(time, [&] { return vtp_bytes(g, fields, extra); });
+}
+
+std::filesystem::path FrameSeries::add(double time, const std::function<std::string()>& bytes) {
   // A NaN time would make the .pvd unreadable ("nan" is not a number to ParaView).
   if (!std::isfinite(time))
     throw std::invalid_argument("frame time must be finite, got " + shortest(time));
@@ -168,7 +115,7 @@ std::filesystem::path FrameSeries::write(const Grains& g, double time, const Fra
   const std::filesystem::path path = dir_ / rel;
 
   // Frame first, index second: the .pvd never names a frame that is not complete on disk.
-  write_file_atomic(path, vtp_bytes(g, fields, extra));
+  if (!one_file_ || frames_.empty() || !std::filesystem::exists(path)) write_file_atomic(path, bytes());
   frames_.push_back({time, rel});
   try {
     write_file_atomic(pvd_path(), pvd_bytes());
@@ -180,12 +127,12 @@ std::filesystem::path FrameSeries::write(const Grains& g, double time, const Fra
   return path;
 }
 
-std::string FrameSeries::frame_name(std::size_t index) {
+std::string FrameSeries::frame_name(std::size_t index) const {
   // Six digits sort correctly in file browsers up to a million frames; past that the name
   // simply grows a digit and stays unique.
   char name[40];
-  std::snprintf(name, sizeof name, "frame_%06zu.vtp", index);
-  return std::string("frames/") + name;
+  std::snprintf(name, sizeof name, "_%06zu.vtp", one_file_ ? std::size_t{0} : index);
+  return name_ + "/" + stem_ + name;
 }
 
 std::vector<double> FrameSeries::times() const {

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -40,13 +41,21 @@ std::string vtp_bytes(const Grains& g, const FrameFields& fields, std::span<cons
 class FrameSeries {
  public:
   // Creates `out_dir/frames`. A run writing into an old run's folder replaces its .pvd with one
-  // listing only this run's frames.
-  explicit FrameSeries(std::filesystem::path out_dir);
+  // listing only this run's frames. Another series names its folder, .pvd and files after `name`
+  // and `stem` (walls/walls_NNNNNN.vtp in walls.pvd); with `one_file` every entry lists the first
+  // file (a surface that does not move).
+  explicit FrameSeries(std::filesystem::path out_dir, std::string name = "frames", std::string stem = "frame",
+                       bool one_file = false);
 
   // Writes the next frame at simulated time `time` (s); returns the frame's path.
   // Throws std::invalid_argument for a non-finite time, std::runtime_error on I/O failure.
   std::filesystem::path write(const Grains& g, double time, const FrameFields& fields = {},
                               std::span<const PointScalars> extra = {});
+  // Writes the next entry's document (made by `bytes()`, called only when a file is to be written).
+  template <class Bytes>
+  std::filesystem::path write_with(double time, Bytes&& bytes) {
+    return add(time, [&] { return bytes(); });
+  }
 
   std::size_t count() const { return frames_.size(); }
   std::vector<double> times() const;
@@ -54,10 +63,11 @@ class FrameSeries {
   // to the checkpoint, as frame_000000.vtp ...) and is rewritten atomically; later frames are
   // written again under the same names.
   void resume(const std::vector<double>& times);
-  std::filesystem::path pvd_path() const { return dir_ / "frames.pvd"; }
+  std::filesystem::path pvd_path() const { return dir_ / (name_ + ".pvd"); }
 
  private:
-  static std::string frame_name(std::size_t index);
+  std::filesystem::path add(double time, const std::function<std::string()>& bytes);
+  std::string frame_name(std::size_t index) const;
   struct Entry {
     double time;
     std::string file;  // relative to dir_, '/'-separated as VTK expects
@@ -65,6 +75,8 @@ class FrameSeries {
   std::string pvd_bytes() const;
 
   std::filesystem::path dir_;
+  std::string name_, stem_;
+  bool one_file_ = false;
   std::vector<Entry> frames_;
 };
 

@@ -10,12 +10,38 @@
 #include "systems/broadphase/broadphase_checkpoint.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/periodic/periodic_checkpoint.hpp"
+#include "systems/walls/mesh_wall_contact.hpp"
 #include "systems/broadphase/list_sections.hpp"
 #include "systems/walls/walls.hpp"
 
 namespace gf {
 
 namespace {
+
+// A WallLoads' running sums (walls.hpp): seven numbers per wall, and the steps summed.
+void save_wall_loads(CheckpointWriter& out, const std::string& key, const WallLoads& l) {
+  std::vector<double> v;
+  for (const WallLoad& w : l.sum)
+    v.insert(v.end(), {w.force.x, w.force.y, w.force.z, w.moment.x, w.moment.y, w.moment.z, w.power});
+  out.vector(key + ".sum", std::move(v));
+  out.value(key + ".steps", l.steps);
+}
+
+// A checkpoint of an older build has none: the sums restart, and the first row after it averages
+// the steps since the resume.
+void restore_wall_loads(const CheckpointReader& in, const std::string& key, WallLoads& l) {
+  if (!in.has(key + ".sum")) return;
+  std::vector<double> v;
+  in.vector(key + ".sum", v);
+  in.require(v.size() % 7 == 0, "the walls' load sums", "resume with the scene that wrote the checkpoint");
+  l.sum.resize(v.size() / 7);
+  for (std::size_t w = 0; w < l.sum.size(); ++w) {
+    const double* a = &v[7 * w];
+    l.sum[w] = {{a[0], a[1], a[2]}, {a[3], a[4], a[5]}, a[6]};
+  }
+  l.steps = in.value<std::int64_t>(key + ".steps");
+}
+
 
 std::string g(std::size_t k) { return "grains.column." + std::to_string(k); }
 std::string x(std::size_t k) { return "grains.attached." + std::to_string(k); }
@@ -72,6 +98,8 @@ void save_dem_rows(CheckpointWriter& out, World& world, const DemScene& scene) {
   auto& bp = world.resources.get<BroadphaseState>();
   save_broadphase(out, bp, "");
   out.value("walls.rotation_enabled", world.resources.get<Walls>().rotation_enabled);
+  save_wall_loads(out, "walls.loads", world.resources.get<Walls>().loads);
+  if (const MeshWallLoads* m = world.resources.find<MeshWallLoads>()) save_wall_loads(out, "mesh_walls.loads", *m);
   list_sections(out, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, "");
   save_periodic_images(out, world.resources.get<PeriodicImages>());
   if (const FlowState* f = world.resources.find<FlowState>()) save_flow_state(out, *f);
@@ -132,6 +160,8 @@ void restore_dem_rows(const CheckpointReader& in, World& world, const DemScene& 
   Walls& walls = world.resources.get<Walls>();
   walls.rotation_enabled = in.value<bool>("walls.rotation_enabled");
   walls.place(world.clock.t);
+  restore_wall_loads(in, "walls.loads", walls.loads);
+  if (MeshWallLoads* m = world.resources.find<MeshWallLoads>()) restore_wall_loads(in, "mesh_walls.loads", *m);
   list_sections(in, world.resources.get<NeighborList>(), world.resources.get<PairHistory>(), bp, "");
   restore_periodic_images(in, world.resources.get<PeriodicImages>(), gr);
   if (scene.flow.any())

@@ -15,6 +15,9 @@ SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::p
   ss.mixing_cell = s.mixing_cell;
   ss.mixing_min_grains = s.mixing_min_grains;
   ss.flow = s.flow.any();
+  for (const Wall& w : s.walls) ss.wall_names.push_back(w.name);
+  ss.analytic_walls = s.walls.size();
+  for (const MeshWall& w : s.mesh_walls.list) ss.wall_names.push_back(w.name);
   return ss;
 }
 

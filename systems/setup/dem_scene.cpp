@@ -87,6 +87,42 @@ void require_wall_step(const DemScene& s, const SceneNode& w, double omega, doub
   w.fail("omega", moves, "lower omega (rad/s) or run.dt");
 }
 
+// `n` points on a circle about `center` in the plane normal to the unit `axis` (a drum end's outline).
+std::vector<Vec3d> circle_points(const Vec3d& center, const Vec3d& axis, double radius, int n) {
+  const Vec3d trial = std::abs(axis.x) < 0.9 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
+  Vec3d u = trial - dot(trial, axis) * axis;
+  u = (1.0 / std::sqrt(dot(u, u))) * u;
+  const Vec3d v = cross(axis, u);
+  std::vector<Vec3d> out;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / n;
+    out.push_back(center + (radius * std::cos(a)) * u + (radius * std::sin(a)) * v);
+  }
+  return out;
+}
+
+// A wall's translation (wall_motion.hpp): for spherical grains, and its surface may move at most 0.1
+// of the smallest diameter per step, as for a turning wall.
+WallMotion read_motion(const DemScene& s, const SceneNode& w, bool bodies) {
+  if (!has_wall_motion(w)) return {};
+  for (const char* k : {"velocity", "vibration_amplitude", "vibration_frequency", "vibration_phase", "velocity_file"})
+    if ((bodies || s.species.empty()) && w.has(k))
+      w.fail(k, "walls that translate or vibrate act on spherical grains ([[species]]), not on composite bodies",
+             "remove the key; a scene of [[bodies]] takes fixed or turning walls");
+  WallMotion m = read_wall_motion(w);
+  double smallest = s.species.front().diameter;
+  for (const SpeciesSpec& sp : s.species) smallest = std::min(smallest, sp.diameter);
+  const double step = m.fastest() * s.dt;
+  if (step > 0.1 * smallest) {
+    const char* key = w.has("velocity_file") ? "velocity_file" : (w.has("velocity") ? "velocity" : "vibration_amplitude");
+    w.fail(key, "the wall's translation reaches " + short_number(m.fastest()) + " m/s and moves it " +
+                    short_number(step) + " m per step, more than 0.1 of the smallest diameter (" +
+                    short_number(smallest) + " m)",
+           "lower the speed (is it in mm/s? is the amplitude in mm?), the frequency (Hz, not rad/s) or run.dt");
+  }
+  return m;
+}
+
 // The narrowest width of a fill region (m): a grain wider than it cannot be placed.
 double narrowest(const Region& r) {
   if (r.kind == Region::Kind::Box)
@@ -141,7 +177,7 @@ void read_periodic(DemScene& s, const SceneNode& root) {
 }
 
 // A [[wall]] of type "mesh": a triangle mesh, for spherical grains only.
-void add_mesh_wall(DemScene& s, const SceneNode& w, const std::string& name) {
+void add_mesh_wall(DemScene& s, const SceneNode& w, const std::string& name, bool bodies) {
   if (s.bodies || s.species.empty())
     w.fail("type", "mesh walls act on spherical grains ([[species]]), not on composite bodies",
            "use plane, box, cylinder or drum walls in a scene of [[bodies]]");
@@ -150,15 +186,16 @@ void add_mesh_wall(DemScene& s, const SceneNode& w, const std::string& name) {
     largest = std::max(largest, sp.diameter), smallest = std::min(smallest, sp.diameter);
   const double reach = 0.5 * largest + mesh_wall_reach(*s.contacts);
   s.mesh_walls.list.push_back(read_mesh_wall(w, name, reach, smallest, s.dt));
+  s.mesh_walls.list.back().motion = read_motion(s, w, bodies);
 }
 
-void read_walls(DemScene& s, const SceneNode& root) {
+void read_walls(DemScene& s, const SceneNode& root, bool bodies) {
   const FieldTable& t = kWallFields;
   for (const SceneNode& w : root.tables("wall")) {
     const std::string type = read_choice(w, t.field("type"), {"plane", "box", "cylinder", "drum", "mesh"});
     const std::string name = w.get_string(t.field("name").key, type);
     if (type == "mesh") {
-      add_mesh_wall(s, w, name);
+      add_mesh_wall(s, w, name, bodies);
       continue;
     }
     if (type == "plane") {
@@ -170,12 +207,14 @@ void read_walls(DemScene& s, const SceneNode& root) {
       p.omega = read_number(w, t.field("omega"));
       p.rot_point = to_v(w.get_vec3(t.field("rotation_point").key, {p.point.x, p.point.y, p.point.z}));
       p.rot_axis = unit_vector(w, t.field("rotation_axis").key, {p.normal.x, p.normal.y, p.normal.z}, false);
+      p.motion = read_motion(s, w, bodies);
       s.walls.push_back(p);
     } else if (type == "box") {
       const auto lo = w.get_vec3(t.field("lo").key);
       const auto hi = w.get_vec3(t.field("hi").key);
       for (int d = 0; d < 3; ++d)
         if (!(hi[d] > lo[d])) w.fail("hi", "each component of hi must exceed lo's", "swap or correct lo and hi");
+      const WallMotion motion = read_motion(s, w, bodies);
       const char* faces[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
       for (int f = 0; f < 6; ++f) {
         Wall p;
@@ -190,6 +229,15 @@ void read_walls(DemScene& s, const SceneNode& root) {
         p.normal = to_v(nm);
         p.rot_point = p.point;
         p.rot_axis = p.normal;
+        p.motion = motion;
+        // The face's rectangle: the two other axes at lo and hi.
+        const int a = (d + 1) % 3, b = (d + 2) % 3;
+        for (const auto& [ua, ub] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{1, 1}, std::pair{0, 1}}) {
+          std::array<double, 3> c = pt;
+          c[a] = ua ? hi[a] : lo[a];
+          c[b] = ub ? hi[b] : lo[b];
+          p.outline.push_back(to_v(c));
+        }
         s.walls.push_back(p);
       }
     } else {
@@ -204,8 +252,10 @@ void read_walls(DemScene& s, const SceneNode& root) {
       require_wall_step(s, w, c.omega, c.radius);
       c.rot_point = c.center;
       c.rot_axis = c.axis;
+      c.motion = read_motion(s, w, bodies);
       if (type == "drum") {
         const double length = read_number(w, t.field("length"));
+        c.length = length;
         s.walls.push_back(c);
         for (int side = 0; side < 2; ++side) {
           Wall e;
@@ -217,6 +267,8 @@ void read_walls(DemScene& s, const SceneNode& root) {
           e.omega = c.omega;
           e.rot_point = c.center;
           e.rot_axis = c.axis;
+          e.motion = c.motion;
+          e.outline = circle_points(e.point, c.axis, c.radius, 96);
           s.walls.push_back(e);
         }
       } else {
@@ -537,7 +589,7 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
   s.critical = s.contacts->critical_period();
   // Bodies need the walls and fills read first: spheres of the fills join them as bodies.
   if (with_bodies) {
-    read_walls(s, root);
+    read_walls(s, root, true);
     read_periodic(s, root);
     if (!root.tables("fill").empty()) read_fills(s, root);
     s.bodies = std::make_shared<const BodiesSpec>(read_bodies(s, root));
@@ -552,7 +604,7 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options) {
              "set dt <= " + short_number(limit) + ", or stiffen less, or set allow_unstable_dt = true to run anyway");
 
   if (!with_bodies) {
-    read_walls(s, root);
+    read_walls(s, root, false);
     read_periodic(s, root);
   }
   if (auto settle = root.maybe_table("settle")) s.settle_time = read_number(*settle, kSettleFields.field("time"));

@@ -1,7 +1,7 @@
 #include "systems/walls/mesh_wall_contact.hpp"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,37 +12,44 @@
 #include "engine/scene.hpp"
 #include "systems/contact/laws.hpp"
 #include "systems/contact/sphere_geometry.hpp"
+#include "systems/walls/wall_row_blocks.hpp"
 
 namespace gf {
 
 namespace {
 
-// A rotation by a fixed angle about a unit axis through a point (Rodrigues), its cosine and sine
-// computed once per evaluation, not per grain.
+// A mesh's placement at one time: a rotation by a fixed angle about a unit axis through a point
+// (Rodrigues), its cosine and sine computed once per evaluation, not per grain, after which the
+// mesh is carried by its offset d (wall_motion.hpp); with the surface's translational velocity v
+// and angular velocity (spin) at that time.
 struct Turn {
-  Vec3d k{0, 0, 1}, o{0, 0, 0};
+  Vec3d k{0, 0, 1}, o{0, 0, 0}, d{0, 0, 0}, v{0, 0, 0}, spin{0, 0, 0};
   double c = 1.0, s = 0.0;
   bool identity = true;
   Turn() = default;
-  Turn(const MeshWall& w, double angle) : k(w.rot_axis), o(w.rot_point), c(std::cos(angle)), s(std::sin(angle)) {
-    identity = angle == 0.0;
+  // The placement of `w` at time t (none while motion is off), its velocity at t - lag (walls.hpp).
+  Turn(const MeshWall& w, double t, bool enabled, double lag = 0.0) : k(w.rot_axis), o(w.rot_point) {
+    const double angle = enabled ? w.omega * t : 0.0;
+    c = std::cos(angle), s = std::sin(angle);
+    if (enabled && w.motion.moves()) d = w.motion.offset(t), v = w.motion.rate(t - lag);
+    spin = (enabled ? w.omega : 0.0) * w.rot_axis;
+    identity = angle == 0.0 && d.x == 0.0 && d.y == 0.0 && d.z == 0.0;
   }
   // The vector turned by +angle (sign 1) or -angle (sign -1).
-  Vec3d vec(const Vec3d& v, double sign) const {
-    if (identity) return v;
-    const Vec3d kxv = cross(k, v);
-    const double kv = dot(k, v);
-    return (c * v + (sign * s) * kxv) + (kv * (1.0 - c)) * k;
+  Vec3d vec(const Vec3d& v_in, double sign) const {
+    if (c == 1.0 && s == 0.0) return v_in;
+    const Vec3d kxv = cross(k, v_in);
+    const double kv = dot(k, v_in);
+    return (c * v_in + (sign * s) * kxv) + (kv * (1.0 - c)) * k;
   }
-  Vec3d to_reference(const Vec3d& p) const { return identity ? p : o + vec(p - o, -1.0); }
+  Vec3d origin() const { return o + d; }  // the rotation point, carried
+  Vec3d to_reference(const Vec3d& p) const { return identity ? p : o + vec(p - d - o, -1.0); }
   bool same_as(const Turn& t) const {
     return identity == t.identity && c == t.c && s == t.s && k.x == t.k.x && k.y == t.k.y && k.z == t.k.z &&
-           o.x == t.o.x && o.y == t.o.y && o.z == t.o.z;
+           o.x == t.o.x && o.y == t.o.y && o.z == t.o.z && d.x == t.d.x && d.y == t.d.y && d.z == t.d.z;
   }
-  Vec3d to_world(const Vec3d& p) const { return identity ? p : o + vec(p - o, 1.0); }
+  Vec3d to_world(const Vec3d& p) const { return identity ? p : o + d + vec(p - o, 1.0); }
 };
-
-double angle_of(const MeshWall& w, double t, bool rotation_enabled) { return rotation_enabled ? w.omega * t : 0.0; }
 
 constexpr double kConeTol = 1e-9;   // of a unit direction: the cone tests' allowance for rounding
 constexpr double kMergeTol = 1e-6;  // of the grain's radius: closest points closer are one contact
@@ -141,19 +148,21 @@ std::size_t find_hits(const MeshWalls& walls, const Turn* turn, const Vec3d& p, 
 
 template <class Law>
 bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const ContactTable& table, double dt,
-                 double t_contact, double overlap_limit, bool keep_history) {
+                 double t_contact, double overlap_limit, bool keep_history, std::vector<WallLoad>* loads) {
   constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
   static_assert(H <= 8, "a wall contact's history fits a slot");
   const std::size_t nw = walls.list.size();
   std::vector<Turn> turn(nw);
-  for (std::size_t w = 0; w < nw; ++w) turn[w] = Turn(walls.list[w], angle_of(walls.list[w], t_contact, rotation_enabled));
+  for (std::size_t w = 0; w < nw; ++w) turn[w] = Turn(walls.list[w], t_contact, rotation_enabled, 0.5 * dt);
   MeshWallForce& force = g.extras.get<MeshWallForce>();
   MeshWallTorque& torque = g.extras.get<MeshWallTorque>();
   Column<MeshSlots>& hist = g.extras.get<MeshContactHistory>().slots;
   const double lim2 = 2.0 * overlap_limit;
-  auto rows = [&](const tbb::blocked_range<std::size_t>& range, double worst) {
+  std::vector<double> sums;
+  const bool over = for_wall_row_blocks(g.n_owned, 256, nw, sums, [&](std::size_t r0, std::size_t r1, double* load,
+                                                                     double& worst) {
     Hit hits[kMeshSlots];
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+    for (std::size_t i = r0; i != r1; ++i) {
       const Vec3d p{g.pos.x[i], g.pos.y[i], g.pos.z[i]};
       const double ri = g.radius.r[i];
       const double* kc = table.wall(static_cast<std::size_t>(g.species.type[i]));
@@ -200,23 +209,27 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
         }
         for (std::size_t h = 0; h < nh; ++h) {
           const Hit& x = hits[h];
-          const MeshWall& mw = walls.list[x.wall];
           const Vec3d n = nrm[h];
-          const double om = rotation_enabled ? mw.omega : 0.0;
-          // A law acting before touching takes the wall's closest point as the contact point (sphere_geometry.hpp).
+          const Turn& tr = turn[x.wall];
+          // The mesh's translation enters as the grain's velocity relative to it. A law acting before
+          // touching takes the wall's closest point as the contact point (sphere_geometry.hpp).
           SphereContact<double> sc;
           if constexpr (ReachingLaw<Law>)
-            sc = sphere_wall_surface(p, n, x.d, ri, vi, wi, om * mw.rot_axis, mw.rot_point);
+            sc = sphere_wall_surface(p, n, x.d, ri, vi - tr.v, wi, tr.spin, tr.origin());
           else
-            sc = sphere_wall(p, n, x.d, ri, vi, wi, om * mw.rot_axis, mw.rot_point);
+            sc = sphere_wall(p, n, x.d, ri, vi - tr.v, wi, tr.spin, tr.origin());
           worst = std::max(worst, (ri - x.d) - lim2 * ri);
           std::array<double, H> s{};
           if (from[h] >= 0) std::copy(old.s[from[h]], old.s[from[h]] + H, s.begin());
           const ContactForce<double> res = Law::evaluate(true, sc.g, c, dt, s);
           std::copy(s.begin(), s.end(), now.s[h]);
           now.n[h][0] = n.x, now.n[h][1] = n.y, now.n[h][2] = n.z;
+          const Vec3d tw = sc.li * cross(n, res.force_t) + res.torque_i;
           f = f + res.force;
-          tq = tq + sc.li * cross(n, res.force_t) + res.torque_i;
+          tq = tq + tw;
+          const Vec3d m = cross(p - tr.origin(), res.force) + tw;
+          const double add[6] = {res.force.x, res.force.y, res.force.z, m.x, m.y, m.z};
+          for (std::size_t q = 0; q < 6; ++q) load[x.wall * 6 + q] += add[q];
         }
         if (keep_history) old = now;
       }
@@ -228,11 +241,13 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
       torque.y[i] = tq.y;
       torque.z[i] = tq.z;
     }
-    return worst;
-  };
-  return tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, g.n_owned, 256),
-                              -std::numeric_limits<double>::infinity(), rows,
-                              [](double a, double b) { return std::max(a, b); }) > 0.0;
+  });
+  if (loads != nullptr) {
+    std::vector<Vec3d> velocity(nw), spin(nw);
+    for (std::size_t w = 0; w < nw; ++w) velocity[w] = turn[w].v, spin[w] = turn[w].spin;
+    set_wall_loads(sums, *loads, velocity, spin);
+  }
+  return over;
 }
 
 }  // namespace
@@ -262,19 +277,21 @@ void attach_mesh_walls(World& world, const MeshWalls& walls) {
   g.extras.attach<MeshWallTorque>(g.n);
   g.extras.attach<MeshContactHistory>(g.n);
   world.resources.emplace<MeshWalls>(walls);
+  world.resources.emplace<MeshWallLoads>();
 }
 
 template <class L>
 bool compute_mesh_wall_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const ContactTable& table,
-                              double dt, double t_contact, double overlap_limit, bool keep_history) {
-  return mesh_forces<L>(g, walls, rotation_enabled, table, dt, t_contact, overlap_limit, keep_history);
+                              double dt, double t_contact, double overlap_limit, bool keep_history,
+                              std::vector<WallLoad>* loads) {
+  return mesh_forces<L>(g, walls, rotation_enabled, table, dt, t_contact, overlap_limit, keep_history, loads);
 }
 
 std::vector<MeshContactPoint> mesh_contacts_of(const MeshWalls& walls, const Vec3d& p, double radius, double t,
                                                bool rotation_enabled) {
   std::vector<Turn> turn(walls.list.size());
   for (std::size_t w = 0; w < walls.list.size(); ++w)
-    turn[w] = Turn(walls.list[w], angle_of(walls.list[w], t, rotation_enabled));
+    turn[w] = Turn(walls.list[w], t, rotation_enabled);
   Hit hits[kMeshSlots];
   const std::size_t nh = find_hits(walls, turn.data(), p, radius, hits);
   std::vector<MeshContactPoint> out;

@@ -1,8 +1,8 @@
 // Sphere contacts with rigid triangle-mesh walls (triangle_mesh.hpp), beside the analytic walls of
 // wall_contact.hpp and with the same laws (laws.hpp) and the same per-species wall constants.
 //
-// Geometry. Each mesh is rigid and turns at omega about its axis (angle omega t, 0 while rotation is
-// off, as for the analytic walls). A grain's centre is carried into the mesh's reference frame, where
+// Geometry. Each mesh is rigid, turns at omega about its axis (angle omega t, 0 while motion is off,
+// as for the analytic walls) and is carried by its translation (wall_motion.hpp). A grain's centre is carried into the mesh's reference frame, where
 // the triangle grid was built once at load: no rebuild, ever. For every listed triangle within the
 // grain's radius, the closest point q and its feature (face, edge, vertex) are found.
 //
@@ -45,7 +45,7 @@
 //
 // Reads:  Position, Velocity, AngularVelocity, Radius, Species, ContactTable, MeshWalls, Walls (its
 //         rotation switch), OverlapLimit.
-// Writes: MeshWallForce, MeshWallTorque, MeshContactHistory.
+// Writes: MeshWallForce, MeshWallTorque, MeshContactHistory, MeshWallLoads (each mesh's load, walls.hpp).
 #pragma once
 
 #include <cstdint>
@@ -69,6 +69,7 @@ struct MeshWall {
   std::shared_ptr<const TriangleGrid> grid;  // over the reference geometry
   Vec3d rot_point{0, 0, 0}, rot_axis{0, 0, 1};
   double omega = 0.0;  // rad/s
+  WallMotion motion;   // translation (wall_motion.hpp), after the rotation
 };
 
 // The grid's reach: the largest grain radius of the scene plus mesh_wall_reach (m).
@@ -80,6 +81,9 @@ double mesh_wall_reach(const ContactTable& table);
 struct MeshWalls {
   std::vector<MeshWall> list;
 };
+
+// Each mesh's load (walls.hpp), written by the mesh contact system.
+struct MeshWallLoads : WallLoads {};
 
 struct MeshWallForce {
   ColumnD x, y, z;  // N
@@ -115,7 +119,8 @@ void attach_mesh_walls(World& world, const MeshWalls& walls);
 // evaluation of a new state, in which no time passes). Instantiated for every law of ContactLaws.
 template <class L>
 bool compute_mesh_wall_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const ContactTable& table,
-                              double dt, double t_contact, double overlap_limit = 1.0, bool keep_history = true);
+                              double dt, double t_contact, double overlap_limit = 1.0, bool keep_history = true,
+                              std::vector<WallLoad>* loads = nullptr);
 
 // The contacts of one grain as the kernel finds them (for tests): with the meshes at angle omega t.
 struct MeshContactPoint {
@@ -140,7 +145,7 @@ class MeshWallContact : public SystemBase<MeshWallContact<L>> {
  public:
   using Reads =
       gf::Reads<Position, Velocity, AngularVelocity, Radius, Species, ContactTable, OverlapLimit, MeshWalls, Walls>;
-  using Writes = gf::Writes<MeshWallForce, MeshWallTorque, MeshContactHistory>;
+  using Writes = gf::Writes<MeshWallForce, MeshWallTorque, MeshContactHistory, MeshWallLoads>;
   std::string_view name() const override { return "mesh_wall_contact"; }
   void run(World& world, const StepContext& step) override {
     const double t = step.t + (step.prime ? 0.0 : step.dt);
@@ -148,9 +153,11 @@ class MeshWallContact : public SystemBase<MeshWallContact<L>> {
     const MeshWalls& walls = world.resources.get<MeshWalls>();
     const Walls* analytic = world.resources.find<Walls>();
     const bool rotating = analytic == nullptr || analytic->rotation_enabled;
+    MeshWallLoads& loads = world.resources.get<MeshWallLoads>();
     if (compute_mesh_wall_forces<L>(world.grains, walls, rotating, world.resources.get<ContactTable>(), step.dt, t,
-                                    limit, !step.prime))
+                                    limit, !step.prime, &loads.now))
       report_mesh_overlap(world.grains, walls, limit, step, t, rotating);
+    if (!step.prime) loads.accumulate();
   }
 };
 

@@ -5,7 +5,7 @@
 // kept as the reference the tests compare it with.
 //
 // Reads:  Position, Velocity, AngularVelocity, Radius, Species, ContactTable.
-// Writes: WallForce, WallTorque, WallHistory, Walls (the current, rotated geometry).
+// Writes: WallForce, WallTorque, WallHistory, Walls (the current geometry and each wall's load).
 #pragma once
 
 
@@ -49,6 +49,7 @@ class WallContact : public SystemBase<WallContact<L>> {
     if (compute_wall_forces<L>(world.grains, walls, world.grains.extras.get<WallHistory>(),
                                world.resources.get<ContactTable>(), step.dt, t, limit))
       report_wall_overlap(world.grains, walls, limit, step);
+    if (!step.prime) walls.loads.accumulate();
   }
 };
 

@@ -20,13 +20,22 @@
 #include "engine/simd.hpp"
 #include "systems/contact/laws.hpp"
 #include "systems/contact/sphere_geometry.hpp"
+#include "systems/walls/wall_row_blocks.hpp"
 
 namespace gf {
 
 namespace {
 
-void prepare(Grains& g, Walls& walls, WallHistory& h, double t_contact) {
-  walls.place(t_contact);
+// Each wall's load of this evaluation (walls.hpp) from its sums of force and moment.
+void record_loads(Walls& walls, const std::vector<double>& sums) {
+  const std::size_t nw = walls.list.size();
+  std::vector<Vec3d> velocity(nw), spin(nw);
+  for (std::size_t w = 0; w < nw; ++w) velocity[w] = walls.list[w].cur_velocity, spin[w] = walls.list[w].cur_spin;
+  set_wall_loads(sums, walls.loads.now, velocity, spin);
+}
+
+void prepare(Grains& g, Walls& walls, WallHistory& h, double t_contact, double dt) {
+  walls.place(t_contact, 0.5 * dt);  // the grains' velocities are the half-step's (walls.hpp)
   if (h.springs.size() != walls.list.size() || h.active.size() != walls.list.size())
     h.shape(walls.list.size(), g.n);
 }
@@ -63,12 +72,14 @@ template <class Law, class T>
 template <class Law>
 bool compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
                                 double t_contact, double overlap_limit) {
-  prepare(g, walls, h, t_contact);
+  prepare(g, walls, h, t_contact, dt);
   const std::size_t nw = walls.list.size();
   constexpr std::size_t K = Law::kConstants, H = Law::kHistory;
   const double lim2 = 2.0 * overlap_limit;
-  auto rows = [&](const tbb::blocked_range<std::size_t>& r, double worst) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+  std::vector<double> sums;
+  const bool over = for_wall_row_blocks(g.n_owned, 1024, nw, sums, [&](std::size_t r0, std::size_t r1, double* load,
+                                                                      double& worst) {
+    for (std::size_t i = r0; i != r1; ++i) {
       const Vec3d p{g.pos.x[i], g.pos.y[i], g.pos.z[i]};
       const double ri = g.radius.r[i];
       Vec3d f{0, 0, 0}, t{0, 0, 0};
@@ -88,9 +99,9 @@ bool compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
         h.active[w][i] = 1;
         worst = std::max(worst, (ri - gap) - lim2 * ri);
         const Vec3d wi = g.spin ? Vec3d{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : Vec3d{0.0, 0.0, 0.0};
-        const double om = walls.rotation_enabled ? wall.omega : 0.0;
-        const SphereContact<double> sc = wall_contact_geometry<Law>(p, n, gap, ri, Vec3d{g.vel.x[i], g.vel.y[i], g.vel.z[i]},
-                                                                    wi, Vec3d(om * wall.rot_axis), wall.rot_point);
+        // The wall's translation enters as the grain's velocity relative to it.
+        const Vec3d vi = Vec3d{g.vel.x[i], g.vel.y[i], g.vel.z[i]} - wall.cur_velocity;
+        const SphereContact<double> sc = wall_contact_geometry<Law>(p, n, gap, ri, vi, wi, wall.cur_spin, wall.cur_origin);
         const double* k = table.wall(static_cast<std::size_t>(g.species.type[i]));
         std::array<double, K> c;
         std::copy(k, k + K, c.begin());
@@ -98,8 +109,12 @@ bool compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
         std::copy(hs, hs + H, s.begin());
         const ContactForce<double> res = Law::evaluate(true, sc.g, c, dt, s);
         std::copy(s.begin(), s.end(), hs);
+        const Vec3d tw = sc.li * cross(n, res.force_t) + res.torque_i;
         f = f + res.force;
-        t = t + sc.li * cross(n, res.force_t) + res.torque_i;
+        t = t + tw;
+        const Vec3d m = cross(p - wall.cur_origin, res.force) + tw;
+        const double add[6] = {res.force.x, res.force.y, res.force.z, m.x, m.y, m.z};
+        for (std::size_t q = 0; q < 6; ++q) load[w * 6 + q] += add[q];
       }
       g.wall_force.x[i] = f.x;
       g.wall_force.y[i] = f.y;
@@ -109,11 +124,9 @@ bool compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
       g.wall_torque.y[i] = t.y;
       g.wall_torque.z[i] = t.z;
     }
-    return worst;
-  };
-  return tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, g.n_owned, 1024),
-                              -std::numeric_limits<double>::infinity(), rows,
-                              [](double a, double b) { return std::max(a, b); }) > 0.0;
+  });
+  record_loads(walls, sums);
+  return over;
 }
 
 // The same arithmetic, wall by wall over fixed blocks of rows: a first pass computes the gap of
@@ -206,7 +219,7 @@ template <class Law>
 template <class Law>
 bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactTable& table, double dt,
                          double t_contact, double overlap_limit) {
-  prepare(g, walls, h, t_contact);
+  prepare(g, walls, h, t_contact, dt);
   const double lim2 = 2.0 * overlap_limit;
   using B = BatchD;
   using V = V3<B>;
@@ -225,6 +238,8 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
   const std::size_t nblocks = (nown + kWallBlock - 1) / kWallBlock;
   // Per block: some contact past the overlap limit (checked in the law pass, on values at hand).
   std::vector<std::uint8_t> block_over(nblocks, 0);
+  // Per block and wall: the sums of force and moment (walls.hpp), added in block order after.
+  std::vector<double> block_load(nblocks * nw * 6, 0.0);
   // The blocks, compiled for grains with and without spin columns (no branch per batch).
   auto run_blocks = [&](auto spin_tag) {
     constexpr bool spin = decltype(spin_tag)::value;
@@ -251,9 +266,11 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         WallSprings* hs = h.springs[w].data();
         // A spring k of row i is double 8 i + k from the column's start.
         const double* hbase = hs[0].s;
-        const double om = walls.rotation_enabled ? wall.omega : 0.0;
-        const V wall_w{B(om * wall.rot_axis.x), B(om * wall.rot_axis.y), B(om * wall.rot_axis.z)};
-        const V wall_o{B(wall.rot_point.x), B(wall.rot_point.y), B(wall.rot_point.z)};
+        const V wall_w{B(wall.cur_spin.x), B(wall.cur_spin.y), B(wall.cur_spin.z)};
+        const V wall_o{B(wall.cur_origin.x), B(wall.cur_origin.y), B(wall.cur_origin.z)};
+        // The wall's translation enters as the grains' velocity relative to it.
+        const V wall_v{B(wall.cur_velocity.x), B(wall.cur_velocity.y), B(wall.cur_velocity.z)};
+        double* load = &block_load[(blk * nw + w) * 6];
         for (std::size_t q = 0; q < m; q += L) {
           const std::int32_t* idx = &rows[q];
           // The springs and velocities of the packed rows are read nowhere else this step, so they
@@ -293,7 +310,8 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
           const V wi = spin ? V{gather32(g.omega.x.data(), idx), gather32(g.omega.y.data(), idx),
                                 gather32(g.omega.z.data(), idx)}
                             : V{B(0.0), B(0.0), B(0.0)};
-          const V vi{gather32(g.vel.x.data(), idx), gather32(g.vel.y.data(), idx), gather32(g.vel.z.data(), idx)};
+          const V vi = V{gather32(g.vel.x.data(), idx), gather32(g.vel.y.data(), idx), gather32(g.vel.z.data(), idx)} -
+                       wall_v;
           const SphereContact<B> sc = wall_contact_geometry<Law>(p, n, gap, ri, vi, wi, wall_w, wall_o);
           alignas(64) std::int32_t at[L];
           for (std::size_t l = 0; l < L; ++l) at[l] = idx[l] * 8;
@@ -318,6 +336,13 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
             g.wall_force.y[i] += out[H + 1][l];
             g.wall_force.z[i] += out[H + 2][l];
             act[i] = static_cast<std::uint8_t>((now >> l) & 1u);
+            {
+              const Vec3d fi{out[H][l], out[H + 1][l], out[H + 2][l]};
+              const Vec3d mi = cross(Vec3d{g.pos.x[i], g.pos.y[i], g.pos.z[i]} - wall.cur_origin, fi) +
+                               Vec3d{out[H + 3][l], out[H + 4][l], out[H + 5][l]};
+              load[0] += fi.x, load[1] += fi.y, load[2] += fi.z;
+              load[3] += mi.x, load[4] += mi.y, load[5] += mi.z;
+            }
             if (!spin) continue;
             g.wall_torque.x[i] += out[H + 3][l];
             g.wall_torque.y[i] += out[H + 4][l];
@@ -332,6 +357,10 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
     run_blocks(std::true_type{});
   else
     run_blocks(std::false_type{});
+  std::vector<double> sums(nw * 6, 0.0);
+  for (std::size_t b = 0; b < nblocks; ++b)
+    for (std::size_t k = 0; k < nw * 6; ++k) sums[k] += block_load[b * nw * 6 + k];
+  record_loads(walls, sums);
   return std::any_of(block_over.begin(), block_over.end(), [](std::uint8_t b) { return b != 0; });
 }
 

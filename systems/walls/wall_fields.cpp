@@ -25,6 +25,16 @@ const Field kWall[] = {
     {"omega", "rad/s", kAnyNumber, "any finite number", 0.0, "",
      "rotation rate (plane, cylinder, drum, mesh) about the rotation axis (a cylinder's or drum's own axis); a "
      "cylinder, drum or mesh surface may move at most 0.1 of the smallest diameter per step"},
+    {"velocity", "m/s", {0, 1e5, false, false}, "three numbers, length at most 1e5", kNoDefault, "`[0, 0, 0]`",
+     "a constant translational velocity of the wall (any type), added to its rotation and vibration"},
+    {"vibration_amplitude", "m", {0, 1e3, false, false}, "three numbers, length at most 1000", kNoDefault, "`[0, 0, 0]`",
+     "the vector amplitude A of a sinusoidal vibration: the wall is displaced by A (sin(2π f t + φ) − sin φ)"},
+    {"vibration_frequency", "Hz", {0, 1e6, false, false}, "", 0.0, "", "the vibration's frequency f"},
+    {"vibration_phase", "rad", {-1e3, 1e3, false, false}, "", 0.0, "", "the vibration's phase φ at t = 0"},
+    {"velocity_file", "", kAnyNumber, "path of a CSV file of rows `time, vx, vy, vz` (s, m/s) from time 0",
+     kNoDefault, "none",
+     "a prescribed translational velocity, linear between rows and held at the last row's after it; relative to "
+     "the scene file"},
     {"rotation_point", "m", kAnyNumber, "three numbers", kNoDefault, "the plane's `point`; a mesh primitive's `center`",
      "plane and mesh: a point on the rotation axis; required for a turning mesh file"},
     {"rotation_axis", "", kAnyNumber, "non-zero vector", kNoDefault,

@@ -13,20 +13,24 @@ Vec3d rotate_about(const Vec3d& v, const Vec3d& k, double angle) {
           v.z * c + kxv.z * s + k.z * kv * (1 - c)};
 }
 
-void Walls::place(double t) {
+void Walls::place(double t, double lag) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     Wall& w = list[i];
     const double a = angle(i, t);
+    const Vec3d d = rotation_enabled ? w.motion.offset(t) : Vec3d{0, 0, 0};
+    w.cur_velocity = rotation_enabled ? w.motion.rate(t - lag) : Vec3d{0, 0, 0};
+    w.cur_spin = (rotation_enabled ? w.omega : 0.0) * w.rot_axis;
+    w.cur_origin = w.rot_point + d;
     if (a == 0.0) {
-      w.cur_point = w.point;
+      w.cur_point = w.point + d;
       w.cur_normal = w.normal;
-      w.cur_center = w.center;
+      w.cur_center = w.center + d;
       w.cur_axis = w.axis;
       continue;
     }
-    w.cur_point = w.rot_point + rotate_about(w.point - w.rot_point, w.rot_axis, a);
+    w.cur_point = w.cur_origin + rotate_about(w.point - w.rot_point, w.rot_axis, a);
     w.cur_normal = rotate_about(w.normal, w.rot_axis, a);
-    w.cur_center = w.rot_point + rotate_about(w.center - w.rot_point, w.rot_axis, a);
+    w.cur_center = w.cur_origin + rotate_about(w.center - w.rot_point, w.rot_axis, a);
     w.cur_axis = rotate_about(w.axis, w.rot_axis, a);
   }
 }

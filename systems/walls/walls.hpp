@@ -1,15 +1,25 @@
 // Walls: analytic geometry outside the particle grid (planes, the inner surface of a cylinder).
-// Any wall may rotate about an axis at a constant rate; its surface velocity at the contact point
-// enters the relative velocity, and its angular velocity the relative rolling rate. A drum is a
-// cylinder with two flat end walls sharing one rotation.
+// Any wall may rotate about an axis at a constant rate and translate (wall_motion.hpp: a velocity,
+// a vibration, a velocity table); its surface velocity at the contact point enters the relative
+// velocity, and its angular velocity the relative rolling rate. A drum is a cylinder with two flat
+// end walls sharing one rotation (and one translation); a box's six faces share one translation.
+//
+// Loads. Each contact evaluation of a full step adds, per wall, the force F_i and the moment
+// (x_i - o) x F_i + T_i of its contacts on the grains (x_i the grain's centre, T_i the torque about
+// it, o the wall's current rotation point): by Newton's third law the wall receives their negatives,
+// and its drive supplies the power F_i . v + ((x_i - o) x F_i + T_i) . omega (v, omega the wall's
+// translational and angular velocity). WallLoads keeps their sums over the run's full steps; a
+// series row reports the mean over its interval from them (wall_loads_csv.hpp).
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "engine/column.hpp"
 #include "systems/contact/vec3.hpp"
+#include "systems/walls/wall_motion.hpp"
 
 namespace gf {
 
@@ -26,15 +36,68 @@ struct Wall {
   // Rotation of the wall as a rigid body.
   Vec3d rot_point{0, 0, 0}, rot_axis{0, 0, 1};
   double omega = 0.0;  // rad/s
-  // Geometry at the current angle (rotated reference geometry).
+  WallMotion motion;    // translation
+  // For drawing only (wall_surfaces.hpp): a plane's polygon at its reference place (a box's face, a
+  // drum's end; empty: drawn across the scene), a cylinder's length (a drum's; 0: across the scene).
+  std::vector<Vec3d> outline;
+  double length = 0.0;
+  // Geometry at the current angle and offset; the rotation point carried by the offset, the
+  // translational velocity and the angular velocity (zero while motion is off).
   Vec3d cur_point{0, 0, 0}, cur_normal{0, 0, 1}, cur_center{0, 0, 0}, cur_axis{0, 0, 1};
+  Vec3d cur_origin{0, 0, 0}, cur_velocity{0, 0, 0}, cur_spin{0, 0, 0};
 };
+
+// The sums of one wall's contacts on the grains since the last series row (see above).
+struct WallLoad {
+  Vec3d force{0, 0, 0};   // sum of F_i, N
+  Vec3d moment{0, 0, 0};  // sum of (x_i - o) x F_i + T_i, N m
+  double power = 0.0;     // sum of the drive's power, W
+};
+
+struct WallLoads {
+  std::vector<WallLoad> now;  // per wall: the last evaluation
+  std::vector<WallLoad> sum;  // per wall: summed over the run's full steps (checkpointed)
+  std::int64_t steps = 0;     // full steps summed
+  void accumulate() {
+    if (sum.size() != now.size()) sum.resize(now.size());
+    for (std::size_t w = 0; w < now.size(); ++w) {
+      sum[w].force = sum[w].force + now[w].force;
+      sum[w].moment = sum[w].moment + now[w].moment;
+      sum[w].power += now[w].power;
+    }
+    ++steps;
+  }
+};
+
+// One wall's load of one evaluation from the sums of its contacts' forces and moments on the grains
+// (six numbers), with the power at the wall's velocity and spin.
+inline WallLoad wall_load(const double* sums, const Vec3d& velocity, const Vec3d& spin) {
+  WallLoad l;
+  l.force = {sums[0], sums[1], sums[2]};
+  l.moment = {sums[3], sums[4], sums[5]};
+  l.power = dot(l.force, velocity) + dot(l.moment, spin);
+  return l;
+}
+
+// Each wall's load of one evaluation from the sums of its contacts' forces and moments (six numbers a
+// wall), at the walls' velocities and spins.
+inline void set_wall_loads(const std::vector<double>& sums, std::vector<WallLoad>& out,
+                           const std::vector<Vec3d>& velocity, const std::vector<Vec3d>& spin) {
+  out.resize(velocity.size());
+  for (std::size_t w = 0; w < out.size(); ++w) out[w] = wall_load(&sums[6 * w], velocity[w], spin[w]);
+}
 
 struct Walls {
   std::vector<Wall> list;
-  bool rotation_enabled = true;  // off while a fill settles
-  // Sets every wall's current geometry for time t (angle omega t, or 0 when rotation is off).
-  void place(double t);
+  bool rotation_enabled = true;  // rotation and translation: off while a fill settles
+  WallLoads loads;               // of the analytic walls
+  // Sets every wall's current geometry for time t (angle omega t and offset d(t), or none when
+  // motion is off), and its translational velocity for time t - lag: the contact laws see the
+  // grains' velocities of the half-step (kick, drift, forces, kick), half a step before their
+  // positions, and a vibrating wall's velocity taken at the positions' time instead adds a damping
+  // force of c a dt / 2 in phase with its acceleration (1.9 % of a grain's weight on a floor at
+  // Gamma = 1 with seed 000's springs and dt = 1e-5 s; wall_motion_test).
+  void place(double t, double lag = 0.0);
   double angle(std::size_t w, double t) const { return rotation_enabled ? list[w].omega * t : 0.0; }
 };
 
