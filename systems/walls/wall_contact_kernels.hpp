@@ -270,7 +270,12 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         const V wall_o{B(wall.cur_origin.x), B(wall.cur_origin.y), B(wall.cur_origin.z)};
         // The wall's translation enters as the grains' velocity relative to it.
         const V wall_v{B(wall.cur_velocity.x), B(wall.cur_velocity.y), B(wall.cur_velocity.z)};
-        double* load = &block_load[(blk * nw + w) * 6];
+        // The wall's force and moment on the block's rows (walls.hpp), summed lane-wise over the
+        // batches, padding lanes left out, and across the lanes after.
+        V fsum{B(0.0), B(0.0), B(0.0)}, msum{B(0.0), B(0.0), B(0.0)};
+        alignas(64) double lane_index[L];
+        for (std::size_t l = 0; l < L; ++l) lane_index[l] = static_cast<double>(l);
+        const B lanes = B::load_aligned(lane_index);
         for (std::size_t q = 0; q < m; q += L) {
           const std::int32_t* idx = &rows[q];
           // The springs and velocities of the packed rows are read nowhere else this step, so they
@@ -319,6 +324,14 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
           for (std::size_t k = 0; k < H; ++k) s[k] = gather32(hbase + k, at);
           const ContactForce<B> res = Law::evaluate(touching, sc.g, c, B(dt), s);
           const V t = sc.li * cross(n, res.force_t) + res.torque_i;
+          {
+            const auto live = lanes < B(static_cast<double>(std::min(L, m - q)));
+            const V mo = cross(p - wall_o, res.force) + t;
+            fsum = fsum + V{xsimd::select(live, res.force.x, B(0.0)), xsimd::select(live, res.force.y, B(0.0)),
+                            xsimd::select(live, res.force.z, B(0.0))};
+            msum = msum + V{xsimd::select(live, mo.x, B(0.0)), xsimd::select(live, mo.y, B(0.0)),
+                            xsimd::select(live, mo.z, B(0.0))};
+          }
           // Lanes back to their rows (rows are distinct within one wall's list).
           constexpr std::size_t F = H + 6;
           alignas(64) double out[F][L];
@@ -336,19 +349,15 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
             g.wall_force.y[i] += out[H + 1][l];
             g.wall_force.z[i] += out[H + 2][l];
             act[i] = static_cast<std::uint8_t>((now >> l) & 1u);
-            {
-              const Vec3d fi{out[H][l], out[H + 1][l], out[H + 2][l]};
-              const Vec3d mi = cross(Vec3d{g.pos.x[i], g.pos.y[i], g.pos.z[i]} - wall.cur_origin, fi) +
-                               Vec3d{out[H + 3][l], out[H + 4][l], out[H + 5][l]};
-              load[0] += fi.x, load[1] += fi.y, load[2] += fi.z;
-              load[3] += mi.x, load[4] += mi.y, load[5] += mi.z;
-            }
             if (!spin) continue;
             g.wall_torque.x[i] += out[H + 3][l];
             g.wall_torque.y[i] += out[H + 4][l];
             g.wall_torque.z[i] += out[H + 5][l];
           }
         }
+        double* load = &block_load[(blk * nw + w) * 6];
+        const B sums[6] = {fsum.x, fsum.y, fsum.z, msum.x, msum.y, msum.z};
+        for (std::size_t k = 0; k < 6; ++k) load[k] += xsimd::hadd(sums[k]);
       }
       block_over[blk] = over != 0;
     });
