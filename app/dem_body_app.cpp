@@ -71,17 +71,34 @@ BodyFrameLabels frame_labels(const BodiesSpec& b) {
   return l;
 }
 
-// The pictures' colours per body row and the legend for the PNG's Comment entry.
-std::vector<Rgb> picture_colours(const DemScene& s, const std::vector<int>& layers, std::string& legend) {
+// The pictures' colours per body row, the legend for the PNG's Comment entry and the legend band's
+// swatches (picture_legend.hpp).
+std::vector<Rgb> picture_colours(const DemScene& s, const std::vector<int>& layers, std::string& legend,
+                                 std::vector<PictureLegend::Entry>& entries) {
   const BodiesSpec& b = *s.bodies;
+  const BodyOutputSpec& o = b.output;
   std::vector<Rgb> c(b.placed.size());
-  for (std::size_t i = 0; i < c.size(); ++i)
-    c[i] = b.output.colour_by_layer ? layer_colour(std::max(layers[i], 0)) : group_colour(b.placed[i].group);
-  legend = b.output.colour_by_layer
+  std::vector<bool> seen(std::max<std::size_t>(b.shapes.size(), 64), false);
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const BodyPlacement& p = b.placed[i];
+    c[i] = o.colour_by_layer ? layer_colour(std::max(layers[i], 0))
+                             : group_colour(o.colour_by_shape ? static_cast<int>(p.shape) : p.group);
+    const std::size_t key = o.colour_by_shape ? p.shape : static_cast<std::size_t>(p.group);
+    if (o.colour_by_layer || p.fixed || key >= seen.size() || seen[key]) continue;
+    seen[key] = true;
+    entries.push_back({o.colour_by_shape ? b.shapes[p.shape].name : "group " + std::to_string(p.group), c[i]});
+  }
+  if (o.colour_by_layer)
+    entries = {{"layers 1, 3, 5 (lowest first)", layer_colour(0)}, {"layers 2, 4", layer_colour(1)}};
+  if (std::any_of(b.placed.begin(), b.placed.end(), [](const BodyPlacement& p) { return p.fixed; }))
+    entries.push_back({"fixed", kFixedGrey});
+  legend = o.colour_by_layer
                ? "five layers of equal counts by height at t = 0, lowest first: blue #0072B2, vermillion #D55E00, "
                  "blue, vermillion, blue; fixed bodies grey"
-               : "by [[bodies]] group, Okabe-Ito palette from group 0: blue, vermillion, bluish green, orange, "
-                 "reddish purple, sky blue, yellow; fixed bodies grey";
+               : (o.colour_by_shape ? "by shape, Okabe-Ito palette from the first [[shape]]"
+                                    : "by [[bodies]] group, Okabe-Ito palette from group 0")
+                     + std::string(": blue, vermillion, bluish green, orange, reddish purple, sky blue, yellow; "
+                                   "fixed bodies grey");
   return c;
 }
 
@@ -329,9 +346,10 @@ void BodyModel::observe(Schedule& observers, const std::filesystem::path& out, c
     frames_ = &observers.emplace<BodyFrameOutput>(out, s_.output.frame_interval, frame_labels(*s_.bodies), layers);
   if (bo.picture_interval > 0) {
     std::string legend;
-    std::vector<Rgb> colours = picture_colours(s_, layers, legend);
+    std::vector<PictureLegend::Entry> entries;
+    std::vector<Rgb> colours = picture_colours(s_, layers, legend, entries);
     pictures_ = &observers.emplace<BodyPictureOutput>(out / "pictures", bo.picture_interval, view, std::move(colours),
-                                                      std::move(legend));
+                                                      std::move(legend), std::move(entries));
   }
   std::vector<const Checkpointable*> parts{series_};
   if (frames_) parts.push_back(frames_);

@@ -2,6 +2,7 @@
 // places (disc centres, outside the drum, the outline); the projection and draw order; and the
 // observer that draws them at requested rotation angles in a real run.
 #include "systems/output/drum_picture.hpp"
+#include "systems/output/picture_legend.hpp"
 
 #include <png.h>
 
@@ -290,7 +291,7 @@ TEST_CASE("picture: a run draws each requested angle once it is reached, and rep
     CHECK_FALSE(fs::exists(out / "pictures" / "angle_05.00.png"));  // 5 rad is never reached
     const Png img = read_png(out / "pictures" / "angle_00.01.png");
     CHECK(img.width == 64);
-    CHECK(img.height == 64);
+    CHECK(img.height == 64 + gf::legend_band_height(64));  // the legend band below the drum
     CHECK(img.at(0, 0) == Rgb{255, 255, 255});
     const auto summary = nlohmann::json::parse(gf::test::read_file(out / "summary.json"));
     CHECK(summary.at("pictures") == 2);

@@ -13,7 +13,7 @@ repo=$(git -C "$(dirname "$0")/.." rev-parse --show-toplevel)
 work=$(mktemp -d /tmp/grainflow-fresh-XXXXXX)
 if [ "${2:-}" = "--purge" ]; then
   DEBIAN_FRONTEND=noninteractive apt-get remove -y -qq libeigen3-dev libxsimd-dev xtl-dev libtbb-dev \
-    libtomlplusplus-dev nlohmann-json3-dev libpng-dev libccd-dev libcli11-dev libbenchmark-dev catch2 libopenmpi-dev \
+    libtomlplusplus-dev nlohmann-json3-dev libpng-dev libcairo2-dev libccd-dev libcli11-dev libbenchmark-dev catch2 libopenmpi-dev \
     openmpi-bin python3-matplotlib python3-numpy >/dev/null
   DEBIAN_FRONTEND=noninteractive apt-get autoremove -y -qq >/dev/null
 fi

@@ -199,8 +199,13 @@ void BodyFrameOutput::write(const Bodies& b, double t) {
 // ---- Pictures ------------------------------------------------------------------------------------
 
 BodyPictureOutput::BodyPictureOutput(std::filesystem::path dir, double interval, BodyView view, std::vector<Rgb> colour,
-                                     std::string legend)
-    : dir_(std::move(dir)), interval_(interval), view_(view), colour_(std::move(colour)), legend_(std::move(legend)) {
+                                     std::string legend, std::vector<PictureLegend::Entry> entries)
+    : dir_(std::move(dir)),
+      interval_(interval),
+      view_(view),
+      colour_(std::move(colour)),
+      legend_(std::move(legend)),
+      entries_(std::move(entries)) {
   ensure_directory(dir_);
 }
 
@@ -217,7 +222,12 @@ void BodyPictureOutput::run(World& world, const StepContext& now) {
   if (!sample_due(now.t, next_, now.dt)) return;
   const double target = next_;
   next_ = next_sample(now.t, next_, interval_, now.dt);
-  const Image img = render_body_picture(world.tables.get<Bodies>(), world.tables.get<Members>(), colour_, view_);
+  PictureLegend band;
+  band.time = now.t;
+  band.entries = entries_;
+  band.px_per_m = view_.size / std::max(view_.hi[view_.right] - view_.lo[view_.right], view_.hi[view_.up] - view_.lo[view_.up]);
+  const Image img =
+      annotate_picture(render_body_picture(world.tables.get<Bodies>(), world.tables.get<Members>(), colour_, view_), band);
   last_ = dir_ / body_picture_name(target);
   char when[64];
   std::snprintf(when, sizeof when, "t = %.6g s", now.t);

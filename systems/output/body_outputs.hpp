@@ -35,6 +35,7 @@
 #include "systems/bodies/body_contact.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/output/body_picture.hpp"
+#include "systems/output/picture_legend.hpp"
 #include "systems/output/series_csv.hpp"
 
 namespace gf {
@@ -136,8 +137,9 @@ class BodyPictureOutput : public SystemBase<BodyPictureOutput>, public Checkpoin
                           MemberCentre, CoreVertices>;
   using Writes = gf::Writes<BodyPictureFiles>;
   // colour[i]: body row i's colour; `legend` goes to the PNG's Comment entry.
+  // `entries`: the legend band's swatches (picture_legend.hpp), drawn with the time and a scale bar.
   BodyPictureOutput(std::filesystem::path dir, double interval, BodyView view, std::vector<Rgb> colour,
-                    std::string legend);
+                    std::string legend, std::vector<PictureLegend::Entry> entries = {});
   std::string_view name() const override { return "body_picture_output"; }
   void run(World& world, const StepContext& now) override;
   std::size_t pictures() const { return written_; }
@@ -151,6 +153,7 @@ class BodyPictureOutput : public SystemBase<BodyPictureOutput>, public Checkpoin
   BodyView view_;
   std::vector<Rgb> colour_;
   std::string legend_;
+  std::vector<PictureLegend::Entry> entries_;
   double next_ = 0;
   std::size_t written_ = 0;
   std::filesystem::path last_;

@@ -24,7 +24,7 @@ constexpr std::array<Rgb, 7> kGroups{{{0, 114, 178},
                                       {204, 121, 167},
                                       {86, 180, 233},
                                       {240, 228, 66}}};
-constexpr Rgb kFixed{150, 150, 150};
+constexpr Rgb kFixed = kFixedGrey;
 
 struct P2 {
   double x, y;

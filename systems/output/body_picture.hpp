@@ -40,6 +40,7 @@ BodyView body_view(const Bodies& bodies, const Members& members, int view_axis, 
 // sky blue, yellow, cycling), layers alternately blue and vermillion (the seed's hopper: 3 blue and 2
 // red layers of five), fixed bodies grey.
 Rgb group_colour(int group);
+inline constexpr Rgb kFixedGrey{150, 150, 150};
 Rgb layer_colour(int layer);
 
 // Renders the bodies; colour[i] is body row i's colour (ignored for fixed bodies). Throws

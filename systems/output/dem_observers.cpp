@@ -295,6 +295,25 @@ std::optional<double> PictureOutput::due(const Walls& walls, const StepContext& 
   return angle;
 }
 
+PictureLegend PictureOutput::legend(const Walls& walls, std::size_t drum, const DrumSection& section, double t) const {
+  PictureLegend l;
+  l.time = t;
+  l.angle = rotation_angle(walls, t);
+  const Wall& w = walls.list[drum];
+  const double spin = w.omega * dot(w.rot_axis, section.axis);  // about the axis pointing at the viewer
+  l.omega = std::abs(w.omega);
+  l.turning = spin > 0.0 ? 1 : (spin < 0.0 ? -1 : 0);
+  l.px_per_m = picture_scale(section, s_.options.size).px_per_m;
+  if (s_.options.colour == PictureOptions::Colour::Speed) {
+    l.bar_max = s_.options.speed_max;
+    l.bar_unit = "m/s (speed)";
+  } else {
+    for (std::size_t k = 0; k < s_.species_labels.size() && k < s_.options.palette.size(); ++k)
+      l.entries.push_back({s_.species_labels[k], s_.options.palette[k]});
+  }
+  return l;
+}
+
 void PictureOutput::draw(const Grains& g, const Walls& walls, const Gravity& gr, const StepContext& now, double angle,
                          bool write) {
   if (!write) {
@@ -313,7 +332,8 @@ void PictureOutput::draw(const Grains& g, const Walls& walls, const Gravity& gr,
       speed_[i] = std::sqrt(g.vel.x[i] * g.vel.x[i] + g.vel.y[i] * g.vel.y[i] + g.vel.z[i] * g.vel.z[i]);
     pg.speed = speed_;
   }
-  const Image img = render_drum_picture(pg, drum_section(walls.list[*drum], {gr.x, gr.y, gr.z}), s_.options);
+  const DrumSection section = drum_section(walls.list[*drum], {gr.x, gr.y, gr.z});
+  const Image img = annotate_picture(render_drum_picture(pg, section, s_.options), legend(walls, *drum, section, t));
   ensure_directory(s_.dir);
   char title[160];
   std::snprintf(title, sizeof title,

@@ -23,6 +23,7 @@
 #include "systems/flow/flow_systems.hpp"
 #include "systems/integrate/integrate.hpp"
 #include "systems/output/drum_picture.hpp"
+#include "systems/output/picture_legend.hpp"
 #include "systems/output/series_csv.hpp"
 #include "systems/output/wall_loads_csv.hpp"
 #include "systems/output/wall_surfaces.hpp"
@@ -162,6 +163,7 @@ struct PictureSettings {
   double interval = 0;          // rad, 0 = none
   PictureOptions options;
   std::string legend;           // species colours, for the PNG's Comment entry
+  std::vector<std::string> species_labels;  // the legend's: name and diameter, per species
 };
 
 // Draws the drum (the first rotating inner cylinder, else the first one) when the rotation angle of
@@ -183,6 +185,8 @@ class PictureOutput : public SystemBase<PictureOutput>, public Checkpointable {
   void draw(const Grains& g, const Walls& walls, const Gravity& gravity, const StepContext& now, double angle,
             bool write = true);
   std::size_t pictures() const { return written_; }
+  // The picture's legend at time t (picture_legend.hpp): time, angle, turning, scale, colours.
+  PictureLegend legend(const Walls& walls, std::size_t drum, const DrumSection& section, double t) const;
   // The file this run drew last (empty if it drew none).
   const std::filesystem::path& last_picture() const { return last_; }
   void save(CheckpointWriter& out) const override;

@@ -97,9 +97,9 @@ const Field kBodyOutput[] = {
     {"picture_interval", "s", kTime, "and either 0, or ≥ `run.dt` and ≥ 1e-4", 0.0, "0 (none)",
      "a side view every interval, `pictures/time_SSSS.SSSS.png`"},
     {"picture_size", "px", {16, 8192, false, false}, "(integers)", 800, "", "the picture's longer side"},
-    {"picture_colour", "", kAnyNumber, "`\"group\"`, `\"layer\"`", kNoDefault, "`\"group\"`",
-     "colour by group, or by five layers of equal counts by height at the start of the main stage (blue and "
-     "vermillion, as the seed's hopper)"},
+    {"picture_colour", "", kAnyNumber, "`\"group\"`, `\"layer\"`, `\"shape\"`", kNoDefault, "`\"group\"`",
+     "colour by group, by five layers of equal counts by height at the start of the main stage (blue and "
+     "vermillion, as the seed's hopper), or by shape; the legend below the picture names the colours"},
     {"picture_view", "", kAnyNumber, "`\"z\"`, `\"x\"`", kNoDefault, "`\"z\"`",
      "look along -z (x to the right) or along +x (z to the right)"},
     {"frame_force", "", kAnyNumber, "false", kNoDefault, "false", "body frames hold no forces; true is refused"},

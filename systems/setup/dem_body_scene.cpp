@@ -141,7 +141,7 @@ void read_body_output(const DemScene& s, const SceneNode& out, BodyOutputSpec& o
   for (const Field* f : {&output_field("picture_angles"), &output_field("picture_speed_max")})
     if (out.has(f->key))
       out.fail(f->key, "body pictures are drawn at times, not at drum angles, and coloured by group or layer",
-               "remove it; use picture_interval (s) and picture_colour = \"group\" or \"layer\"");
+               "remove it; use picture_interval (s) and picture_colour = \"group\", \"layer\" or \"shape\"");
   const Field& interval = output_field("picture_interval");
   o.picture_interval = read_number(out, interval);
   if (o.picture_interval > 0 && o.picture_interval < s.dt)
@@ -150,7 +150,9 @@ void read_body_output(const DemScene& s, const SceneNode& out, BodyOutputSpec& o
     out.fail(interval.key, "pictures closer than 1e-4 s would share file names (four decimals)",
              "use an interval of at least 1e-4 s, or 0 for none");
   o.picture_size = static_cast<int>(read_integer(out, output_field("picture_size")));
-  o.colour_by_layer = read_choice(out, output_field("picture_colour"), {"group", "layer"}) == "layer";
+  const std::string colour = read_choice(out, output_field("picture_colour"), {"group", "layer", "shape"});
+  o.colour_by_layer = colour == "layer";
+  o.colour_by_shape = colour == "shape";
   o.view_axis = read_choice(out, output_field("picture_view"), {"z", "x"}) == "z" ? 2 : 0;
   const Field& force = output_field("frame_force");
   if (read_bool(out, force)) out.fail(force.key, "body frames hold no forces", "remove frame_force, or set it false");

@@ -92,7 +92,8 @@ struct BodyPlacement {
 struct BodyOutputSpec {
   double picture_interval = 0;  // s, 0 = none
   int picture_size = 800;       // px, the longer side
-  bool colour_by_layer = false;  // else by group
+  bool colour_by_layer = false;  // else by group (or by shape)
+  bool colour_by_shape = false;
   int view_axis = 2;            // the axis looked along: 2 (z, x to the right) or 0 (x, z to the right)
   bool has_outlet = false;
   double outlet_height = 0;     // m along -gravity

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "systems/output/picture_legend.hpp"
+
 namespace gf {
 
 SeriesSettings scene_series_settings(const DemScene& s, const std::filesystem::path& out) {
@@ -36,6 +38,7 @@ PictureSettings scene_picture_settings(const DemScene& s, const std::filesystem:
     const Rgb& c = ps.options.palette[k];
     std::snprintf(hex, sizeof hex, "#%02X%02X%02X", c[0], c[1], c[2]);
     ps.legend += (k ? ", " : "") + s.species[k].name + " " + hex;
+    ps.species_labels.push_back(s.species[k].name + ", " + length_label(s.species[k].diameter));
   }
   return ps;
 }
