@@ -24,7 +24,7 @@ LAYERS = "time,distance,vc,lacey,fraction_a,cells,grains\n19.5,0.025,0.42,0.93,0
 # The two grains of the frame, as grainflow's writer lays them out (systems/output/vtk_frames.cpp).
 POINTS = [(0.1, 0.2, 0.3), (-0.1, -0.2, -0.3)]
 IDS = [7, 9]
-TYPES = [1, 2]
+SPECIES = [0, 1]  # 0-based, as the frames write them
 RADII = [0.001, 0.002]
 VELOCITY = [(0.0, 0.0, -1.0), (1e-3, 0.0, 0.0)]
 
@@ -32,7 +32,7 @@ VELOCITY = [(0.0, 0.0, -1.0), (1e-3, 0.0, 0.0)]
 def vtp_bytes():
     arrays = []  # (section, VTK type, name, components, struct code, values)
     arrays.append(("PointData", "Int64", "id", 1, "q", IDS))
-    arrays.append(("PointData", "Int32", "type", 1, "i", TYPES))
+    arrays.append(("PointData", "Int32", "species", 1, "i", SPECIES))
     arrays.append(("PointData", "Float64", "radius", 1, "d", RADII))
     arrays.append(("PointData", "Float64", "velocity", 3, "d", [c for v in VELOCITY for c in v]))
     arrays.append(("Points", "Float64", "Points", 3, "d", [c for p in POINTS for c in p]))

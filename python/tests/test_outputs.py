@@ -111,11 +111,11 @@ class RunFolderTest(unittest.TestCase):
     def test_read_frame(self):
         points, data = read_frame(self.run.frames()[0][1])
         np.testing.assert_array_equal(points, helpers.POINTS)
-        self.assertEqual(sorted(data), ["id", "radius", "type", "velocity"])  # no Points, no Verts arrays
+        self.assertEqual(sorted(data), ["id", "radius", "species", "velocity"])  # no Points, no Verts arrays
         self.assertEqual(data["id"].dtype, np.int64)
         self.assertEqual(data["id"].tolist(), helpers.IDS)
-        self.assertEqual(data["type"].dtype, np.int32)
-        self.assertEqual(data["type"].tolist(), helpers.TYPES)
+        self.assertEqual(data["species"].dtype, np.int32)
+        self.assertEqual(data["species"].tolist(), helpers.SPECIES)
         np.testing.assert_array_equal(data["radius"], helpers.RADII)
         self.assertEqual(data["velocity"].shape, (2, 3))
         np.testing.assert_array_equal(data["velocity"], helpers.VELOCITY)

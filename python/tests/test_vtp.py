@@ -21,7 +21,7 @@ class VtpTest(unittest.TestCase):
             a = read_vtp(path)
         self.assertEqual(a["Points"], helpers.POINTS)
         self.assertEqual(a["id"], helpers.IDS)
-        self.assertEqual(a["type"], helpers.TYPES)
+        self.assertEqual(a["species"], helpers.SPECIES)
         self.assertEqual(a["radius"], helpers.RADII)
         self.assertEqual(a["velocity"], helpers.VELOCITY)
         self.assertEqual(a["connectivity"], [0, 1])
