@@ -13,17 +13,20 @@ import csv
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from grainflow.outputs import Run  # noqa: E402
 
-def letter_row(series, start):
-    with open(series, newline="") as f:
-        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-    after = [r for r in rows if r["time"] >= start - 1e-9]
-    if not after:
+
+def letter_row(folder, start):
+    s = Run(folder).series
+    after = s["time"] >= start - 1e-9
+    if not after.any():
         return None
-    ke = [r["ke_translational"] + r["ke_rotational"] for r in after]
-    top = max(range(len(ke)), key=ke.__getitem__)
-    return {"ke_at_start_J": ke[0], "max_ke_after_J": ke[top], "time_of_max_s": after[top]["time"],
-            "ke_last_J": ke[-1], "last_s": after[-1]["time"]}
+    t = s["time"][after]
+    ke = (s["ke_translational"] + s["ke_rotational"])[after]
+    top = int(ke.argmax())
+    return {"ke_at_start_J": float(ke[0]), "max_ke_after_J": float(ke[top]), "time_of_max_s": float(t[top]),
+            "ke_last_J": float(ke[-1]), "last_s": float(t[-1])}
 
 
 def main():
@@ -34,9 +37,9 @@ def main():
     a = ap.parse_args()
     out = []
     for letter in "OTZKAC":
-        path = os.path.join(a.runs, letter, "series.csv")
-        if os.path.exists(path):
-            r = letter_row(path, a.start)
+        folder = os.path.join(a.runs, letter)
+        if os.path.exists(os.path.join(folder, "series.csv")):
+            r = letter_row(folder, a.start)
             if r:
                 out.append({"letter": letter, "from_s": a.start} | r)
     if not out:

@@ -10,18 +10,19 @@ and 2.4 s).
     /usr/bin/python3 studies/seed002/remaining_fraction.py runs/hopper_prisms [more runs] -o chart.png
 """
 import argparse
-import csv
 import pathlib
 import sys
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "python"))
+from grainflow.outputs import Run  # noqa: E402
+
 
 def read_series(run):
-    path = pathlib.Path(run) / "series.csv"
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    if not rows or "remaining_fraction" not in rows[0]:
-        sys.exit(f"{path}: no remaining_fraction column (give the scene [analysis] outlet_height)")
-    return [float(r["time"]) for r in rows], [float(r["remaining_fraction"]) for r in rows]
+    s = Run(run).series
+    if len(s["time"]) == 0 or "remaining_fraction" not in s:
+        sys.exit(f"{pathlib.Path(run) / 'series.csv'}: no remaining_fraction column (give the scene [analysis] "
+                 "outlet_height)")
+    return s["time"].tolist(), s["remaining_fraction"].tolist()
 
 
 def first_below(t, f, level):
