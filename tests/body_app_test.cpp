@@ -161,6 +161,24 @@ TEST_CASE("body scene: check and run through the command line write series, fram
   CHECK(split(f4[3])[4] == "removed");
   CHECK(split(f0[4])[1] == "cube");
   CHECK(split(f0[4])[2] == "1");
+  // The same frames for ParaView: a cell per member (each box one hull of 8 corners), removed bodies (the gate,
+  // the cubes in the sink) left out.
+  const std::string pvd = gf::test::read_file(out / "bodies.pvd");
+  std::size_t entries = 0;
+  for (std::size_t at = pvd.find("<DataSet"); at != std::string::npos; at = pvd.find("<DataSet", at + 1)) ++entries;
+  CHECK(entries == 5);
+  const std::string v0 = gf::test::read_file(out / "bodies" / "bodies_000000.vtu");
+  const std::string v4 = gf::test::read_file(out / "bodies" / "bodies_000004.vtu");
+  CHECK_THAT(v0, Catch::Contains("NumberOfPoints=\"88\" NumberOfCells=\"11\""));
+  int kept = 0;
+  for (std::size_t k = 1; k < f4.size(); ++k) kept += split(f4[k])[4] != "removed";
+  CHECK_THAT(v4, Catch::Contains("NumberOfPoints=\"" + std::to_string(8 * kept) + "\" NumberOfCells=\"" +
+                                 std::to_string(kept) + "\""));
+  CHECK_THAT(v0, Catch::Contains("Name=\"radius\""));
+  // The four fixed planes, drawn across the bodies' box, in one file listed at every frame.
+  CHECK(std::filesystem::exists(out / "walls" / "walls_000000.vtp"));
+  CHECK_FALSE(std::filesystem::exists(out / "walls" / "walls_000001.vtp"));
+  CHECK_THAT(gf::test::read_file(out / "walls" / "walls_000000.vtp"), Catch::Contains("NumberOfPolys=\"8\""));
   const auto q = split(f0[4]);
   const double qn = std::hypot(std::hypot(std::stod(q[8]), std::stod(q[9])), std::hypot(std::stod(q[10]), std::stod(q[11])));
   CHECK(std::abs(qn - 1.0) < 1e-12);

@@ -10,6 +10,7 @@
 
 #include "systems/output/sample_grid.hpp"
 #include "engine/atomic_file.hpp"
+#include "systems/output/body_vtu.hpp"
 
 namespace gf {
 
@@ -139,7 +140,11 @@ void BodySeriesOutput::sample(World& world, double t) {
 
 BodyFrameOutput::BodyFrameOutput(std::filesystem::path out_dir, double interval, BodyFrameLabels labels,
                                  std::vector<int> layers)
-    : dir_(out_dir / "frames"), interval_(interval), labels_(std::move(labels)), layers_(std::move(layers)) {
+    : dir_(out_dir / "frames"),
+      vtu_(out_dir, "bodies", "bodies", false, ".vtu"),
+      interval_(interval),
+      labels_(std::move(labels)),
+      layers_(std::move(layers)) {
   ensure_directory(dir_);
 }
 
@@ -150,20 +155,40 @@ void BodyFrameOutput::save(CheckpointWriter& out) const {
 void BodyFrameOutput::restore(const CheckpointReader& in) {
   next_ = in.value<double>("body_frame_output.next");
   in.vector("body_frame_output.times", times_);
+  vtu_.resume(times_);
 }
 
 void BodyFrameOutput::run(World& world, const StepContext& now) {
   if (!sample_due(now.t, next_, now.dt)) return;
   next_ = next_sample(now.t, next_, interval_, now.dt);
-  write(world.tables.get<Bodies>(), now.t);
+  write(world, now.t);
 }
 
 void BodyFrameOutput::finish(World& world) {
   if (!times_.empty() && times_.back() == world.clock.t) return;
-  write(world.tables.get<Bodies>(), world.clock.t);
+  write(world, world.clock.t);
 }
 
-void BodyFrameOutput::write(const Bodies& b, double t) {
+// The walls at the frame's time, beside the bodies (one file when none moves).
+void BodyFrameOutput::write_walls(World& world, double t) {
+  const Walls* walls = world.resources.find<Walls>();
+  if (!walls_checked_) {
+    walls_checked_ = true;
+    if (walls == nullptr || walls->list.empty()) return;
+    const Bodies& b = world.tables.get<Bodies>();
+    std::vector<Vec3d> centres(b.n);
+    for (std::size_t i = 0; i < b.n; ++i) centres[i] = {b.pos.x[i], b.pos.y[i], b.pos.z[i]};
+    box_ = scene_box(centres, *walls, nullptr);
+    walls_ = std::make_unique<FrameSeries>(dir_.parent_path(), "walls", "walls", !walls_move(*walls, nullptr));
+    if (times_.size() > 0) walls_->resume(times_);
+  }
+  if (walls_) walls_->write_with(t, [&] { return wall_surface_vtp(wall_surface(*walls, nullptr, t, box_)); });
+}
+
+void BodyFrameOutput::write(World& world, double t) {
+  const Bodies& b = world.tables.get<Bodies>();
+  vtu_.write_with(t, [&] { return body_vtu_bytes(b, world.tables.get<Members>(), labels_.shape, labels_.group); });
+  write_walls(world, t);
   char name[32];
   std::snprintf(name, sizeof name, "frame_%06zu.csv", times_.size());
   std::string text = "id,shape,group,layer,motion,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";

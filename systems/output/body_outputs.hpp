@@ -17,7 +17,8 @@
 //   id, shape (the [[shape]] name), group, layer (-1 for bodies not moving at the start), motion
 //   (moving, fixed, removed), x, y, z (m, centre of mass), qw, qx, qy, qz (the unit quaternion that
 //   takes the [[shape]]'s own frame to the world, as a scene places shapes), vx, vy, vz (m/s),
-//   wx, wy, wz (rad/s, world frame); frames/frames.csv lists frame, time and file.
+//   wx, wy, wz (rad/s, world frame); frames/frames.csv lists frame, time and file. At the same times,
+//   bodies/bodies_NNNNNN.vtu (listed by bodies.pvd) holds the members for ParaView (body_vtu.hpp).
 #pragma once
 
 #include <filesystem>
@@ -37,6 +38,8 @@
 #include "systems/output/body_picture.hpp"
 #include "systems/output/picture_legend.hpp"
 #include "systems/output/series_csv.hpp"
+#include "systems/output/vtk_frames.hpp"
+#include "systems/output/wall_surfaces.hpp"
 
 namespace gf {
 
@@ -106,7 +109,8 @@ struct BodyFrameFiles {};
 
 class BodyFrameOutput : public SystemBase<BodyFrameOutput>, public Checkpointable {
  public:
-  using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMotion>;
+  using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMotion, MemberBody,
+                          MemberCore, MemberDilation, CoreVertices, Walls>;
   using Writes = gf::Writes<BodyFrameFiles>;
   // `labels` gives the shapes' names and frames; `layers` per body row.
   BodyFrameOutput(std::filesystem::path out_dir, double interval, BodyFrameLabels labels, std::vector<int> layers);
@@ -119,8 +123,14 @@ class BodyFrameOutput : public SystemBase<BodyFrameOutput>, public Checkpointabl
   void restore(const CheckpointReader& in) override;
 
  private:
-  void write(const Bodies& b, double t);
+  void write(World& world, double t);
+  void write_walls(World& world, double t);
   std::filesystem::path dir_;
+  FrameSeries vtu_;  // bodies.pvd and bodies/bodies_NNNNNN.vtu (body_vtu.hpp), at the same times
+  // walls.pvd (wall_surfaces.hpp): opened at the first frame of a scene with walls.
+  std::unique_ptr<FrameSeries> walls_;
+  bool walls_checked_ = false;
+  SceneBox box_;
   double interval_;
   BodyFrameLabels labels_;
   std::vector<int> layers_;

@@ -24,6 +24,8 @@ template <>
 constexpr const char* vtk_type<std::int64_t>() { return "Int64"; }
 template <>
 constexpr const char* vtk_type<std::int32_t>() { return "Int32"; }
+template <>
+constexpr const char* vtk_type<std::uint8_t>() { return "UInt8"; }
 
 // Shortest text that reads back as the same double, so .pvd times are exact.
 inline std::string shortest(double v) {

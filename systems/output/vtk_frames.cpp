@@ -96,8 +96,13 @@ std::string vtp_bytes(const Grains& g, const FrameFields& fields, std::span<cons
   return xml;
 }
 
-FrameSeries::FrameSeries(std::filesystem::path out_dir, std::string name, std::string stem, bool one_file)
-    : dir_(std::move(out_dir)), name_(std::move(name)), stem_(std::move(stem)), one_file_(one_file) {
+FrameSeries::FrameSeries(std::filesystem::path out_dir, std::string name, std::string stem, bool one_file,
+                         std::string extension)
+    : dir_(std::move(out_dir)),
+      name_(std::move(name)),
+      stem_(std::move(stem)),
+      extension_(std::move(extension)),
+      one_file_(one_file) {
   ensure_directory(dir_ / name_);
 }
 
@@ -131,8 +136,8 @@ std::string FrameSeries::frame_name(std::size_t index) const {
   // Six digits sort correctly in file browsers up to a million frames; past that the name
   // simply grows a digit and stays unique.
   char name[40];
-  std::snprintf(name, sizeof name, "_%06zu.vtp", one_file_ ? std::size_t{0} : index);
-  return name_ + "/" + stem_ + name;
+  std::snprintf(name, sizeof name, "_%06zu", one_file_ ? std::size_t{0} : index);
+  return name_ + "/" + stem_ + name + extension_;
 }
 
 std::vector<double> FrameSeries::times() const {

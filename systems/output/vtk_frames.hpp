@@ -42,10 +42,10 @@ class FrameSeries {
  public:
   // Creates `out_dir/frames`. A run writing into an old run's folder replaces its .pvd with one
   // listing only this run's frames. Another series names its folder, .pvd and files after `name`
-  // and `stem` (walls/walls_NNNNNN.vtp in walls.pvd); with `one_file` every entry lists the first
-  // file (a surface that does not move).
+  // and `stem` (walls/walls_NNNNNN.vtp in walls.pvd) and its files' `extension` (.vtu for other
+  // datasets); with `one_file` every entry lists the first file (a surface that does not move).
   explicit FrameSeries(std::filesystem::path out_dir, std::string name = "frames", std::string stem = "frame",
-                       bool one_file = false);
+                       bool one_file = false, std::string extension = ".vtp");
 
   // Writes the next frame at simulated time `time` (s); returns the frame's path.
   // Throws std::invalid_argument for a non-finite time, std::runtime_error on I/O failure.
@@ -75,7 +75,7 @@ class FrameSeries {
   std::string pvd_bytes() const;
 
   std::filesystem::path dir_;
-  std::string name_, stem_;
+  std::string name_, stem_, extension_;
   bool one_file_ = false;
   std::vector<Entry> frames_;
 };

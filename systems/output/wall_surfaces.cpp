@@ -109,10 +109,18 @@ RigidPlacement mesh_placement(const MeshWall& m, double t, bool enabled) {
 }  // namespace
 
 SceneBox scene_box(const Grains& g, const Walls& walls, const MeshWalls* meshes) {
+  std::vector<Vec3d> points(g.n_owned);
+  for (std::size_t i = 0; i < g.n_owned; ++i) points[i] = {g.pos.x[i], g.pos.y[i], g.pos.z[i]};
+  return scene_box(points, walls, meshes);
+}
+
+SceneBox scene_box(const std::vector<Vec3d>& points, const Walls& walls, const MeshWalls* meshes) {
   SceneBox b{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
-  for (std::size_t i = 0; i < g.n_owned; ++i) grow_box(b, {g.pos.x[i], g.pos.y[i], g.pos.z[i]});
+  for (const Vec3d& p : points) grow_box(b, p);
   for (const Wall& w : walls.list) {
     for (const Vec3d& p : w.outline) grow_box(b, p);
+    // An unbounded plane: its point, so that the box reaches the plane (a container's side).
+    if (w.kind == Wall::Kind::Plane && w.outline.empty()) grow_box(b, w.point);
     if (w.kind == Wall::Kind::CylinderInner && w.length > 0.0)
       for (const double s : {-0.5, 0.5})
         for (const double r : {-1.0, 1.0}) {

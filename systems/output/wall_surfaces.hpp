@@ -28,8 +28,11 @@ struct WallSurface {
 };
 
 // The box the unbounded walls are drawn across: the grains' bounding box, the finite walls (outlines,
-// drums, meshes) at their reference place, grown by a tenth of its largest side on every side.
+// drums, meshes) and a point of each unbounded plane at their reference place, grown by a tenth of its
+// largest side on every side.
 SceneBox scene_box(const Grains& g, const Walls& walls, const MeshWalls* meshes);
+// The same around `points` (composite grains' centres) instead of the grains.
+SceneBox scene_box(const std::vector<Vec3d>& points, const Walls& walls, const MeshWalls* meshes);
 
 // The walls and meshes placed at time t (as Walls::place places them).
 WallSurface wall_surface(const Walls& walls, const MeshWalls* meshes, double t, const SceneBox& box);
