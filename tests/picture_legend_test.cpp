@@ -37,7 +37,7 @@ int count_in_band(const Image& img, int from_row, const std::function<bool(const
 
 }  // namespace
 
-TEST_CASE("a legend band holds the time, the species swatches and a scale bar; the drum is untouched") {
+TEST_CASE("a legend band holds the time, the species swatches and a scale bar, and leaves the drum untouched") {
   const int size = 400;
   PictureLegend l;
   l.time = 2.5;
