@@ -47,7 +47,7 @@ struct Wall {
   Vec3d cur_origin{0, 0, 0}, cur_velocity{0, 0, 0}, cur_spin{0, 0, 0};
 };
 
-// The sums of one wall's contacts on the grains since the last series row (see above).
+// One wall's load on the grains (see above): of one evaluation, or summed over steps.
 struct WallLoad {
   Vec3d force{0, 0, 0};   // sum of F_i, N
   Vec3d moment{0, 0, 0};  // sum of (x_i - o) x F_i + T_i, N m
