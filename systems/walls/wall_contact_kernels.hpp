@@ -240,6 +240,10 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
   std::vector<std::uint8_t> block_over(nblocks, 0);
   // Per block and wall: the sums of force and moment (walls.hpp), added in block order after.
   std::vector<double> block_load(nblocks * nw * 6, 0.0);
+  // Each lane's index, to leave a wall's padding lanes out of its sums.
+  alignas(64) double lane_index[L];
+  for (std::size_t l = 0; l < L; ++l) lane_index[l] = static_cast<double>(l);
+  const B lanes = B::load_aligned(lane_index);
   // The blocks, compiled for grains with and without spin columns (no branch per batch).
   auto run_blocks = [&](auto spin_tag) {
     constexpr bool spin = decltype(spin_tag)::value;
@@ -273,9 +277,6 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
         // The wall's force and moment on the block's rows (walls.hpp), summed lane-wise over the
         // batches, padding lanes left out, and across the lanes after.
         V fsum{B(0.0), B(0.0), B(0.0)}, msum{B(0.0), B(0.0), B(0.0)};
-        alignas(64) double lane_index[L];
-        for (std::size_t l = 0; l < L; ++l) lane_index[l] = static_cast<double>(l);
-        const B lanes = B::load_aligned(lane_index);
         for (std::size_t q = 0; q < m; q += L) {
           const std::int32_t* idx = &rows[q];
           // The springs and velocities of the packed rows are read nowhere else this step, so they
@@ -366,10 +367,7 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
     run_blocks(std::true_type{});
   else
     run_blocks(std::false_type{});
-  std::vector<double> sums(nw * 6, 0.0);
-  for (std::size_t b = 0; b < nblocks; ++b)
-    for (std::size_t k = 0; k < nw * 6; ++k) sums[k] += block_load[b * nw * 6 + k];
-  record_loads(walls, sums);
+  record_loads(walls, add_wall_blocks(block_load, nw));
   return std::any_of(block_over.begin(), block_over.end(), [](std::uint8_t b) { return b != 0; });
 }
 
