@@ -144,9 +144,10 @@ TEST_CASE("a grain on a vibrating floor keeps contact below Gamma = 1 and leaves
   for (const bool mesh : {false, true}) {
     INFO((mesh ? "mesh plate" : "plane"));
     const double below = smallest_overlap(0.97, mesh, 3), above = smallest_overlap(1.03, mesh, 3);
-    // Resting overlap m g / k = 3.47e-7 m; at Gamma = 0.97 the least is 0.03 of it.
+    // Resting overlap m g / k = 3.47e-7 m; at Gamma = 0.97 the least is 1 - 0.97 (1 + (w/w_n)^2) = 0.0295 of it.
+    // 5 %: the spring's phase lag (2 zeta w / w_n = 0.017) shifts the swing's extreme by a fraction of that.
     CHECK(below > 0.0);
-    CHECK(below == Approx(0.03 * 3.4671e-7).epsilon(0.2));
+    CHECK(below == Approx(0.0295 * 3.4671e-7).epsilon(0.05));
     CHECK(above < 0.0);
   }
 }
