@@ -220,22 +220,19 @@ void FrameOutput::restore(const CheckpointReader& in) {
 void FrameOutput::write(World& world, double t) {
   series_.write(world.grains, t, fields_);
   last_written_ = t;
+  static const Walls kNone;
+  const Walls* found = world.resources.find<Walls>();
+  const Walls& walls = found ? *found : kNone;
+  const MeshWalls* meshes = world.resources.find<MeshWalls>();
   if (!walls_checked_) {
     walls_checked_ = true;
-    const Walls* walls = world.resources.find<Walls>();
-    const MeshWalls* meshes = world.resources.find<MeshWalls>();
-    if ((walls == nullptr || walls->list.empty()) && (meshes == nullptr || meshes->list.empty())) return;
-    static const Walls kNone;
-    const Walls& w = walls ? *walls : kNone;
-    box_ = scene_box(world.grains, w, meshes);
-    walls_ = std::make_unique<FrameSeries>(series_.pvd_path().parent_path(), "walls", "walls", !walls_move(w, meshes));
+    if (walls.list.empty() && (meshes == nullptr || meshes->list.empty())) return;
+    box_ = scene_box(world.grains, walls, meshes);
+    walls_ = std::make_unique<FrameSeries>(series_.pvd_path().parent_path(), "walls", "walls",
+                                           !walls_move(walls, meshes));
     if (!resumed_times_.empty()) walls_->resume(resumed_times_);
   }
-  if (!walls_) return;
-  static const Walls kNone;
-  const Walls* walls = world.resources.find<Walls>();
-  const MeshWalls* meshes = world.resources.find<MeshWalls>();
-  walls_->write_with(t, [&] { return wall_surface_vtp(wall_surface(walls ? *walls : kNone, meshes, t, box_)); });
+  if (walls_) walls_->write_with(t, [&] { return wall_surface_vtp(wall_surface(walls, meshes, t, box_)); });
 }
 
 bool FrameOutput::samples(const World&, const StepContext& now) const { return sample_due(now.t, next_, now.dt); }
