@@ -178,6 +178,9 @@ TEST_CASE("checkpoint: a run in two pieces writes the same files as one run", "[
   CHECK(read_lines(one / "series.csv").size() == 1 + 14);  // header, t = 0 .. 13 ms, and the end is on the grid
   // The free surface's rows are the series' rows, resumed the same way.
   CHECK(read_file(one / "surface.csv") == read_file(two / "surface.csv"));
+  // The walls' mean loads: the resumed piece continues the checkpointed sums, so its rows are the same too.
+  CHECK(read_lines(one / "walls.csv").size() == 1 + 14);
+  CHECK(read_file(one / "walls.csv") == read_file(two / "walls.csv"));
   CHECK(read_lines(one / "surface.csv").size() == 1 + 14);
   // Without a surface.csv to continue, the resumed run starts one with the rows after its checkpoint.
   const fs::path ckpt3 = three / "checkpoints" / "checkpoint.gfc";
