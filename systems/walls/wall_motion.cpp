@@ -1,13 +1,12 @@
 #include "systems/walls/wall_motion.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <string_view>
 
 #include "engine/field_table.hpp"
-#include "engine/read_file.hpp"
+#include "engine/number_table.hpp"
 #include "engine/scene.hpp"
 #include "engine/user_text.hpp"
 #include "systems/walls/wall_fields.hpp"
@@ -16,37 +15,7 @@ namespace gf {
 
 namespace {
 
-constexpr std::size_t kMaxTableBytes = std::size_t(1) << 28;  // 256 MB: millions of rows, never all memory
-
 double magnitude(const Vec3d& v) { return std::sqrt(dot(v, v)); }
-
-[[noreturn]] void fail_table(const std::filesystem::path& file, std::size_t line, const std::string& problem,
-                             const std::string& fix) {
-  std::string msg = shown_path(file.string());
-  if (line > 0) msg += ":" + std::to_string(line);
-  throw SceneError(msg + ": " + problem + ". Fix: " + fix);
-}
-
-std::string_view trim_blanks(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
-
-// The fields of a line split at commas, each parsed whole as a finite number; false if one is not.
-bool parse_row(std::string_view line, std::vector<double>& out) {
-  out.clear();
-  while (true) {
-    const std::size_t comma = line.find(',');
-    const std::string_view f = trim_blanks(line.substr(0, comma));
-    double v = 0.0;
-    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
-    if (f.empty() || ec != std::errc{} || end != f.data() + f.size() || !std::isfinite(v)) return false;
-    out.push_back(v);
-    if (comma == std::string_view::npos) return true;
-    line.remove_prefix(comma + 1);
-  }
-}
 
 }  // namespace
 
@@ -99,47 +68,26 @@ void WallMotion::set_table(std::vector<double> time, std::vector<Vec3d> velocity
 }
 
 void read_velocity_table(const std::filesystem::path& file, std::vector<double>& time, std::vector<Vec3d>& velocity) {
-  std::string data;
-  FileProblem why;
-  if (!read_regular_file(file, kMaxTableBytes, data, why)) fail_table(file, 0, "velocity table: " + why.problem, why.fix);
   time.clear();
   velocity.clear();
-  std::vector<double> row;
-  std::size_t line_no = 0;
-  bool header_seen = false;
-  for (std::size_t at = 0; at < data.size();) {
-    const std::size_t end = std::min(data.find('\n', at), data.size());
-    const std::string_view line = trim_blanks(std::string_view(data).substr(at, end - at));
-    at = end + 1;
-    ++line_no;
-    if (line.empty() || line.front() == '#') continue;
-    if (!parse_row(line, row)) {
-      if (!header_seen && time.empty()) {  // a header line of names
-        header_seen = true;
-        continue;
-      }
-      fail_table(file, line_no, "velocity table: the row " + quoted(line) + " is not four numbers",
-                 "give each row as time, vx, vy, vz (s, m/s), separated by commas");
-    }
-    if (row.size() != 4)
-      fail_table(file, line_no, "velocity table: the row has " + std::to_string(row.size()) + " numbers, not 4",
-                 "give each row as time, vx, vy, vz (s, m/s)");
+  for (const NumberRow& r : read_number_table(file, 4, "velocity table", "time, vx, vy, vz (s, m/s)")) {
+    const std::vector<double>& row = r.values;
     if (time.empty() && row[0] != 0.0)
-      fail_table(file, line_no, "velocity table: the first row is at " + number_text(row[0]) + " s, not at 0",
-                 "start the table at time 0 (the run's clock after settling)");
+      fail_number_table(file, r.line, "velocity table: the first row is at " + number_text(row[0]) + " s, not at 0",
+                        "start the table at time 0 (the run's clock after settling)");
     if (!time.empty() && !(row[0] > time.back()))
-      fail_table(file, line_no, "velocity table: time " + number_text(row[0]) + " s does not follow " +
-                                    number_text(time.back()) + " s",
-                 "list the rows in increasing time, each time once");
+      fail_number_table(file, r.line, "velocity table: time " + number_text(row[0]) + " s does not follow " +
+                                          number_text(time.back()) + " s",
+                        "list the rows in increasing time, each time once");
     for (int c = 1; c < 4; ++c)
       if (std::abs(row[c]) > range::speed.hi)
-        fail_table(file, line_no, "velocity table: speed " + number_text(row[c]) + " m/s is above " +
-                                      number_text(range::speed.hi) + " m/s",
-                   "give velocities in m/s (is it in mm/s?)");
+        fail_number_table(file, r.line, "velocity table: speed " + number_text(row[c]) + " m/s is above " +
+                                            number_text(range::speed.hi) + " m/s",
+                          "give velocities in m/s (is it in mm/s?)");
     time.push_back(row[0]);
     velocity.push_back({row[1], row[2], row[3]});
   }
-  if (time.empty()) fail_table(file, 0, "velocity table: the file has no rows", "give rows of time, vx, vy, vz from time 0");
+  if (time.empty()) fail_number_table(file, 0, "velocity table: the file has no rows", "give rows of time, vx, vy, vz from time 0");
 }
 
 bool has_wall_motion(const SceneNode& w) {
