@@ -127,10 +127,11 @@ TEST_CASE("stability: an overlap past the limit stops the step that made it, wit
   CHECK(cs.max_overlap_ratio > limit);  // the state the kernel saw is past the limit
   CHECK_THAT(message, Contains("in step " + std::to_string(steps + 1) + " of the run stage") &&
                           Contains("grain id ") && Contains("run.max_overlap = 0.1") && Contains("Fix: reduce run.dt"));
-  // Which check fires first here, a grain into the turning drum's cylinder or two grains, depends on
-  // the round-off of the summation order (the steps near the limit are chaotic); either names its
-  // contact. The detectors' own words are pinned by the command-line test above.
-  CHECK_THAT(message, (Contains("overlaps wall 'drum' by ") && Contains(" of its diameter")) ||
+  // Which check fires first here, a grain into the turning drum's cylinder or one of its ends, or two
+  // grains, depends on the round-off of the summation order and so on the machine's SIMD width (the
+  // steps near the limit are chaotic); each names its contact. The detectors' own words are pinned by
+  // the command-line test above.
+  CHECK_THAT(message, (Contains("overlaps wall 'drum") && Contains(" of its diameter")) ||
                           (Contains(") and grain id ") && Contains(" of the smaller diameter")));
 }
 

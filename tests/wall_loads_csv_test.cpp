@@ -150,11 +150,17 @@ TEST_CASE("the vectorised and scalar wall drivers give the same loads") {
   gf::compute_wall_forces<gf::LinearSpringDashpot>(g, a, ha, table, dt, t);
   gf::compute_wall_forces_scalar<gf::LinearSpringDashpot>(g, b, hb, table, dt, t);
   REQUIRE(a.loads.now.size() == 3);
+  // The two drivers add the same terms in different orders. An end wall's moment about the axis and its
+  // power are sums of terms of size |F| R (and omega |F| R) that largely cancel, so their round-off is
+  // measured against that size, R = 12 mm the drum's radius and omega = 3 rad/s.
   for (std::size_t w = 0; w < 3; ++w) {
-    const double scale = std::abs(a.loads.now[w].force.y) + 1e-12;
-    CHECK(std::abs(a.loads.now[w].force.y - b.loads.now[w].force.y) < 1e-12 * scale);
-    CHECK(std::abs(a.loads.now[w].moment.z - b.loads.now[w].moment.z) < 1e-12 * (std::abs(a.loads.now[w].moment.z) + 1e-15));
-    CHECK(std::abs(a.loads.now[w].power - b.loads.now[w].power) < 1e-12 * (std::abs(a.loads.now[w].power) + 1e-15));
+    const gf::WallLoad& la = a.loads.now[w];
+    const gf::WallLoad& lb = b.loads.now[w];
+    const double f = std::sqrt(la.force.x * la.force.x + la.force.y * la.force.y + la.force.z * la.force.z) + 1e-12;
+    INFO("wall " << w << ": moment.z " << la.moment.z << " and " << lb.moment.z << ", power " << la.power << " and " << lb.power);
+    CHECK(std::abs(la.force.y - lb.force.y) < 1e-12 * f);
+    CHECK(std::abs(la.moment.z - lb.moment.z) < 1e-12 * (std::abs(la.moment.z) + 0.012 * f));
+    CHECK(std::abs(la.power - lb.power) < 1e-12 * (std::abs(la.power) + 3.0 * 0.012 * f));
   }
 }
 
