@@ -34,6 +34,13 @@ class ContactTable {
   const double* pair(std::size_t a, std::size_t b) const { return &pp_[(a * n_ + b) * width_]; }
   const double* wall(std::size_t a) const { return &wall_[a * width_]; }
   const CriticalStep& critical_period() const { return critical_; }
+  // Species whose grains differ in size: the nominal grain each species' constants were computed for
+  // (size_scaling.hpp); the drivers then rescale the constants to each contact's grains. Arrays of
+  // kMaxSpecies entries, so that a batch may gather them by type.
+  void set_nominal_grains(const std::vector<double>& mass, const std::vector<double>& radius);
+  bool sized() const { return !nominal_mass_.empty(); }
+  const double* nominal_mass() const { return nominal_mass_.data(); }
+  const double* nominal_radius() const { return nominal_radius_.data(); }
   // m: the largest reach of a pair beyond touching (a ReachingLaw's; 0 for laws acting in contact),
   // how much further than r_i + r_j + skin the neighbour search must look.
   double reach() const { return reach_; }
@@ -44,6 +51,7 @@ class ContactTable {
   std::vector<double> pp_, wall_;
   CriticalStep critical_{std::numeric_limits<double>::infinity(), ""};
   double reach_ = 0.0;
+  std::vector<double> nominal_mass_, nominal_radius_;
 };
 
 // The table of law L for species `bodies` (named `names`), with the scene's parameters per pair

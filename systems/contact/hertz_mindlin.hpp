@@ -32,6 +32,7 @@
 #include "engine/field_table.hpp"
 #include "engine/scene.hpp"
 #include "systems/contact/contact_law.hpp"
+#include "systems/contact/size_scaling.hpp"
 #include "systems/contact/tangential_spring.hpp"
 #include "systems/contact/vec3_batch.hpp"
 
@@ -161,6 +162,20 @@ struct HertzMindlin {
     std::snprintf(at, sizeof at, "Hertz contact time at %.3g m/s", v);
     t.push_back({2.87 * std::pow(x.m * x.m / (x.r * x.e * x.e * v), 0.2), at});
     return t;
+  }
+
+  // Grains of a size distribution (size_scaling.hpp): the stiffnesses go with sqrt(R*), the dampings
+  // with sqrt(sqrt(R*) m*), the rolling torques with each grain's own radius.
+  template <class T>
+  [[gnu::always_inline]] static void resize(std::array<T, kConstants>& k, const SizeRatio<T>& q) {
+    const T sr = sqrt_of(q.r);
+    const T damp = sqrt_of(sr * q.m);
+    k[kKh] = k[kKh] * sr;
+    k[kSt] = k[kSt] * sr;
+    k[kCn] = k[kCn] * damp;
+    k[kCt] = k[kCt] * damp;
+    k[kRollI] = k[kRollI] * q.ri;
+    k[kRollJ] = k[kRollJ] * q.rj;
   }
 
   // History: the tangential spring d_t (m), seen from row i (odd when i and j trade places).

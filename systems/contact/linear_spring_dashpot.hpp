@@ -28,6 +28,7 @@
 #include "engine/field_table.hpp"
 #include "engine/scene.hpp"
 #include "systems/contact/contact_law.hpp"
+#include "systems/contact/size_scaling.hpp"
 #include "systems/contact/tangential_spring.hpp"
 #include "systems/contact/vec3_batch.hpp"
 
@@ -144,6 +145,16 @@ struct LinearSpringDashpot {
     if (p.kt > 0) t.push_back({collision_period(2.0 / 7.0 * m, p.kt, p.et), "tangential"});
     if (p.kr > 0) t.push_back({collision_period(i, p.kr, p.er), "rolling"});
     return t;
+  }
+
+  // Grains of a size distribution (size_scaling.hpp): each damping coefficient is sqrt(m k) times a
+  // factor of e, so it scales with the square root of the effective mass (inertia for rolling).
+  template <class T>
+  [[gnu::always_inline]] static void resize(std::array<T, kConstants>& k, const SizeRatio<T>& q) {
+    const T sm = sqrt_of(q.m);
+    k[kEtaN] = k[kEtaN] * sm;
+    k[kEtaT] = k[kEtaT] * sm;
+    k[kEtaR] = k[kEtaR] * sqrt_of(q.inertia);
   }
 
   // History: the tangential spring d_t (m) and the rolling angle a (rad), seen from row i.

@@ -141,6 +141,13 @@ void evaluate_one(const Grains& g, std::size_t i, std::size_t j, PairHistory& h,
   const double* k = table.pair(static_cast<std::size_t>(g.species.type[i]), static_cast<std::size_t>(g.species.type[j]));
   std::array<double, Law::kConstants> cf;
   std::copy(k, k + Law::kConstants, cf.begin());
+  if constexpr (SizedLaw<Law>)
+    if (table.sized()) {
+      const auto a = static_cast<std::size_t>(g.species.type[i]), b = static_cast<std::size_t>(g.species.type[j]);
+      const double* m0 = table.nominal_mass();
+      const double* r0 = table.nominal_radius();
+      Law::resize(cf, pair_size_ratio(g.mass.m[i], g.mass.m[j], g.radius.r[i], g.radius.r[j], m0[a], m0[b], r0[a], r0[b]));
+    }
   std::array<double, Law::kHistory> s;
   for (std::size_t q = 0; q < Law::kHistory; ++q) s[q] = h.value[q][c];
   const ContactForce<double> res = Law::evaluate(true, sc.g, cf, dt, s);
@@ -458,6 +465,7 @@ bool compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
                                 : (in_register ? reg[q].lookup(compact) : gather32(out.coeff[q].data(), idx));
   };
   // Whole batches of a slab's contacts from its first; the remainder through the scalar path.
+  [[maybe_unused]] const bool sized = table.sized();
   auto law = [&](std::size_t cbeg, std::size_t cend, const SlabTorques& st) {
     const bool spin = g.spin;
     std::size_t c0 = cbeg;
@@ -490,6 +498,15 @@ bool compute_pair_forces(Grains& g, const NeighborList& list, PairHistory& h, co
         compact[l] = (bt_idx[l] >> 6) * static_cast<std::int32_t>(ntypes) + (bt_idx[l] & 63);
       std::array<B, K> cf;
       for (std::size_t q = 0; q < K; ++q) cf[q] = coeff(q, bt_idx, compact);
+      if constexpr (SizedLaw<Law>)
+        if (sized) {  // grains of a size distribution: the constants of these grains (size_scaling.hpp)
+          alignas(64) std::int32_t ta[L], tb[L];
+          for (std::size_t l = 0; l < L; ++l) ta[l] = bt_idx[l] >> 6, tb[l] = bt_idx[l] & 63;
+          const double* m0 = table.nominal_mass();
+          const double* r0 = table.nominal_radius();
+          Law::resize(cf, pair_size_ratio(load_rows(g.mass.m.data(), bi), gather32(g.mass.m.data(), bj), ri, rj,
+                                          gather32(m0, ta), gather32(m0, tb), gather32(r0, ta), gather32(r0, tb)));
+        }
       PairHistory& nh = out.next;
       // History of the last evaluation: between rebuilds a batch's contacts usually all persist
       // and sit in a run of the old history, read with plain loads; otherwise gathered by slot.

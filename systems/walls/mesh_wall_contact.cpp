@@ -179,6 +179,11 @@ bool mesh_forces(Grains& g, const MeshWalls& walls, bool rotation_enabled, const
         const Vec3d wi = g.spin ? Vec3d{g.omega.x[i], g.omega.y[i], g.omega.z[i]} : Vec3d{0.0, 0.0, 0.0};
         std::array<double, K> c;
         std::copy(kc, kc + K, c.begin());
+        if constexpr (SizedLaw<Law>)
+          if (table.sized()) {  // grains of a size distribution (size_scaling.hpp)
+            const auto a = static_cast<std::size_t>(g.species.type[i]);
+            Law::resize(c, wall_size_ratio(g.mass.m[i], ri, table.nominal_mass()[a], table.nominal_radius()[a]));
+          }
         MeshSlots now{};
         int from[kMeshSlots];
         bool claimed[kMeshSlots] = {};

@@ -105,6 +105,11 @@ bool compute_wall_forces_scalar(Grains& g, Walls& walls, WallHistory& h, const C
         const double* k = table.wall(static_cast<std::size_t>(g.species.type[i]));
         std::array<double, K> c;
         std::copy(k, k + K, c.begin());
+        if constexpr (SizedLaw<Law>)
+          if (table.sized()) {  // grains of a size distribution (size_scaling.hpp)
+            const auto a = static_cast<std::size_t>(g.species.type[i]);
+            Law::resize(c, wall_size_ratio(g.mass.m[i], ri, table.nominal_mass()[a], table.nominal_radius()[a]));
+          }
         std::array<double, H> s;
         std::copy(hs, hs + H, s.begin());
         const ContactForce<double> res = Law::evaluate(true, sc.g, c, dt, s);
@@ -234,6 +239,7 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
   RegisterTable reg[K];
   if (in_register)
     for (std::size_t q = 0; q < K; ++q) reg[q] = RegisterTable(cc.col[q], table.types());
+  [[maybe_unused]] const bool sized = table.sized();
   const std::size_t nown = g.n_owned;
   const std::size_t nblocks = (nown + kWallBlock - 1) / kWallBlock;
   // Per block: some contact past the overlap limit (checked in the law pass, on values at hand).
@@ -313,6 +319,10 @@ bool compute_wall_forces(Grains& g, Walls& walls, WallHistory& h, const ContactT
           for (std::size_t l = 0; l < L; ++l) ty[l] = g.species.type[static_cast<std::size_t>(idx[l])];
           std::array<B, K> c;
           for (std::size_t k = 0; k < K; ++k) c[k] = in_register ? reg[k].lookup(ty) : gather32(cc.col[k], ty);
+          if constexpr (SizedLaw<Law>)
+            if (sized)  // grains of a size distribution (size_scaling.hpp)
+              Law::resize(c, wall_size_ratio(gather32(g.mass.m.data(), idx), ri, gather32(table.nominal_mass(), ty),
+                                             gather32(table.nominal_radius(), ty)));
           const V wi = spin ? V{gather32(g.omega.x.data(), idx), gather32(g.omega.y.data(), idx),
                                 gather32(g.omega.z.data(), idx)}
                             : V{B(0.0), B(0.0), B(0.0)};
