@@ -84,6 +84,13 @@ void keys(cairo_t* cr, const PictureLegend& l, double x, double y, double font, 
     text(cr, std::floor(x) + w + 0.4 * font, y, fixed(l.bar_max, 2) + " " + l.bar_unit);
     return;
   }
+  // Entries wider than the room left of the scale bar (long names, size ranges) are set smaller to fit.
+  double needed = 0.0;
+  for (const PictureLegend::Entry& e : l.entries) needed += 2.4 * font + text_width(cr, e.label);
+  if (needed > right - x && needed > 0.0) {
+    font *= std::max(0.5, (right - x) / needed);
+    cairo_set_font_size(cr, font);
+  }
   for (const PictureLegend::Entry& e : l.entries) {
     set_colour(cr, e.colour);
     cairo_arc(cr, x + 0.4 * font, y - 0.35 * font, 0.4 * font, 0, 2 * std::numbers::pi);
