@@ -130,7 +130,7 @@ class CoupledModel final : public ScheduledModel {
     summary["time_per_dem_system"] = timings_json({&sim_.dem_substeps().inner()});
   }
   void write_final_files(const std::filesystem::path& out) override {
-    write_final_state(out / "final_state.csv", sim_.world().grains, scene().dem);
+    write_final_state(out / "final_state.csv", sim_.world().grains);
   }
 
  private:

@@ -231,7 +231,7 @@ class SphereModel final : public ScheduledModel {
       summary["flow"] = flow_json(*f, world.grains, o_.residence);
   }
   void write_final_files(const std::filesystem::path& out) override {
-    write_final_state(out / "final_state.csv", sim_.world().grains, s_);
+    write_final_state(out / "final_state.csv", sim_.world().grains);
   }
   std::string last_words() const override {
     if (!o_.pictures || o_.pictures->last_picture().empty()) return "";

@@ -25,7 +25,7 @@ bool setup(benchmark::State& state, Setup& s) {
               {g.radius.r.data(), n}, {g.species.type.data(), n}, {}};
   s.section = drum->section;
   std::vector<double> d;
-  for (const auto& sp : drum->sim->scene().species) d.push_back(sp.diameter);
+  for (const auto& sp : drum->sim->scene().species) d.push_back(sp.mean_diameter());
   s.options.palette = gf::species_palette(d);
   s.options.size = static_cast<int>(state.range(0));
   return true;

@@ -559,6 +559,11 @@ std::optional<SceneNode> SceneNode::maybe_table(std::string_view key) const {
   return table(key);
 }
 
+bool SceneNode::holds_table(std::string_view key) const {
+  const toml::node* n = SceneAccess::tbl(*this).get(key);
+  return n && n->is_table();
+}
+
 std::vector<SceneNode> SceneNode::tables(std::string_view key) const {
   const toml::node* n = SceneAccess::find(*this, key);
   if (!n) return {};

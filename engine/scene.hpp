@@ -89,6 +89,7 @@ class SceneNode {
 
   SceneNode table(std::string_view key) const;  // required sub-table ([a.b] or a = { ... })
   std::optional<SceneNode> maybe_table(std::string_view key) const;
+  bool holds_table(std::string_view key) const;  // the key is present and its value is a table
   std::vector<SceneNode> tables(std::string_view key) const;  // array of tables ([[key]]); empty if absent
 
   // Keys of this table in file order (keys set only on the command line come last). For free-form maps such as

@@ -70,7 +70,7 @@ TEST_CASE("coupled: a grain settling in still liquid reaches Schiller-Naumann's 
   REQUIRE(s.coupling.substeps == 40);
   REQUIRE(s.liquid.params.k.l0 == 0.005);
   const gf::SpeciesSpec& sp = s.dem.species.at(0);
-  const Case c{sp.diameter, sp.density, 9.81, {s.liquid.params.rho, s.liquid.params.rho * s.liquid.params.nu}};
+  const Case c{sp.smallest(), sp.density, 9.81, {s.liquid.params.rho, s.liquid.params.rho * s.liquid.params.nu}};
   const double w_closed = schiller_naumann_speed(c);
   const double re = c.liquid.density * c.d * w_closed / c.liquid.viscosity;
   CHECK(w_closed == Approx(0.1342).epsilon(1e-3));

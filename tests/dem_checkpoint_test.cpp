@@ -116,7 +116,7 @@ TEST_CASE("checkpoint: grains added and removed during a run, and changes still 
     gf::Grains& g = s.grains();
     const gf::SpeciesSpec& small = s.scene().species[0];
     const auto p = gf::test::free_spot(g, {-8e-3, -8e-3, -2e-3}, {8e-3, at_height, 2e-3}, 0.5e-3, 0.5e-3);
-    return g.queue_insert(gf::test::grain_at(p, small.diameter, small.density, 0));
+    return g.queue_insert(gf::test::grain_at(p, small.smallest(), small.density, 0));
   };
   auto whole = gf::DemSimulation::from_text(kDrum);
   whole.advance(1500);

@@ -8,6 +8,8 @@
 #include <random>
 #include <sstream>
 
+#include "systems/fill/size_distribution.hpp"
+
 namespace gf {
 namespace {
 
@@ -15,12 +17,8 @@ using Vec = std::array<double, 3>;
 
 double sphere_volume(double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r; }
 
-// std::uniform_real_distribution's output differs between standard libraries; the top 53 bits of
-// the engine's output scaled by 2^-53 are the same everywhere, so a seed means the same fill.
-double uniform01(std::mt19937_64& rng) {
-  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
-}
-double uniform(std::mt19937_64& rng, double a, double b) { return a + (b - a) * uniform01(rng); }
+// portable_uniform01 (size_distribution.hpp): a seed means the same fill on every standard library.
+double uniform(std::mt19937_64& rng, double a, double b) { return a + (b - a) * portable_uniform01(rng); }
 
 // Unbiased integer in [0, n): reject the top 2^64 mod n values so every remainder is equally likely.
 std::uint64_t uniform_below(std::mt19937_64& rng, std::uint64_t n) {
@@ -169,18 +167,19 @@ class Grid {
   std::vector<Stored> grains_;
 };
 
-std::string describe_progress(const std::vector<FillSpecies>& species,
-                              const std::vector<std::size_t>& placed, double region_volume) {
+std::string describe_progress(const std::vector<FillSpecies>& species, const std::vector<std::size_t>& placed,
+                              const std::vector<PlacedGrain>& out, double region_volume) {
   std::ostringstream os;
   double placed_volume = 0.0;
   double requested_volume = 0.0;
   os << "placed";
   for (std::size_t s = 0; s < species.size(); ++s) {
-    os << (s == 0 ? " " : ", ") << placed[s] << " of " << species[s].count << " of species "
-       << species[s].type << " (radius " << species[s].radius << " m)";
-    placed_volume += static_cast<double>(placed[s]) * sphere_volume(species[s].radius);
-    requested_volume += static_cast<double>(species[s].count) * sphere_volume(species[s].radius);
+    os << (s == 0 ? " " : ", ") << placed[s] << " of " << species[s].count << " of species " << species[s].type
+       << (species[s].radii.empty() ? " (radius " : " (radius up to ") << species[s].radius << " m)";
+    if (species[s].radii.empty()) requested_volume += static_cast<double>(species[s].count) * sphere_volume(species[s].radius);
+    for (double r : species[s].radii) requested_volume += sphere_volume(r);
   }
+  for (const PlacedGrain& p : out) placed_volume += sphere_volume(p.radius);
   os << "; solid fraction reached " << placed_volume / region_volume << " of "
      << requested_volume / region_volume << " requested (sphere volume / region volume "
      << region_volume << " m^3)";
@@ -207,6 +206,14 @@ std::vector<PlacedGrain> place_random(const Region& region, std::vector<FillSpec
          << " m. Fix: give a finite radius > 0 in m";
       throw FillError(os.str());
     }
+    if (!s.radii.empty() && s.radii.size() != s.count)
+      throw FillError("random fill: species " + std::to_string(s.type) + " lists " + std::to_string(s.radii.size()) +
+                      " radii for " + std::to_string(s.count) + " grains. Fix: give one radius per grain");
+    for (double r : s.radii)
+      if (!(r > 0.0) || !std::isfinite(r) || r > s.radius)
+        throw FillError("random fill: species " + std::to_string(s.type) + " has a grain of radius " +
+                        std::to_string(r) + " m outside (0, " + std::to_string(s.radius) +
+                        "]. Fix: give radii > 0, the largest as the species' radius");
     total += s.count;
     if (s.count > 0) r_max = std::max(r_max, s.radius);
   }
@@ -218,27 +225,28 @@ std::vector<PlacedGrain> place_random(const Region& region, std::vector<FillSpec
 
   std::mt19937_64 rng(seed);
 
-  // Placement order: species indices, largest radius first (stable, so equal radii keep the
-  // caller's order before the shuffle, which makes the result independent of sort internals).
-  std::vector<std::uint32_t> by_size(species.size());
-  for (std::uint32_t s = 0; s < by_size.size(); ++s) by_size[s] = s;
-  std::stable_sort(by_size.begin(), by_size.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return species[a].radius > species[b].radius;
-  });
-  std::vector<std::uint32_t> order;
+  // Placement order: grains, largest radius first (stable, so equal radii keep the caller's order before
+  // the shuffle, which makes the result independent of sort internals); a species of a size distribution
+  // gives each grain its own radius.
+  struct Item {
+    double r;
+    std::uint32_t s;
+  };
+  std::vector<Item> order;
   order.reserve(total);
-  for (std::size_t g = 0; g < by_size.size();) {
-    const std::size_t first = order.size();
-    std::size_t e = g;
-    for (; e < by_size.size() && species[by_size[e]].radius == species[by_size[g]].radius; ++e) {
-      order.insert(order.end(), species[by_size[e]].count, by_size[e]);
-    }
+  for (std::uint32_t s = 0; s < species.size(); ++s)
+    for (std::size_t c = 0; c < species[s].count; ++c)
+      order.push_back({species[s].radii.empty() ? species[s].radius : species[s].radii[c], s});
+  std::stable_sort(order.begin(), order.end(), [](const Item& a, const Item& b) { return a.r > b.r; });
+  for (std::size_t first = 0; first < order.size();) {
+    std::size_t e = first;
+    while (e < order.size() && order[e].r == order[first].r) ++e;
     // Fisher-Yates over this equal-radius group only.
-    for (std::size_t i = order.size() - first; i > 1; --i) {
+    for (std::size_t i = e - first; i > 1; --i) {
       const std::size_t j = uniform_below(rng, i);
       std::swap(order[first + i - 1], order[first + j]);
     }
-    g = e;
+    first = e;
   }
 
   // Existing grains matter only within reach of the bounding box; they may be larger than any
@@ -266,31 +274,32 @@ std::vector<PlacedGrain> place_random(const Region& region, std::vector<FillSpec
   std::vector<std::size_t> placed(species.size(), 0);
   out.reserve(total);
   for (std::size_t n = 0; n < total; ++n) {
-    const FillSpecies& sp = species[order[n]];
-    const double reach = sp.radius + r_big;
+    const FillSpecies& sp = species[order[n].s];
+    const double radius = order[n].r;
+    const double reach = radius + r_big;
     bool done = false;
     std::size_t outside = 0;
     for (std::size_t attempt = 0; attempt < max_attempts_per_grain && !done; ++attempt) {
-      const std::optional<Vec> p = sampler.draw(rng, sp.radius);
+      const std::optional<Vec> p = sampler.draw(rng, radius);
       if (!p) {
         ++outside;
         continue;
       }
-      if (grid.overlaps(*p, sp.radius, reach)) continue;
-      grid.insert(*p, sp.radius);
-      out.push_back({*p, sp.type, sp.radius});
-      ++placed[order[n]];
+      if (grid.overlaps(*p, radius, reach)) continue;
+      grid.insert(*p, radius);
+      out.push_back({*p, sp.type, radius});
+      ++placed[order[n].s];
       done = true;
     }
     if (!done) {
       std::ostringstream os;
       os << "random fill: could not place grain " << n + 1 << " of " << total << " (species "
-         << sp.type << ", radius " << sp.radius << " m) in " << max_attempts_per_grain
+         << sp.type << ", radius " << radius << " m) in " << max_attempts_per_grain
          << " attempts";
       if (outside == max_attempts_per_grain) {
         os << ", because the region has (almost) no room for a sphere of this radius";
       }
-      os << "; " << describe_progress(species, placed, region.volume());
+      os << "; " << describe_progress(species, placed, out, region.volume());
       if (!near.empty()) os << " (not counting " << near.size() << " existing grains nearby)";
       os << ". Fix: lower the count, enlarge the region, or fill in layers (random placement "
             "of equal spheres jams near solid fraction 0.38; let each layer settle before the "

@@ -15,8 +15,9 @@ namespace gf {
 
 struct FillSpecies {
   std::int32_t type;
-  double radius;  // m
+  double radius;  // m: every grain's, or the largest of `radii`
   std::size_t count;
+  std::vector<double> radii = {};  // m: one per grain when they differ (a size distribution), else empty
 };
 
 struct PlacedGrain {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -29,6 +30,19 @@ std::vector<PlacedGrain> grains_near(const Grains& g, const Region& region, doub
   for (const GrainRow& r : g.pending.insert) near.push_back({{r.x[0], r.x[1], r.x[2]}, r.type, r.radius});
   near.insert(near.end(), elsewhere.begin(), elsewhere.end());
   return near;
+}
+
+struct Grain {
+  double radius, mass, inv_inertia;
+};
+
+// The next grain of a species: a fixed size's own values, or a diameter drawn from its distribution by a
+// generator of its own seeded from the placement's seed.
+Grain next_grain(const FeedSpecies& sp, std::uint64_t seed) {
+  if (!sp.size) return {sp.radius, sp.mass, sp.inv_inertia};
+  std::mt19937_64 rng(mix(seed ^ 0x73697a65ull));
+  const double d = sp.size->draw(rng), m = sphere_mass(sp.density, d);
+  return {0.5 * d, m, sp.inv_inertia > 0.0 ? 1.0 / (0.1 * m * d * d) : 0.0};
 }
 
 }  // namespace
@@ -101,11 +115,14 @@ std::int64_t feed_events(Grains& g, const FeedSpec& spec, FeedState& state, Resi
     for (const std::size_t k : order) {
       const FeedSpecies& sp = spec.species[k];
       state.owed[k] += spec.mass_rate * sp.fraction * spec.interval;
-      while (state.owed[k] >= sp.mass) {
-        const std::uint64_t seed = mix(mix(spec.seed ^ mix(static_cast<std::uint64_t>(state.events))) + draw++);
+      for (;;) {
+        const std::uint64_t seed = mix(mix(spec.seed ^ mix(static_cast<std::uint64_t>(state.events))) + draw);
+        const Grain next = next_grain(sp, seed);
+        if (state.owed[k] < next.mass) break;
+        ++draw;
         std::vector<PlacedGrain> one;
         try {
-          one = place_random(spec.region, {{sp.type, sp.radius, 1}}, seed, taken, spec.attempts);
+          one = place_random(spec.region, {{sp.type, next.radius, 1}}, seed, taken, spec.attempts);
         } catch (const FillError&) {
           break;  // no room now: the debt waits for the next event
         }
@@ -114,14 +131,14 @@ std::int64_t feed_events(Grains& g, const FeedSpec& spec, FeedState& state, Resi
           row.x[d] = one[0].x[d];
           row.v[d] = spec.velocity[d];
         }
-        row.radius = sp.radius;
-        row.mass = sp.mass;
-        row.inv_inertia = sp.inv_inertia;
+        row.radius = next.radius;
+        row.mass = next.mass;
+        row.inv_inertia = next.inv_inertia;
         row.type = sp.type;
         g.queue_insert(row);
         taken.push_back(one[0]);
-        state.owed[k] -= sp.mass;
-        state.fed_mass += sp.mass;
+        state.owed[k] -= next.mass;
+        state.fed_mass += next.mass;
         ++batch.count;
       }
     }

@@ -5,7 +5,8 @@
 // rate * fraction * interval kg more (fractions by mass, summing to 1). As many whole grains as the
 // owed mass pays for are placed at random in the feed region by place_random (wholly inside it,
 // overlapping neither each other nor the grains already near it; largest first) with the feed's
-// velocity and no spin, and queued for insertion: they join the table at the next neighbour-list
+// velocity and no spin (a species of a size distribution draws each grain's diameter before placing it, and
+// the grain costs its own mass), and queued for insertion: they join the table at the next neighbour-list
 // rebuild, which a queued change forces at the next step. What a grain costs is taken off its
 // species' debt; the remainder carries over, so the mean rate is exact over many events whatever the
 // grain mass. When the region has no free spot left (the bed has backed up into it) the grains not
@@ -22,6 +23,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -29,6 +31,7 @@
 #include "engine/grains.hpp"
 #include "systems/fill/random_fill.hpp"
 #include "systems/fill/region.hpp"
+#include "systems/fill/size_distribution.hpp"
 
 namespace gf {
 
@@ -38,6 +41,10 @@ struct FeedSpecies {
   double mass = 0.0;         // kg
   double inv_inertia = 0.0;  // 1/(kg m^2); 0 for species that do not rotate
   double fraction = 0.0;     // of the fed mass
+  // A species of a size distribution: each grain draws its diameter, and costs its own mass (of this
+  // density); `radius` is then the largest grain's and `mass` the smallest's. Null for one size.
+  std::shared_ptr<const SizeDistribution> size = nullptr;
+  double density = 0.0;  // kg/m^3
 };
 
 struct FeedSpec {

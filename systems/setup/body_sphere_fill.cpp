@@ -35,7 +35,11 @@ void add_species_shapes(const DemScene& s, const SceneNode& root, BodiesSpec& b)
       if (other.name == sp.name)
         nodes[k].fail("name", "species '" + sp.name + "' has the name of a [[shape]], and becomes a sphere shape among bodies",
                       "rename the species or the shape");
-    const double r = 0.5 * sp.diameter;
+    if (!sp.size.is_fixed())
+      nodes[k].fail("diameter", "species '" + sp.name + "' has a size distribution, and among composite bodies a species is "
+                                "one sphere shape",
+                    "give the species one diameter (m)");
+    const double r = 0.5 * sp.smallest();
     BodyShape sh;
     sh.name = sp.name;
     sh.line = nodes[k].line();

@@ -38,7 +38,10 @@ PictureSettings scene_picture_settings(const DemScene& s, const std::filesystem:
     const Rgb& c = ps.options.palette[k];
     std::snprintf(hex, sizeof hex, "#%02X%02X%02X", c[0], c[1], c[2]);
     ps.legend += (k ? ", " : "") + s.species[k].name + " " + hex;
-    ps.species_labels.push_back(s.species[k].name + ", " + length_label(s.species[k].diameter));
+    const SpeciesSpec& sp = s.species[k];
+    ps.species_labels.push_back(sp.name + ", " + (sp.size.is_fixed() ? length_label(sp.smallest())
+                                                                      : length_label(sp.smallest()) + " to " +
+                                                                            length_label(sp.largest())));
   }
   return ps;
 }

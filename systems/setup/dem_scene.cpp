@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <sstream>
 
 #include "engine/machine_memory.hpp"
@@ -16,6 +17,7 @@
 #include "systems/fill/state_csv.hpp"
 #include "systems/setup/flow_scene.hpp"
 #include "systems/setup/scene_fields.hpp"
+#include "systems/setup/species_size.hpp"
 #include "systems/walls/wall_fields.hpp"
 #include "systems/walls/contact_systems.hpp"
 #include "systems/walls/mesh_wall_scene.hpp"
@@ -34,6 +36,26 @@ Vec3d unit_vector(const SceneNode& node, std::string_view key, std::array<double
   return {a[0] / len, a[1] / len, a[2] / len};
 }
 
+// Species of a size distribution: the table's constants are their smallest grains' (which set the
+// critical step), rescaled in the drivers to each contact's grains (size_scaling.hpp), for a law that
+// says how its constants scale.
+template <class Law>
+void size_contacts(DemScene& s, const std::vector<SceneNode>& species_nodes) {
+  bool any = false;
+  for (std::size_t k = 0; k < s.species.size(); ++k) {
+    if (s.species[k].size.is_fixed()) continue;
+    any = true;
+    if constexpr (!SizedLaw<Law>)
+      species_nodes[k].fail("diameter",
+                            "the " + std::string(Law::name) + " law's model particles have one size per species",
+                            "give the species one diameter (m), or use linear_spring_dashpot or hertz_mindlin");
+  }
+  if (!any) return;
+  std::vector<double> mass, radius;
+  for (const SpeciesSpec& sp : s.species) mass.push_back(sp.mass), radius.push_back(0.5 * sp.smallest());
+  s.contacts->set_nominal_grains(mass, radius);
+}
+
 // [contact] for every pair; [contact.wall] and [[contact.pair]] override single keys. The law
 // reads its own keys, and each species' material from its [[species]] table.
 template <class Law>
@@ -45,7 +67,7 @@ void read_contacts(DemScene& s, const SceneNode& root, const SceneNode& ct) {
   const auto species_nodes = root.tables("species");
   for (std::size_t k = 0; k < n; ++k) {
     const SpeciesSpec& sp = s.species[k];
-    bodies.push_back({sp.mass, sp.inertia, 0.5 * sp.diameter, Law::read_material(species_nodes[k]), false});
+    bodies.push_back({sp.mass, sp.inertia, 0.5 * sp.smallest(), Law::read_material(species_nodes[k]), false});
     bodies.back().gravity = std::hypot(s.gravity.x, s.gravity.y, s.gravity.z);
     names.push_back(sp.name);
   }
@@ -65,6 +87,7 @@ void read_contacts(DemScene& s, const SceneNode& root, const SceneNode& ct) {
     pp[ib * n + ia] = p;
   }
   s.contacts = std::make_shared<ContactTable>(make_contact_table<Law>(bodies, names, pp, pw));
+  size_contacts<Law>(s, species_nodes);
 }
 
 // A wall surface moving at `omega` times `radius` may travel at most 0.1 of the smallest diameter per
@@ -73,8 +96,8 @@ void read_contacts(DemScene& s, const SceneNode& root, const SceneNode& ct) {
 // largest grains is named as the likelier mistake: a radius typed in millimetres.
 void require_wall_step(const DemScene& s, const SceneNode& w, double omega, double radius) {
   if (s.species.empty()) return;  // composite grains: read_bodies checks against the thinnest shape
-  double smallest = s.species.front().diameter, largest = 0.0;
-  for (const SpeciesSpec& sp : s.species) smallest = std::min(smallest, sp.diameter), largest = std::max(largest, sp.diameter);
+  double smallest = s.species.front().smallest(), largest = 0.0;
+  for (const SpeciesSpec& sp : s.species) smallest = std::min(smallest, sp.smallest()), largest = std::max(largest, sp.largest());
   const double step = std::abs(omega) * radius * s.dt;
   if (step <= 0.1 * smallest) return;
   const std::string moves = "the wall's surface moves " + short_number(step) + " m per step, more than 0.1 of the "
@@ -110,8 +133,8 @@ WallMotion read_motion(const DemScene& s, const SceneNode& w, bool bodies) {
       w.fail(k, "walls that translate or vibrate act on spherical grains ([[species]]), not on composite bodies",
              "remove the key; a scene of [[bodies]] takes fixed or turning walls");
   WallMotion m = read_wall_motion(w);
-  double smallest = s.species.front().diameter;
-  for (const SpeciesSpec& sp : s.species) smallest = std::min(smallest, sp.diameter);
+  double smallest = s.species.front().smallest();
+  for (const SpeciesSpec& sp : s.species) smallest = std::min(smallest, sp.smallest());
   const double step = m.fastest() * s.dt;
   if (step > 0.1 * smallest) {
     const char* key = w.has("velocity_file") ? "velocity_file" : (w.has("velocity") ? "velocity" : "vibration_amplitude");
@@ -135,10 +158,11 @@ double narrowest(const Region& r) {
 void require_grains_fit(const DemScene& s, const SceneNode& root, const SceneNode& fill, const FillSpec& spec) {
   const double room = narrowest(spec.region);
   for (const auto& [sp, n] : spec.counts) {
-    const double d = s.species[sp].diameter;
+    const double d = s.species[sp].largest();
     if (n == 0 || d <= room) continue;
     root.tables("species")[sp].fail(
-        "diameter", "species '" + s.species[sp].name + "' has diameter " + number_text(d) + " m, wider than " +
+        "diameter", "species '" + s.species[sp].name + "' has " + (s.species[sp].size.is_fixed() ? "" : "grains of ") +
+                        "diameter " + number_text(d) + " m, wider than " +
                         spec.where + "'s region (" + short_number(room) + " m at its narrowest, line " +
                         std::to_string(fill.line()) + ")",
         "is the diameter in millimetres? " + number_text(d) + " mm is " + number_text(d * 1e-3) +
@@ -153,7 +177,7 @@ void read_periodic(DemScene& s, const SceneNode& root) {
   const auto node = root.maybe_table("periodic");
   if (!node) return;
   double dmax = 0.0;
-  for (const SpeciesSpec& sp : s.species) dmax = std::max(dmax, sp.diameter);
+  for (const SpeciesSpec& sp : s.species) dmax = std::max(dmax, sp.largest());
   const std::string_view names[3] = {kPeriodicFields.field("x").key, kPeriodicFields.field("y").key,
                                      kPeriodicFields.field("z").key};
   for (int d = 0; d < 3; ++d) {
@@ -181,9 +205,9 @@ void add_mesh_wall(DemScene& s, const SceneNode& w, const std::string& name, boo
   if (s.bodies || s.species.empty())
     w.fail("type", "mesh walls act on spherical grains ([[species]]), not on composite bodies",
            "use plane, box, cylinder or drum walls in a scene of [[bodies]]");
-  double largest = 0.0, smallest = s.species.front().diameter;
+  double largest = 0.0, smallest = s.species.front().smallest();
   for (const SpeciesSpec& sp : s.species)
-    largest = std::max(largest, sp.diameter), smallest = std::min(smallest, sp.diameter);
+    largest = std::max(largest, sp.largest()), smallest = std::min(smallest, sp.smallest());
   const double reach = 0.5 * largest + mesh_wall_reach(*s.contacts);
   s.mesh_walls.list.push_back(read_mesh_wall(w, name, reach, smallest, s.dt));
   s.mesh_walls.list.back().motion = read_motion(s, w, bodies);
@@ -334,7 +358,9 @@ void read_fills(DemScene& s, const SceneNode& root) {
           n = static_cast<std::size_t>(m.get_int(name, static_cast<std::int64_t>(counts.lo), static_cast<std::int64_t>(counts.hi)));
         } else {
           const double frac = m.get_double(name, kFillFields.field("volume_fraction.<species>").range);
-          n = count_for_volume_fraction(spec.region, frac, 0.5 * s.species[sp].diameter);
+          // A distribution's grains at their mean volume, pi/6 E[d^3].
+          const SizeDistribution& size = s.species[sp].size;
+          n = count_for_volume_fraction(spec.region, frac, 0.5 * (size.is_fixed() ? size.value : std::cbrt(size.moment(3))));
         }
         spec.counts.emplace_back(sp, n);
       }
@@ -392,7 +418,7 @@ void read_pictures(DemScene& s, const SceneNode& out) {
   o.picture.size = static_cast<int>(read_integer(out, t.field("picture_size")));
   o.picture.speed_max = read_number(out, t.field("picture_speed_max"));
   std::vector<double> diameters;
-  for (const SpeciesSpec& sp : s.species) diameters.push_back(sp.diameter);
+  for (const SpeciesSpec& sp : s.species) diameters.push_back(sp.mean_diameter());
   o.picture.palette = species_palette(diameters);
   if (o.picture_angles.empty() && o.picture_interval == 0) return;
   const std::string key = out.has("picture_angles") ? "picture_angles" : "picture_interval";
@@ -424,7 +450,7 @@ void read_layers(DemScene& s, const SceneNode& n) {
   if (l.distances.empty() || l.distances.size() > 10000)
     n.fail("distances", "give between 1 and 10,000 distances from the inlet", "e.g. distances = [0.05, 0.1, 0.15]");
   double largest = 0.0;
-  for (const SpeciesSpec& sp : s.species) largest = std::max(largest, sp.diameter);
+  for (const SpeciesSpec& sp : s.species) largest = std::max(largest, sp.largest());
   l.thickness = read_number(n, t.field("thickness"), &largest);
   l.cell = read_number(n, t.field("cell"));
   l.min_grains = static_cast<int>(read_integer(n, t.field("min_grains")));
@@ -451,10 +477,10 @@ void read_analysis(DemScene& s, const SceneNode& root) {
   const FieldTable& t = kAnalysisFields;
   if (node->has(t.field("species").key)) {
     s.segregation_type = species_index(s, *node, "species", node->get_string("species"));
-    s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
+    s.segregation_cell = 3.0 * s.species[s.segregation_type].mean_diameter();
     s.mixing_cell = s.segregation_cell;
   }
-  const double d = s.species[s.segregation_type].diameter;
+  const double d = s.species[s.segregation_type].mean_diameter();
   s.mixing_cell = read_number(*node, t.field("mixing_cell"), &s.mixing_cell);
   if (s.mixing_cell < d)
     node->fail("mixing_cell",
@@ -476,6 +502,12 @@ std::int32_t species_index(const DemScene& s, const SceneNode& node, std::string
   std::string names;
   for (auto& sp : s.species) names += (names.empty() ? "'" : ", '") + sp.name + "'";
   node.fail(key, "no species is named '" + name + "'", "use one of the [[species]] names: " + names);
+}
+
+double SpeciesSpec::grain_mass(double r) const { return size.is_fixed() ? mass : sphere_mass(density, 2.0 * r); }
+double SpeciesSpec::grain_inv_inertia(double r) const {
+  if (!rotates) return 0.0;
+  return size.is_fixed() ? 1.0 / inertia : 1.0 / (0.4 * grain_mass(r) * r * r);
 }
 
 std::int64_t DemScene::main_steps() const { return static_cast<std::int64_t>(std::llround(duration / dt)); }
@@ -510,10 +542,10 @@ void read_species(DemScene& s, const SceneNode& root, bool with_bodies) {
       if (other.name == spec.name) sp.fail("name", "species '" + spec.name + "' is defined twice", "rename one");
     // Bounds far past any granular material (osmium is 22,600 kg/m^3; a coarse-grained parcel a few cm)
     // that keep the masses, inertias and time-step terms finite: 1e308 kg/m^3 made them infinite.
-    spec.diameter = read_number(sp, t.field("diameter"));
+    spec.size = read_species_size(sp);
     spec.density = read_number(sp, t.field("density"));
-    const double r = 0.5 * spec.diameter;
-    spec.mass = spec.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    const double r = 0.5 * spec.smallest();
+    spec.mass = sphere_mass(spec.density, spec.smallest());
     spec.inertia = 0.4 * spec.mass * r * r;
     spec.rotates = read_bool(sp, t.field("rotates"));
     s.species.push_back(spec);
@@ -565,8 +597,8 @@ void read_outputs(DemScene& s, const SceneNode& root, bool with_bodies) {
   }
   // A binary mixture reports the segregation of its larger species (grains' tables only).
   if (s.species.size() == 2 && !with_bodies) {
-    s.segregation_type = s.species[0].diameter >= s.species[1].diameter ? 0 : 1;
-    s.segregation_cell = 3.0 * s.species[s.segregation_type].diameter;
+    s.segregation_type = s.species[0].mean_diameter() >= s.species[1].mean_diameter() ? 0 : 1;
+    s.segregation_cell = 3.0 * s.species[s.segregation_type].mean_diameter();
     for (const Wall& w : s.walls) s.pattern = s.pattern || w.kind == Wall::Kind::CylinderInner;
   }
 }
@@ -688,8 +720,8 @@ std::size_t memory_grain_limit(const DemScene& scene) {
 // counted once per pair, and never more than the other grains.
 std::size_t list_pairs_per_grain(const DemScene& scene, std::size_t n) {
   if (scene.species.empty()) return 0;  // a scene of composite grains only
-  double d_min = scene.species.front().diameter;
-  for (const SpeciesSpec& sp : scene.species) d_min = std::min(d_min, sp.diameter);
+  double d_min = scene.species.front().smallest();
+  for (const SpeciesSpec& sp : scene.species) d_min = std::min(d_min, sp.smallest());
   const double law_reach = scene.contacts ? scene.contacts->reach() : 0.0;
   const double reach = (d_min + scene.skin + law_reach) / d_min;
   const double most = std::min(0.64 * 8.0 * reach * reach * reach / 2.0, n > 0 ? static_cast<double>(n - 1) : 0.0);
@@ -788,7 +820,15 @@ namespace {
 // scene error).
 std::vector<PlacedGrain> random_fill_grains(const DemScene& s, const FillSpec& f, std::span<const PlacedGrain> existing) {
   std::vector<FillSpecies> req;
-  for (auto& [sp, c] : f.counts) req.push_back({sp, 0.5 * s.species[sp].diameter, c});
+  for (std::size_t k = 0; k < f.counts.size(); ++k) {
+    const auto [sp, c] = f.counts[k];
+    const SizeDistribution& size = s.species[sp].size;
+    req.push_back({sp, 0.5 * size.largest(), c});
+    if (size.is_fixed()) continue;
+    // Each grain's diameter, from a generator of the fill's own seed and the species' place in it.
+    std::mt19937_64 rng(f.seed ^ (0x9e3779b97f4a7c15ull * (k + 1)));
+    for (std::size_t q = 0; q < c; ++q) req.back().radii.push_back(0.5 * size.draw(rng));
+  }
   std::vector<PlacedGrain> added;
   try {
     added = place_random(f.region, req, f.seed, existing);
@@ -833,11 +873,13 @@ std::vector<PlacedGrain> file_fill_grains(const DemScene& s, const FillSpec& f) 
       fill_error(s, f,
                  shown_path(f.path.string()) + ":" + std::to_string(r.line) + ": type " + std::to_string(r.type) +
                      " is not mapped to a species. Fix: add it to the fill's 'types' table");
-    const double d = s.species[sp].diameter;
-    if (std::abs(r.diameter - d) > 1e-9 * d)
+    const SpeciesSpec& species = s.species[sp];
+    const double lo = species.smallest(), hi = species.largest();
+    if (r.diameter < lo - 1e-9 * lo || r.diameter > hi + 1e-9 * hi)
       fill_error(s, f,
                  shown_path(f.path.string()) + ":" + std::to_string(r.line) + ": diameter " + short_number(r.diameter) +
-                     " m does not match species '" + s.species[sp].name + "' (" + short_number(d) +
+                     " m does not match species '" + species.name + "' (" +
+                     (species.size.is_fixed() ? short_number(lo) : short_number(lo) + " to " + short_number(hi)) +
                      " m). Fix: map the type to a species of that diameter");
     // A centre outside a wall is a grain outside the domain (a settled grain may touch a wall,
     // but not sit behind it): the run would start with an overlap past any limit.
@@ -910,9 +952,10 @@ void build_dem_world(const DemScene& s, World& world) {
     g.pos.y[i] = p.x[1];
     g.pos.z[i] = p.x[2];
     g.radius.r[i] = p.radius;
-    g.mass.m[i] = sp.mass;
-    g.mass.inv_m[i] = 1.0 / sp.mass;
-    g.mass.inv_inertia[i] = sp.rotates ? 1.0 / sp.inertia : 0.0;
+    const double m = sp.grain_mass(p.radius);
+    g.mass.m[i] = m;
+    g.mass.inv_m[i] = 1.0 / m;
+    g.mass.inv_inertia[i] = sp.grain_inv_inertia(p.radius);
     g.species.type[i] = p.type;
     g.pid.id[i] = ids[i];
     g.vel.x[i] = p.v[0];

@@ -16,6 +16,7 @@
 #include "systems/contact/contact_table.hpp"
 #include "systems/fill/random_fill.hpp"
 #include "systems/fill/region.hpp"
+#include "systems/fill/size_distribution.hpp"
 #include "systems/flow/flow_systems.hpp"
 #include "systems/integrate/force_terms.hpp"
 #include "systems/integrate/integrate.hpp"
@@ -31,11 +32,20 @@ namespace gf {
 
 struct SpeciesSpec {
   std::string name;
-  double diameter = 0;  // m
+  SizeDistribution size;  // each grain's diameter (m): one value or a distribution
   double density = 0;   // kg/m^3
-  double mass = 0;      // kg
-  double inertia = 0;   // kg m^2 (solid sphere)
+  double mass = 0;      // kg: of a grain of the smallest diameter (the only one for a fixed size)
+  double inertia = 0;   // kg m^2 (solid sphere), of the same grain
   bool rotates = true;  // false: the grains only translate (their torques are not integrated)
+
+  double smallest() const { return size.smallest(); }  // m
+  double largest() const { return size.largest(); }    // m
+  // m: the number-mean diameter (a fixed size's own), which orders species and scales their cells.
+  double mean_diameter() const { return size.is_fixed() ? size.value : size.mean_diameter(); }
+  // A grain of radius r: its mass and inverse moment of inertia (0 when the species does not rotate).
+  // A fixed size's grains take the species' own values, bit for bit.
+  double grain_mass(double r) const;
+  double grain_inv_inertia(double r) const;
 };
 
 struct FillSpec {

@@ -9,6 +9,6 @@
 
 namespace gf {
 
-void write_final_state(const std::filesystem::path& file, const Grains& g, const DemScene& s);
+void write_final_state(const std::filesystem::path& file, const Grains& g);
 
 }  // namespace gf

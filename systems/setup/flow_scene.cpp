@@ -27,7 +27,11 @@ FeedSpec read_feed(const DemScene& s, const SceneNode& f, std::size_t index) {
     const std::int32_t k = species_index(s, fr, name, name);
     const SpeciesSpec& sp = s.species[k];
     const double frac = fr.get_double(name, kFeedFields.field("fractions.<species>").range);
-    spec.species.push_back({k, 0.5 * sp.diameter, sp.mass, sp.rotates ? 1.0 / sp.inertia : 0.0, frac});
+    spec.species.push_back({k, 0.5 * sp.largest(), sp.mass, sp.rotates ? 1.0 / sp.inertia : 0.0, frac});
+    if (!sp.size.is_fixed()) {
+      spec.species.back().size = std::make_shared<const SizeDistribution>(sp.size);
+      spec.species.back().density = sp.density;
+    }
     sum += frac;
   }
   if (spec.species.empty()) f.fail("fractions", "no species to feed", "e.g. fractions = { sand = 0.7, salt = 0.3 }");

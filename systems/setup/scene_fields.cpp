@@ -24,6 +24,26 @@ const Field kRegion[] = {
      "keeps the part whose height above the centre (against gravity) is at most this (0: the lower half)"},
 };
 
+const Field kDiameter[] = {
+    {"distribution", "", kAnyNumber, "`\"discrete\"`, `\"normal\"`, `\"lognormal\"`, `\"file\"`", kNoDefault, "",
+     "how each grain's diameter is drawn (see *Size distributions* below)"},
+    {"mean", "m", range::diameter, "", kNoDefault, "required for normal and lognormal",
+     "the mean diameter (of the law before its cut-offs)"},
+    {"sd", "m", {0, 100, true, false}, "", kNoDefault, "required for normal and lognormal",
+     "the diameter's standard deviation (of the law before its cut-offs)"},
+    {"min", "m", range::diameter, "", kNoDefault, "three standard deviations below",
+     "the smallest diameter drawn: mean − 3 sd, or exp(μ − 3σ) for lognormal"},
+    {"max", "m", range::diameter, "", kNoDefault, "three standard deviations above",
+     "the largest diameter drawn: mean + 3 sd, or exp(μ + 3σ) for lognormal"},
+    {"diameters", "m", range::diameter, "(a list)", kNoDefault, "required for discrete", "the sizes of a discrete distribution"},
+    {"fractions", "", {0, 1e12, false, false}, "(a list as long as `diameters`)", kNoDefault, "required for discrete",
+     "each size's share, by number or by mass; any scale (percent is fine)"},
+    {"by", "", kAnyNumber, "`\"number\"`, `\"mass\"`", kNoDefault, "`\"number\"`",
+     "what the fractions count (discrete and file)"},
+    {"file", "", kAnyNumber, "a path, relative to the scene file", kNoDefault, "required for file",
+     "a table of `diameter, fraction` rows (m, share), a header line of names allowed"},
+};
+
 const Field kFill[] = {
     {"kind", "", kAnyNumber, "`\"random\"`, `\"file\"`", kNoDefault, "", "random placement in a region, or a state file"},
     {"region.", "", kAnyNumber, "", kNoDefault, "", "", &kRegionFields},
@@ -92,7 +112,9 @@ const Field kRun[] = {
 
 const Field kSpecies[] = {
     {"name", "", kAnyNumber, "unique text", kNoDefault, "", "the name fills, pairs and `[analysis]` refer to"},
-    {"diameter", "m", range::diameter, "", kNoDefault, "", "grain diameter"},
+    {"diameter", "m", range::diameter, "a number, or a table of the keys below", kNoDefault, "",
+     "grain diameter, or a size distribution each grain draws its own from"},
+    {"diameter.", "", kAnyNumber, "", kNoDefault, "", "", &kDiameterFields},
     {"density", "kg/m³", range::density, "", kNoDefault, "",
      "solid density; mass and moment of inertia (2/5 m r²) follow"},
     {"rotates", "", kAnyNumber, "true, false", kNoDefault, "true",
@@ -150,6 +172,7 @@ const Field kSettle[] = {
 }  // namespace
 
 const FieldTable kRegionFields{"region", "", kRegion};
+const FieldTable kDiameterFields{"diameter", "", kDiameter};
 const FieldTable kFillFields{"[[fill]]", "scene-files.md", kFill};
 const FieldTable kFeedFields{"[[feed]]", "mixers.md", kFeed};
 const FieldTable kOutletFields{"[[outlet]]", "mixers.md", kOutlet};

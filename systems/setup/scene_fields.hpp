@@ -9,6 +9,7 @@
 namespace gf {
 
 extern const FieldTable kRegionFields;  // a fill's, feed's, outlet's or bodies' `region` inline table
+extern const FieldTable kDiameterFields;  // a species' `diameter` as a size distribution
 extern const FieldTable kFillFields;    // [[fill]]
 extern const FieldTable kFeedFields;    // [[feed]]
 extern const FieldTable kOutletFields;  // [[outlet]]

@@ -214,7 +214,7 @@ TEST_CASE("final_state.csv from several ranks holds every grain once, as its own
                                      [](const gf::StateRow& r, std::int64_t id) { return r.id < id; });
     REQUIRE(it != rows.end());
     REQUIRE(it->id == g.pid.id[i]);
-    const gf::StateRow want{g.pid.id[i], g.species.type[i] + 1, many.scene().species[g.species.type[i]].diameter,
+    const gf::StateRow want{g.pid.id[i], g.species.type[i] + 1, 2.0 * g.radius.r[i],
                             {g.pos.x[i], g.pos.y[i], g.pos.z[i]}, 0, {g.vel.x[i], g.vel.y[i], g.vel.z[i]},
                             {g.omega.x[i], g.omega.y[i], g.omega.z[i]}};
     // Written in shortest round-trip form: the values read back bit for bit.

@@ -19,6 +19,7 @@ struct StateRecord {
   std::int64_t id = 0;
   std::int32_t type = 0, unused = 0;
   double x[3] = {}, v[3] = {}, w[3] = {};
+  double d = 0;  // m
 };
 
 // Every rank's records on rank 0, sorted by id; empty elsewhere.
@@ -59,19 +60,20 @@ Grains gather_shapes(const Grains& g, const MpiContext& mpi) {
   return out;
 }
 
-std::vector<StateRow> gather_state_rows(const Grains& g, const DemScene& s, const MpiContext& mpi) {
+std::vector<StateRow> gather_state_rows(const Grains& g, const MpiContext& mpi) {
   std::vector<StateRecord> mine(g.n_owned);
   for (std::size_t i = 0; i < g.n_owned; ++i) {
     StateRecord& r = mine[i];
     r.id = g.pid.id[i];
     r.type = g.species.type[i];
+    r.d = 2.0 * g.radius.r[i];
     r.x[0] = g.pos.x[i], r.x[1] = g.pos.y[i], r.x[2] = g.pos.z[i];
     r.v[0] = g.vel.x[i], r.v[1] = g.vel.y[i], r.v[2] = g.vel.z[i];
     if (g.spin) r.w[0] = g.omega.x[i], r.w[1] = g.omega.y[i], r.w[2] = g.omega.z[i];
   }
   std::vector<StateRow> rows;
   for (const StateRecord& r : gather_by_id(mine, mpi))
-    rows.push_back({r.id, r.type + 1, s.species.at(static_cast<std::size_t>(r.type)).diameter,
+    rows.push_back({r.id, r.type + 1, r.d,
                     {r.x[0], r.x[1], r.x[2]}, 0, {r.v[0], r.v[1], r.v[2]}, {r.w[0], r.w[1], r.w[2]}});
   return rows;
 }

@@ -20,6 +20,6 @@ Grains gather_shapes(const Grains& g, const MpiContext& mpi);
 // Every rank's grains on rank 0 as rows of final_state.csv, in id order: id, type (species from 1),
 // the species' diameter, position, velocity and angular velocity (zero for grains that do not
 // rotate), as the one-rank run writes them. Empty on the other ranks. Collective.
-std::vector<StateRow> gather_state_rows(const Grains& g, const DemScene& s, const MpiContext& mpi);
+std::vector<StateRow> gather_state_rows(const Grains& g, const MpiContext& mpi);
 
 }  // namespace gf

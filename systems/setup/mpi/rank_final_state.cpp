@@ -6,9 +6,8 @@
 
 namespace gf {
 
-void write_rank_final_state(const std::filesystem::path& file, const Grains& g, const DemScene& s,
-                            const MpiContext& mpi) {
-  const std::vector<StateRow> rows = gather_state_rows(g, s, mpi);
+void write_rank_final_state(const std::filesystem::path& file, const Grains& g, const MpiContext& mpi) {
+  const std::vector<StateRow> rows = gather_state_rows(g, mpi);
   on_every_rank(mpi, [&] {
     if (mpi.rank() == 0) write_state_csv(file, rows);
   });

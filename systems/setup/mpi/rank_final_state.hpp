@@ -12,7 +12,6 @@
 namespace gf {
 
 // Collective; RankFailure on every rank when rank 0 cannot write the file (its message names it).
-void write_rank_final_state(const std::filesystem::path& file, const Grains& g, const DemScene& s,
-                            const MpiContext& mpi);
+void write_rank_final_state(const std::filesystem::path& file, const Grains& g, const MpiContext& mpi);
 
 }  // namespace gf

@@ -114,7 +114,7 @@ void RankOutputs::observe(World& w) {
 const SeriesRow& RankOutputs::finish(World& w) {
   const SeriesRow& row = series_.finish(w);
   if (frames_) frames_->finish(w.grains, w.clock.t);
-  write_rank_final_state(out_ / "final_state.csv", w.grains, *scene_, *mpi_);
+  write_rank_final_state(out_ / "final_state.csv", w.grains, *mpi_);
   return row;
 }
 

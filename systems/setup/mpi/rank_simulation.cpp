@@ -96,7 +96,7 @@ RankSimulation::RankSimulation(DemScene scene, const MpiContext& mpi) : mpi_(&mp
   keep_and_append(g, keep, {});
 
   double rmax = 0.0;
-  for (const SpeciesSpec& sp : s.species) rmax = std::max(rmax, 0.5 * sp.diameter);
+  for (const SpeciesSpec& sp : s.species) rmax = std::max(rmax, 0.5 * sp.largest());
   const BroadphaseState& bs = w.resources.get<BroadphaseState>();
   reach_ = 2.0 * rmax + bs.skin + bs.reach;
   set_boxes(std::move(rcb_));
