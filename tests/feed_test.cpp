@@ -4,7 +4,9 @@
 #include "systems/flow/feed.hpp"
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -172,4 +174,40 @@ TEST_CASE("feed: bad specs are refused", "[feed]") {
   f = two_species_feed();
   f.region = gf::Region::box({0.0, 0.0, 0.0}, {-1.0, 0.02, 0.02});
   CHECK_THROWS_AS(gf::start_feed(f), std::invalid_argument);
+}
+
+TEST_CASE("feed: grains of a size distribution each draw a diameter and cost their own mass", "[feed]") {
+  // Type 0 log-normal (mean 0.8 mm, sd 0.15 mm, cut at 0.5 and 1.2 mm): the fed mass still follows rate x
+  // time to within one of the largest grains, each grain's mass and inertia are those of its own
+  // diameter, and the sizes spread over the range.
+  gf::FeedSpec f = two_species_feed();
+  const auto law = std::make_shared<const gf::SizeDistribution>(gf::SizeDistribution::lognormal(0.8e-3, 0.15e-3, 0.5e-3, 1.2e-3));
+  f.species[0] = species(0, 0.5 * law->smallest(), 0.67);  // mass of the smallest grain
+  f.species[0].radius = 0.5 * law->largest();
+  f.species[0].size = law;
+  f.species[0].density = kRho;
+  gf::FeedState s = gf::start_feed(f);
+  gf::ResidenceLog log;
+  gf::Grains g;
+  for (int k = 0; k < 20; ++k) {
+    gf::feed_events(g, f, s, log, k * f.interval);
+    g.apply_pending();
+  }
+  const double largest = kRho * std::numbers::pi / 6.0 * std::pow(law->largest(), 3);
+  const double want = f.mass_rate * 0.67 * 20 * f.interval, got = species_mass(g, 0);
+  CHECK(got <= want + 1e-15);
+  CHECK(got > want - largest);
+  double lo = 1.0, hi = 0.0;
+  for (std::size_t i = 0; i < g.n_owned; ++i) {
+    if (g.species.type[i] != 0) continue;
+    const double d = 2.0 * g.radius.r[i], m = kRho * std::numbers::pi / 6.0 * d * d * d;
+    CHECK(g.mass.m[i] == Approx(m).epsilon(1e-14));
+    CHECK(g.mass.inv_inertia[i] == Approx(1.0 / (0.1 * m * d * d)).epsilon(1e-14));
+    lo = std::min(lo, d), hi = std::max(hi, d);
+  }
+  CHECK(lo >= law->smallest());
+  CHECK(hi <= law->largest());
+  CHECK(hi - lo > 0.3e-3);  // hundreds of draws spread over most of the 0.7 mm range
+  CHECK(no_overlaps(g));
+  CHECK(s.fed_mass == Approx(species_mass(g, 0) + species_mass(g, 1)).epsilon(1e-12));
 }
