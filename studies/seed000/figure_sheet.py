@@ -11,8 +11,8 @@ Pictures are the runs' pictures/angle_XX.XX.png (scene key output.picture_angles
 marked "not drawn" and is listed on stderr; the exit status is then 1, so a script notices.
 """
 import argparse
-import json
 import math
+import os
 import re
 import sys
 import textwrap
@@ -24,6 +24,9 @@ matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from grainflow.outputs import Run  # noqa: E402
 
 NAME = re.compile(r"^angle_(\d+\.\d\d)\.png$")
 KINDS = {-1: "undecided", 0: "moon", 1: "petals"}
@@ -44,20 +47,21 @@ def default_label(run):
     """The folder name, plus the --set overrides the run was started with (summary.json)."""
     label = run.name
     try:
-        overrides = json.loads((run / "summary.json").read_text()).get("overrides", [])
+        overrides = Run(run).summary.get("overrides", [])
     except (OSError, ValueError):
         overrides = []
     return label + ("\n" + textwrap.fill(", ".join(overrides), 36) if overrides else "")
 
 
 def load_series(run):
-    path = run / "series.csv"
-    if not path.is_file():
+    """series.csv as {column: array}, or None when the run has none with the pattern's columns."""
+    r = Run(run)
+    if not r.has("series.csv"):
         return None
-    data = np.genfromtxt(path, delimiter=",", names=True)
-    if data.size == 0 or "pattern" not in (data.dtype.names or ()):
+    data = r.series
+    if "pattern" not in data or len(data["pattern"]) == 0:
         return None
-    return np.atleast_1d(data)
+    return data
 
 
 def pattern_at(series, angle, tolerance):

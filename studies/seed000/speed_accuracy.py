@@ -14,6 +14,7 @@ up stops with exit status 3 and its summary.json says what broke. Results: <out>
 """
 import argparse
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -23,6 +24,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from grainflow.outputs import Run  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[2]
 KINDS = {-1: "undecided", 0: "moon", 1: "petals"}
@@ -46,9 +50,9 @@ def run(label, scene, sets, angle, out, binary, threads):
         cmd += ["--set", s]
     print(" ".join(cmd), file=sys.stderr)
     p = subprocess.run(cmd, capture_output=True, text=True)
-    summary = json.loads((folder / "summary.json").read_text())
-    data = np.atleast_1d(np.genfromtxt(folder / "series.csv", delimiter=",", names=True))
-    last = data[-1]
+    out = Run(folder)
+    summary, data = out.summary, out.series
+    last = {name: values[-1] for name, values in data.items()}
     return {
         "label": label, "rc": p.returncode, "status": summary["status"], "failure": summary.get("failure", ""),
         "grains": summary["grains"], "dt": summary["dt"], "critical_fraction": summary["dt"] / summary["critical_period"],

@@ -19,6 +19,7 @@ import math
 import pathlib
 import statistics
 import subprocess
+import sys
 
 try:  # the README's table needs only the JSON; reports and charts need numpy
     import numpy as np
@@ -26,6 +27,7 @@ except ImportError:
     np = None
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))
 SCENES = {"analytic": ROOT / "scenes" / "drum_quick.toml", "mesh": ROOT / "scenes" / "drum_quick_mesh.toml"}
 RUNS = ROOT / "runs" / "mesh_drum"
 FLOWING_FROM = 1.0  # s of rotation: the bed avalanches from about 0.5 s at 1.5 rad/s
@@ -33,12 +35,17 @@ MEASURES = ["ke_translational", "segregation_index", "lacey_index"]
 T95 = {2: 4.303, 4: 2.776, 6: 2.447, 8: 2.306, 10: 2.228}  # two-sided 95 % points of Student's t
 
 
+def completed(folder):
+    """Whether the run folder holds a completed run (its summary.json says so)."""
+    from grainflow.outputs import Run
+    return folder.is_dir() and Run(folder).has("summary.json") and Run(folder).status == "completed"
+
+
 def run(args):
     for seed in args.seeds:
         for kind, scene in SCENES.items():
             out = RUNS / f"{kind}_s{seed}"
-            summary = out / "summary.json"
-            if summary.exists() and json.loads(summary.read_text()).get("status") == "completed":
+            if completed(out):
                 continue
             cmd = [args.binary, "run", str(scene), "--out", str(out), "--threads", str(args.threads), "--quiet",
                    "--set", f"run.seed={seed}", "--set", "output.frame_interval=0",
@@ -50,14 +57,16 @@ def run(args):
 
 
 def load(kind, seed):
-    return np.genfromtxt(RUNS / f"{kind}_s{seed}" / "series.csv", delimiter=",", names=True)
+    """series.csv of one run as {column: array}."""
+    from grainflow.outputs import Run
+    return Run(RUNS / f"{kind}_s{seed}").series
 
 
 def report(args):
     docs = pathlib.Path(args.docs)
     docs.mkdir(parents=True, exist_ok=True)
-    seeds = sorted({int(p.name.split("_s")[1]) for p in RUNS.glob("*_s*")
-                    if (p / "summary.json").exists() and json.loads((p / "summary.json").read_text())["status"] == "completed"})
+    from grainflow.outputs import Run
+    seeds = sorted({int(p.name.split("_s")[1]) for p in RUNS.glob("*_s*") if completed(p)})
     seeds = [s for s in seeds if all((RUNS / f"{k}_s{s}" / "summary.json").exists() for k in SCENES)]
     result = {"flowing_from_s": FLOWING_FROM, "seeds": seeds, "measures": {}}
     series = {}
@@ -84,14 +93,13 @@ def report(args):
         entry["within_noise"] = abs(entry["t"]) <= entry["t_95"]
         result["measures"][m] = entry
     for kind in SCENES:
-        result[kind + "_wall_seconds"] = [json.loads((RUNS / f"{kind}_s{s}" / "summary.json").read_text())["wall_seconds"]
-                                          for s in seeds]
+        result[kind + "_wall_seconds"] = [Run(RUNS / f"{kind}_s{s}").summary["wall_seconds"] for s in seeds]
     (docs / "mesh_drum_compare.json").write_text(json.dumps(result, indent=1) + "\n")
     with open(docs / "mesh_drum_series.csv", "w") as f:
         f.write("wall,seed,time," + ",".join(MEASURES) + "\n")
         for (kind, s), d in sorted(series.items()):
-            for row in d:
-                f.write(f"{kind},{s},{row['time']:.4g}," + ",".join(f"{row[m]:.6g}" for m in MEASURES) + "\n")
+            for k in range(len(d["time"])):
+                f.write(f"{kind},{s},{d['time'][k]:.4g}," + ",".join(f"{d[m][k]:.6g}" for m in MEASURES) + "\n")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
