@@ -42,11 +42,11 @@ def measures(folder):
     series = report.read_csv(folder / "series.csv")
     layers = report.read_csv(folder / "layers.csv")
     residence = report.read_csv(folder / "residence.csv")
-    summary = json.loads((folder / "summary.json").read_text())
+    summary = report.summary_of(folder)
     t0, level = report.steady_start(series)
     stats, _ = report.rtd(residence, t0)
     return {"steady_from_s": t0, "holdup_mass_kg": level, "fed_kg": float(series["fed_mass"][-1]),
-            "discharged_kg": float(series["discharged_mass"][-1]), "discharged_grains": int(len(residence)),
+            "discharged_kg": float(series["discharged_mass"][-1]), "discharged_grains": int(len(residence["id"])),
             "rtd_mean_s": stats.get("mean"), "rtd_grains": stats.get("grains"),
             "wall_seconds": summary["wall_seconds"], "particle_steps_per_second": summary["particle_steps_per_second"],
             "ranks": summary.get("ranks", 1), "vc": report.vc_profile(layers, t0)}

@@ -31,6 +31,7 @@ except ImportError:
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "scenes" / "generators"))
+sys.path.insert(0, str(ROOT / "python"))
 import mixer_scene as geometry  # noqa: E402  (the scenes' dimensions, one source)
 
 # The seed's Fig. 4 trend, read from its text: Vc about 30-35 % near the inlet, 5-10 % by L = 0.4 m.
@@ -39,7 +40,20 @@ SEED_AT_04 = (0.05, 0.10)
 
 
 def read_csv(path):
-    return np.genfromtxt(path, delimiter=",", names=True, ndmin=1)
+    """A run's CSV file as {column: array} (the Python package's reader)."""
+    from grainflow.outputs import read_csv as read
+    return read(path)
+
+
+def rows_where(table, mask):
+    """The rows of a {column: array} table where `mask` holds."""
+    return {name: values[mask] for name, values in table.items()}
+
+
+def summary_of(run):
+    """A run folder's summary.json as a dict."""
+    from grainflow.outputs import Run
+    return Run(run).summary
 
 
 def steady_start(series):
@@ -63,10 +77,10 @@ def sampling_corrected_vc(vc, lacey, c):
 
 
 def vc_profile(layers, t0):
-    rows = layers[layers["time"] >= t0]
+    rows = rows_where(layers, layers["time"] >= t0)
     out = []
     for d in sorted(set(rows["distance"].tolist())):
-        at = rows[(rows["distance"] == d) & np.isfinite(rows["vc"]) & np.isfinite(rows["lacey"])]
+        at = rows_where(rows, (rows["distance"] == d) & np.isfinite(rows["vc"]) & np.isfinite(rows["lacey"]))
         v = at["vc"]
         corr = sampling_corrected_vc(at["vc"], at["lacey"], at["fraction_a"])
         n = len(v)
@@ -83,7 +97,7 @@ def vc_profile(layers, t0):
 # run ended: a grain that stays longer than the time left is missing from it, so its mean is biased
 # short; the table gives the hold-up over the feed rate (the unbiased mean) beside it.
 def rtd(residence, t0):
-    inside = residence[np.isfinite(residence["entry_time"]) & (residence["entry_time"] >= t0)]
+    inside = rows_where(residence, np.isfinite(residence["entry_time"]) & (residence["entry_time"] >= t0))
     t = inside["residence_time"]
     if len(t) < 2:
         return {"grains": int(len(t))}, None
@@ -127,17 +141,16 @@ def run_folder(runs, docs, name):
 
 
 def completed(run):
-    summary = run / "summary.json"
-    return summary.exists() and json.loads(summary.read_text()).get("status") == "completed"
+    return (run / "summary.json").exists() and summary_of(run).get("status") == "completed"
 
 
 def design_result(run, design, docs, name=None, earlier=None):
     series = read_csv(run / "series.csv")
     layers = read_csv(run / "layers.csv")
     residence = read_csv(run / "residence.csv")
-    summary = json.loads((run / "summary.json").read_text())
+    summary = summary_of(run)
     t0, level = steady_start(series)
-    steady = series[series["time"] >= t0]
+    steady = rows_where(series, series["time"] >= t0)
     housing = math.pi * geometry.RADIUS ** 2 * geometry.LENGTH
     stats, hist = rtd(residence, t0)
     keep = docs / (name or f"design{design}")
@@ -165,7 +178,7 @@ def design_result(run, design, docs, name=None, earlier=None):
         "particle_steps_per_second": summary.get("particle_steps_per_second"),
         "steady_from_s": t0,
         "holdup_mass_kg": level,
-        "holdup_grains_mean": float(np.mean(steady["grains"])) if len(steady) else None,
+        "holdup_grains_mean": float(np.mean(steady["grains"])) if len(steady["grains"]) else None,
         "holdup_solid_fraction_final": solid,
         "feed_rate_kg_s": geometry.RATE,
         # Little's law: in a steady state the mean residence time is the hold-up over the throughput.
