@@ -21,6 +21,7 @@ per ring and writes DIR/petal_arms.json and DIR/petal_arms.png (the share along 
 import argparse
 import json
 import math
+import sys
 from pathlib import Path
 
 import matplotlib
@@ -28,6 +29,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
+from grainflow.outputs import read_csv  # noqa: E402
 
 R = 0.075          # m, the seed's drum radius
 WIDTH = 0.006      # m, ring width: two large diameters
@@ -90,7 +94,7 @@ def main():
     a = ap.parse_args()
     out = a.out or a.state.parent
     out.mkdir(parents=True, exist_ok=True)
-    d = np.genfromtxt(a.state, delimiter=",", names=True)
+    d = read_csv(a.state)
     rows = []
     fig, axes = plt.subplots(len(RINGS), 1, figsize=(7, 1.3 * len(RINGS)), sharex=True)
     for ax, frac in zip(axes, RINGS):
