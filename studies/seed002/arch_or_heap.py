@@ -22,20 +22,23 @@ pours ended on an arch, each pour's count of stops of 0.1 s or more (stalls and 
 the flow first stopped so, and what was left at the end, as median and range.
 """
 import argparse
-import csv
 import glob
 import json
 import math
 import pathlib
 import statistics
+import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "python"))
+from grainflow.outputs import Run, read_csv  # noqa: E402
 
 HALF_GATE = 0.02  # m
 ABOVE = 0.03      # m
 
 
 def series(run):
-    rows = list(csv.DictReader(open(pathlib.Path(run) / "series.csv")))
-    return [float(r["time"]) for r in rows], [float(r["remaining_fraction"]) for r in rows]
+    s = Run(run).series
+    return s["time"].tolist(), s["remaining_fraction"].tolist()
 
 
 def stalls(t, f, shortest=0.1):
@@ -58,8 +61,9 @@ def over_outlet(run):
         if not frames:
             return None
         frame = pathlib.Path(frames[-1])
-    rows = [r for r in csv.DictReader(open(frame)) if r["motion"] == "moving"]
-    return sum(abs(float(r["x"])) < HALF_GATE and 0.0 < float(r["y"]) < ABOVE for r in rows)
+    d = read_csv(frame)
+    over = (d["motion"] == "moving") & (abs(d["x"]) < HALF_GATE) & (d["y"] > 0.0) & (d["y"] < ABOVE)
+    return int(over.sum())
 
 
 def grain_side_mm(overrides):
@@ -145,7 +149,7 @@ def main():
     result = {}
     for run in a.runs:
         t, f = series(run)
-        summary = json.loads((pathlib.Path(run) / "summary.json").read_text())
+        summary = Run(run).summary
         ended = next(ti for ti, fi in zip(t, f) if fi == f[-1])
         half = next((ti for ti, fi in zip(t, f) if fi <= 0.5), None)
         entry = {"overrides": summary.get("overrides", []), "remaining_at_end": f[-1], "end_s": t[-1],
