@@ -33,6 +33,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from grainflow.outputs import Run, read_csv  # noqa: E402
+
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SCENE = os.path.join(ROOT, "scenes", "packing_seed002_letters.toml")
 LETTERS = ["O", "T", "Z", "K", "A", "C"]
@@ -66,8 +69,18 @@ def shape_mass(binary, letter):
 
 
 def read_series(path):
-    with open(path, newline="") as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    """series.csv as a list of rows, each {column: float} (read by the Python package)."""
+    cols = read_csv(path)
+    n = len(cols["time"]) if "time" in cols else 0
+    return [{k: float(v[i]) for k, v in cols.items()} for i in range(n)]
+
+
+def run_summary(run_dir):
+    """A run folder's summary.json as a dict, or None when there is none yet."""
+    try:
+        return Run(run_dir).summary
+    except (OSError, ValueError):
+        return None
 
 
 def settled(run_dir, threshold):
@@ -98,7 +111,7 @@ def run_letter(binary, runs, letter, max_duration, log):
     threshold = SETTLED * count * mass * 9.81 * HEIGHT
     ledger_path = os.path.join(run_dir, "wall_seconds.json")
     while True:
-        summary = load_json(os.path.join(run_dir, "summary.json"))
+        summary = run_summary(run_dir)
         done, ke, t = settled(run_dir, threshold)
         checkpoint = os.path.join(run_dir, "checkpoints", "checkpoint.gfc")
         cmd = [binary, "run", SCENE, "--out", run_dir, "--threads", "1", "--quiet"] + letter_set(letter)
@@ -221,7 +234,7 @@ def collect(runs, docs, binary):
     committed = {r["letter"]: r for r in (load_json(os.path.join(docs, "packing.json")) or {}).get("shapes", [])}
     for letter in LETTERS:
         run_dir = os.path.join(runs, letter)
-        summary = load_json(os.path.join(run_dir, "summary.json"))
+        summary = run_summary(run_dir)
         if not summary or "packing" not in summary:
             # A letter collected before whose run folder this checkout does not hold (runs/ is not
             # kept): its committed row, picture and profile stay.
