@@ -12,6 +12,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXP = os.path.join(HERE, "results", "dam_break_experiments.csv")
+sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+from grainflow.outputs import Run, read_csv  # noqa: E402
 
 
 def experiments():
@@ -20,12 +22,21 @@ def experiments():
     return [(r["source"], float(r["T"]), float(r["Z_over_a"])) for r in csv.DictReader(rows)]
 
 
-def front_series(run_dir, a, g=9.81):
-    with open(os.path.join(run_dir, "series.csv")) as f:
-        rows = list(csv.DictReader(f))
-    T = [float(r["time"]) * math.sqrt(2 * g / a) for r in rows]
-    Z = [float(r["surge_front"]) / a for r in rows]
+def front_curve(series, a, g=9.81):
+    """(T, Z/a) of a series {column: array}: T = t sqrt(2 g / a), Z the surge front."""
+    T = [float(t) * math.sqrt(2 * g / a) for t in series["time"]]
+    Z = [float(z) / a for z in series["surge_front"]]
     return T, Z
+
+
+def front_series(run_dir, a, g=9.81):
+    return front_curve(Run(run_dir).series, a, g)
+
+
+def series_rows(run_dir):
+    """A run's series.csv as a list of rows, each {column: float}."""
+    cols = Run(run_dir).series
+    return [{k: float(v[i]) for k, v in cols.items()} for i in range(len(cols["time"]))]
 
 
 def interp(T, Z, t):

@@ -5,8 +5,6 @@ usage: plot_dam_break.py OUT.png LABEL=RUN_SERIES_CSV [LABEL=RUN_SERIES_CSV ...]
 Each RUN_SERIES_CSV is a run's series.csv (column surge_front, m). Experiments from
 studies/seed003/results/dam_break_experiments.csv.
 """
-import csv
-import math
 import os
 import sys
 
@@ -27,10 +25,7 @@ def main():
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for spec in sys.argv[2:]:
         label, path = spec.rsplit("=", 1)
-        with open(path) as f:
-            rows = list(csv.DictReader(f))
-        T = [float(r["time"]) * math.sqrt(2 * G / A) for r in rows]
-        Z = [float(r["surge_front"]) / A for r in rows]
+        T, Z = front_error.front_curve(front_error.read_csv(path), A, G)
         ax.plot(T, Z, "-", label=label)
     exp = front_error.experiments()
     for src, marker, name in [("martin_moyce_a2.25in", "o", "Martin & Moyce 1952 (a = 2.25 in)"),

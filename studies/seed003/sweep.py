@@ -27,8 +27,7 @@ import front_error  # noqa: E402
 
 
 def series(run):
-    with open(os.path.join(run, "series.csv")) as f:
-        return list(csv.DictReader(f))
+    return front_error.series_rows(run)
 
 
 def hydrostatic_error(run, l0):
@@ -89,8 +88,7 @@ def run_one(binary, scene, duration, l0, dt, out):
     for s in sets:
         cmd += ["--set", s]
     subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
-    with open(os.path.join(out, "summary.json")) as f:
-        return json.load(f)
+    return front_error.Run(out).summary
 
 
 def main():
