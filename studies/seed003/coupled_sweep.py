@@ -20,7 +20,6 @@ Each run's status and, where the program refused or stopped it, its message's fi
 """
 import argparse
 import csv
-import json
 import math
 import os
 import subprocess
@@ -28,6 +27,8 @@ import sys
 import tempfile
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from grainflow.outputs import Run, read_csv  # noqa: E402
 SCENE = "scenes/liquid/settling_grain.toml"
 # The scene's grain and liquid (the closed form's inputs).
 D, RHO_P, RHO_L, MU, G = 2.0e-3, 2500.0, 1000.0, 0.01, 9.81
@@ -72,9 +73,9 @@ def cases():
 
 
 def last_rows(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return rows
+    """A series.csv as a list of rows, each {column: float} (read by the Python package)."""
+    cols = read_csv(path)
+    return [{k: float(v[i]) for k, v in cols.items()} for i in range(len(cols["time"]))]
 
 
 def one(binary, knob, l0, k, dt, work):
@@ -89,8 +90,7 @@ def one(binary, knob, l0, k, dt, work):
     row = {"knob": knob, "l0": l0, "k": k, "dt": dt}
     lines = [line for line in p.stderr.splitlines() if line.strip()]
     said = [line for line in lines if "error" in line.lower() or "stop" in line.lower()] or lines[-1:]
-    summary_path = os.path.join(out, "summary.json")
-    summary = json.load(open(summary_path)) if os.path.exists(summary_path) else {}
+    summary = Run(out).summary if os.path.exists(os.path.join(out, "summary.json")) else {}
     row["status"] = summary.get("status", f"refused (exit {p.returncode})") if p.returncode == 0 else (
         f"stopped (exit {p.returncode})" if summary else f"refused (exit {p.returncode})")
     row["wall_seconds"] = summary.get("wall_seconds", "")

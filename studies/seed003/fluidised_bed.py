@@ -33,7 +33,6 @@ Richardson-Zaki U = u_t eps^n with u_t from Schiller-Naumann and n from Garside 
 """
 import argparse
 import csv
-import json
 import math
 import os
 import shutil
@@ -43,6 +42,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from coupled_sweep import schiller_naumann_speed  # noqa: E402  (the same bead and liquid)
+from coupled_sweep import Run, last_rows, read_csv  # noqa: E402  (the Python package's readers)
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 SCENE = "scenes/liquid/fluidised_bed.toml"
@@ -105,10 +105,7 @@ def run(a):
 
 
 def read_state(path):
-    with open(path) as fh:
-        rows = [l for l in fh if not l.startswith("#")]
-    rd = csv.DictReader(rows)
-    return [float(r["x"]) for r in rd]
+    return [float(x) for x in read_csv(path)["x"]]
 
 
 def bed(xs):
@@ -123,8 +120,8 @@ def bed(xs):
 
 
 def one(folder, drive, u_t, n_rz):
-    summary = json.load(open(os.path.join(folder, "summary.json")))
-    rows = list(csv.DictReader(open(os.path.join(folder, "series.csv"))))
+    summary = Run(folder).summary
+    rows = last_rows(os.path.join(folder, "series.csv"))
     t_end = float(rows[-1]["time"])
     last = [r for r in rows if float(r["time"]) >= t_end - 0.5 + 1e-9]
     n = int(float(rows[-1]["grains"]))

@@ -7,7 +7,6 @@ usage: options.py [--binary build-liquid/grainflow]
 """
 import argparse
 import csv
-import json
 import os
 import subprocess
 import sys
@@ -43,8 +42,7 @@ def main():
                 for s in sets:
                     cmd += ["--set", s]
                 subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
-                with open(os.path.join(tmp, "summary.json")) as f:
-                    s = json.load(f)
+                s = sweep.front_error.Run(tmp).summary
                 ok = s["status"] == "completed"
                 rms = float("nan")
                 if case == "hydrostatic_2d" and ok:
