@@ -26,6 +26,8 @@ import sys
 import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))
+from grainflow.outputs import Run  # noqa: E402
 SCENE = "scenes/hopper_seed002_prisms.toml"
 CONFIGS = [
     ("grainflow, 1 thread", ["build/grainflow", "run"], ["--threads", "1"]),
@@ -46,8 +48,8 @@ def one_run(config, settled, steps, work):
                      "--set", "output.picture_interval=0"] + threads
     subprocess.run([c if not c.startswith("build/") else str(ROOT / c) for c in cmd], cwd=ROOT, check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    summary = json.loads((out / "summary.json").read_text())
-    last = (out / "series.csv").read_text().strip().splitlines()[-1]
+    summary = Run(out).summary
+    last = (out / "series.csv").read_text().strip().splitlines()[-1]  # the text: bit for bit across configs
     return summary, last
 
 
@@ -59,7 +61,7 @@ def settle(args):
 
 def run(args):
     settled = pathlib.Path(args.checkpoint)
-    base = json.loads((settled / "summary.json").read_text())
+    base = Run(settled).summary
     result = {"scene": SCENE, "checkpoint": str(settled), "steps": args.steps, "rounds": args.rounds,
               "bodies": base["bodies"], "configs": {}}
     finals = set()

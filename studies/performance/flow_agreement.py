@@ -34,6 +34,8 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+from grainflow.outputs import read_csv  # noqa: E402
 REPO = os.path.dirname(os.path.dirname(HERE))
 SCENE = "scenes/drum_seed000_settled.toml"
 STEPS_PER_SAMPLE = 10000  # 0.1 s at dt = 1e-5 s
@@ -74,9 +76,9 @@ def measures(rows):
 
 
 def read_grainflow(path):
-    with open(path, newline="") as f:
-        return [(float(r["x"]), float(r["y"]), 0.5 * float(r["diameter"]), float(r["vx"]), float(r["vy"]),
-                 float(r["vz"])) for r in csv.DictReader(f)]
+    d = read_csv(path)
+    return [(float(x), float(y), 0.5 * float(dia), float(vx), float(vy), float(vz))
+            for x, y, dia, vx, vy, vz in zip(d["x"], d["y"], d["diameter"], d["vx"], d["vy"], d["vz"])]
 
 
 def read_liggghts(path):

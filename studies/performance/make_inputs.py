@@ -20,12 +20,13 @@ Python 3 standard library only.
 """
 
 import argparse
-import csv
 import math
 import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+from grainflow.outputs import read_csv  # noqa: E402
 REPO = os.path.dirname(os.path.dirname(HERE))
 DEFAULT_CSV = os.path.join(REPO, "scenes", "data", "drum_settled_47108.csv")
 
@@ -74,16 +75,15 @@ def read_state(path):
     """Rows (id, type, diameter, x, y, z) and, when the file has them, velocities per row
     (vx, vy, vz, wx, wy, wz; spins 0 when only velocities are given), else None."""
     rows, vel = [], []
-    with open(path, newline="") as f:
-        reader = csv.DictReader(f)
-        has_v = {"vx", "vy", "vz"} <= set(reader.fieldnames or [])
-        has_w = {"wx", "wy", "wz"} <= set(reader.fieldnames or [])
-        for r in reader:
-            rows.append((int(r["id"]), int(r["type"]), float(r["diameter"]),
-                         float(r["x"]), float(r["y"]), float(r["z"])))
-            if has_v:
-                w = tuple(float(r[k]) for k in ("wx", "wy", "wz")) if has_w else (0.0, 0.0, 0.0)
-                vel.append(tuple(float(r[k]) for k in ("vx", "vy", "vz")) + w)
+    d = read_csv(path)
+    has_v = {"vx", "vy", "vz"} <= set(d)
+    has_w = {"wx", "wy", "wz"} <= set(d)
+    for k in range(len(d["id"])):
+        rows.append((int(d["id"][k]), int(d["type"][k]), float(d["diameter"][k]),
+                     float(d["x"][k]), float(d["y"][k]), float(d["z"][k])))
+        if has_v:
+            w = tuple(float(d[c][k]) for c in ("wx", "wy", "wz")) if has_w else (0.0, 0.0, 0.0)
+            vel.append(tuple(float(d[c][k]) for c in ("vx", "vy", "vz")) + w)
     # LIGGGHTS atom ids start at 1; grainflow's final_state.csv numbers grains from 0: shift them.
     shift = 1 - min(r[0] for r in rows) if rows and min(r[0] for r in rows) < 1 else 0
     rows = [(i + shift, *rest) for i, *rest in rows]

@@ -19,6 +19,8 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from grainflow.outputs import Run  # noqa: E402
 MODELS = [
     ("spheres", ["scenes/drum_quick.toml", "--steps", "25000"], False),
     ("bodies", ["scenes/hopper_seed002_cost.toml", "--steps", "2000"], False),
@@ -45,8 +47,7 @@ def run(build, args, ranks, out):
     else:
         cmd = [os.path.join(build, "grainflow"), "run", scene, *args[1:], "--threads", "1", "--quiet", "--out", out]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=ROOT)
-    with open(os.path.join(out, "summary.json")) as f:
-        return rate(json.load(f))
+    return rate(Run(out).summary)
 
 
 def main():
