@@ -55,6 +55,8 @@ import sys
 import time
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))
+from grainflow.outputs import Run  # noqa: E402
 SCENE = ROOT / "scenes/hopper_seed002_cost.toml"
 RUNS = ROOT / "runs/seed002_cost"
 DOCS = ROOT / "studies/seed002/results/cost"
@@ -253,16 +255,9 @@ def crossing(t, f, level):
 
 def measure(name):
     d = RUNS / name
-    s = json.loads((d / "out/summary.json").read_text())
-    rows = (d / "out/series.csv").read_text().split("\n")
-    head = rows[0].split(",")
-    it, ir = head.index("time"), head.index("remaining_fraction")
-    t, f = [], []
-    for line in rows[1:]:
-        if line:
-            c = line.split(",")
-            t.append(float(c[it]))
-            f.append(float(c[ir]))
+    run = Run(d / "out")
+    s = run.summary
+    t, f = run.series["time"].tolist(), run.series["remaining_fraction"].tolist()
     t90, t50, t20, t10 = (crossing(t, f, x) for x in (0.9, 0.5, 0.2, 0.1))
     n = s["bodies"]["moving"]
     shape = json.loads((d / "shape.json").read_text())
