@@ -4,7 +4,8 @@ Modules (import the one you need; this package itself imports nothing, so `grain
 without numpy):
 
   grainflow.outputs    a run folder into numpy arrays: Run(folder).series, .surface, .summary,
-                       .final_state(), .residence(), .layers(), .frames(); read_frame(path), read_csv(path)
+                       .final_state(), .residence(), .layers(), .frames(); read_frame(path), read_csv(path),
+                       rows_of(table) (a table as a list of rows)
   grainflow.run        run_scene(scene, out, sets=..., steps=...): runs the grainflow binary, returns a Run
   grainflow.vtp        read_vtp(path): a frame's arrays as lists, without numpy
   grainflow.resumable  a long run in pieces of a wall-time budget, archived and restored across checkouts

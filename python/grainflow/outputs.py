@@ -86,6 +86,14 @@ def read_csv(path):
     return {n: _column(n, [v.strip() for v in c]) for n, c in zip(names, columns)}
 
 
+def rows_of(table):
+    """A {column: array} table (read_csv's) as a list of rows, each {column: value}: numbers as Python
+    floats (ids as ints), text as str. For code that walks a file row by row."""
+    names = list(table)
+    n = len(table[names[0]]) if names else 0
+    return [{k: table[k][i].item() for k in names} for i in range(n)]
+
+
 class Frame(NamedTuple):
     """One frame's points, (n, 3), and point data, {name: (n,) or (n, components) array}."""
     points: np.ndarray

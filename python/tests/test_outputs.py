@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from grainflow.outputs import MissingOutputError, Run, read_csv, read_frame, read_pvd
+from grainflow.outputs import MissingOutputError, Run, read_csv, read_frame, read_pvd, rows_of
 
 try:
     from . import helpers
@@ -79,6 +79,17 @@ class RunFolderTest(unittest.TestCase):
         self.assertEqual(g["type"].tolist(), [1, 2])
         np.testing.assert_allclose(g["vx"], [0, 1e-3])
         np.testing.assert_allclose(g["wy"], [0, 5])
+
+    def test_rows_of(self):
+        rows = rows_of(self.run.final_state())
+        self.assertEqual(len(rows), 2)
+        self.assertEqual(rows[1]["id"], 9)
+        self.assertIsInstance(rows[1]["id"], int)
+        self.assertIsInstance(rows[1]["vx"], float)
+        self.assertEqual(rows[1]["vx"], 1e-3)
+        (self.dir / "t.csv").write_text("a,name\n1.5,moving\n")
+        self.assertEqual(rows_of(read_csv(self.dir / "t.csv")), [{"a": 1.5, "name": "moving"}])
+        self.assertEqual(rows_of({}), [])
 
     def test_residence_layers_surface(self):
         r = self.run.residence()

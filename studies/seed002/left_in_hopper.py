@@ -11,10 +11,13 @@ scenes/hopper_seed002_shapes.toml. Grains are the frame's moving bodies (fixed a
 are left out).
 """
 import argparse
-import csv
 import json
 import math
+import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
+from grainflow.outputs import read_csv, rows_of  # noqa: E402
 
 
 def left_in_hopper(rows, orifice):
@@ -40,8 +43,7 @@ def main():
     ap.add_argument("--orifice", type=float, default=8.0, help="side of the square orifice (m)")
     ap.add_argument("--out", type=Path, default=None)
     a = ap.parse_args()
-    with open(a.frame, newline="") as f:
-        result = {"frame": str(a.frame)} | left_in_hopper(list(csv.DictReader(f)), a.orifice)
+    result = {"frame": str(a.frame)} | left_in_hopper(rows_of(read_csv(a.frame)), a.orifice)
     text = json.dumps(result, indent=1)
     if a.out:
         a.out.write_text(text + "\n")

@@ -34,7 +34,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-from grainflow.outputs import Run, read_csv  # noqa: E402
+from grainflow.outputs import Run, read_csv, rows_of  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SCENE = os.path.join(ROOT, "scenes", "packing_seed002_letters.toml")
@@ -70,9 +70,7 @@ def shape_mass(binary, letter):
 
 def read_series(path):
     """series.csv as a list of rows, each {column: float} (read by the Python package)."""
-    cols = read_csv(path)
-    n = len(cols["time"]) if "time" in cols else 0
-    return [{k: float(v[i]) for k, v in cols.items()} for i in range(n)]
+    return rows_of(read_csv(path))
 
 
 def run_summary(run_dir):

@@ -21,7 +21,6 @@ fraction left at the end, and the angle of repose of the crater left about the o
 summary.json's `repose` (across x and across z, two flanks each), their mean and range.
 """
 import argparse
-import csv
 import json
 import math
 import shutil
@@ -218,13 +217,12 @@ def main():
 def keep_what_is_left(folder, dest):
     """A finished long discharge's last body frame, archived as dest/last_frame.csv, and what it
     leaves in the hopper (studies/seed002/left_in_hopper.py) as dest/left_in_hopper.json."""
-    from left_in_hopper import left_in_hopper
+    from left_in_hopper import left_in_hopper  # it puts the Python package on the path
+    from grainflow.outputs import read_csv, rows_of
 
-    with open(folder / "frames" / "frames.csv", newline="") as f:
-        last = list(csv.DictReader(f))[-1]["file"]
+    last = str(read_csv(folder / "frames" / "frames.csv")["file"][-1])
     shutil.copy2(folder / "frames" / last, dest / "last_frame.csv")
-    with open(dest / "last_frame.csv", newline="") as f:
-        left = left_in_hopper(list(csv.DictReader(f)), ORIFICE)
+    left = left_in_hopper(rows_of(read_csv(dest / "last_frame.csv")), ORIFICE)
     (dest / "left_in_hopper.json").write_text(json.dumps({"frame": f"{dest.name}/last_frame.csv"} | left, indent=1) + "\n")
 
 

@@ -28,7 +28,7 @@ import tempfile
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "python"))
-from grainflow.outputs import Run, read_csv  # noqa: E402
+from grainflow.outputs import Run, read_csv, rows_of  # noqa: E402
 SCENE = "scenes/liquid/settling_grain.toml"
 # The scene's grain and liquid (the closed form's inputs).
 D, RHO_P, RHO_L, MU, G = 2.0e-3, 2500.0, 1000.0, 0.01, 9.81
@@ -74,8 +74,7 @@ def cases():
 
 def last_rows(path):
     """A series.csv as a list of rows, each {column: float} (read by the Python package)."""
-    cols = read_csv(path)
-    return [{k: float(v[i]) for k, v in cols.items()} for i in range(len(cols["time"]))]
+    return rows_of(read_csv(path))
 
 
 def one(binary, knob, l0, k, dt, work):

@@ -13,7 +13,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXP = os.path.join(HERE, "results", "dam_break_experiments.csv")
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
-from grainflow.outputs import Run, read_csv  # noqa: E402
+from grainflow.outputs import Run, read_csv, rows_of  # noqa: E402
 
 
 def experiments():
@@ -35,8 +35,7 @@ def front_series(run_dir, a, g=9.81):
 
 def series_rows(run_dir):
     """A run's series.csv as a list of rows, each {column: float}."""
-    cols = Run(run_dir).series
-    return [{k: float(v[i]) for k, v in cols.items()} for i in range(len(cols["time"]))]
+    return rows_of(Run(run_dir).series)
 
 
 def interp(T, Z, t):
