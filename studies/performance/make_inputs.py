@@ -26,7 +26,14 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
-from grainflow.outputs import read_csv  # noqa: E402
+
+
+def _outputs():
+    """grainflow.outputs, imported where run files are read: it needs numpy, the tables do not."""
+    import grainflow.outputs
+    return grainflow.outputs
+
+
 REPO = os.path.dirname(os.path.dirname(HERE))
 DEFAULT_CSV = os.path.join(REPO, "scenes", "data", "drum_settled_47108.csv")
 
@@ -75,7 +82,7 @@ def read_state(path):
     """Rows (id, type, diameter, x, y, z) and, when the file has them, velocities per row
     (vx, vy, vz, wx, wy, wz; spins 0 when only velocities are given), else None."""
     rows, vel = [], []
-    d = read_csv(path)
+    d = _outputs().read_csv(path)
     has_v = {"vx", "vy", "vz"} <= set(d)
     has_w = {"wx", "wy", "wz"} <= set(d)
     for k in range(len(d["id"])):

@@ -30,14 +30,20 @@ import statistics
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "python"))
-from grainflow.outputs import Run, read_csv  # noqa: E402
+
+
+def _outputs():
+    """grainflow.outputs, imported where run files are read: it needs numpy, the tables do not."""
+    import grainflow.outputs
+    return grainflow.outputs
+
 
 HALF_GATE = 0.02  # m
 ABOVE = 0.03      # m
 
 
 def series(run):
-    s = Run(run).series
+    s = _outputs().Run(run).series
     return s["time"].tolist(), s["remaining_fraction"].tolist()
 
 
@@ -61,7 +67,7 @@ def over_outlet(run):
         if not frames:
             return None
         frame = pathlib.Path(frames[-1])
-    d = read_csv(frame)
+    d = _outputs().read_csv(frame)
     over = (d["motion"] == "moving") & (abs(d["x"]) < HALF_GATE) & (d["y"] > 0.0) & (d["y"] < ABOVE)
     return int(over.sum())
 
@@ -149,7 +155,7 @@ def main():
     result = {}
     for run in a.runs:
         t, f = series(run)
-        summary = Run(run).summary
+        summary = _outputs().Run(run).summary
         ended = next(ti for ti, fi in zip(t, f) if fi == f[-1])
         half = next((ti for ti, fi in zip(t, f) if fi <= 0.5), None)
         entry = {"overrides": summary.get("overrides", []), "remaining_at_end": f[-1], "end_s": t[-1],

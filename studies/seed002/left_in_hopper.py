@@ -17,7 +17,13 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
-from grainflow.outputs import read_csv, rows_of  # noqa: E402
+
+
+def _outputs():
+    """grainflow.outputs, imported where run files are read: it needs numpy, the tables do not."""
+    import grainflow.outputs
+    return grainflow.outputs
+
 
 
 def left_in_hopper(rows, orifice):
@@ -43,7 +49,7 @@ def main():
     ap.add_argument("--orifice", type=float, default=8.0, help="side of the square orifice (m)")
     ap.add_argument("--out", type=Path, default=None)
     a = ap.parse_args()
-    result = {"frame": str(a.frame)} | left_in_hopper(rows_of(read_csv(a.frame)), a.orifice)
+    result = {"frame": str(a.frame)} | left_in_hopper(_outputs().rows_of(_outputs().read_csv(a.frame)), a.orifice)
     text = json.dumps(result, indent=1)
     if a.out:
         a.out.write_text(text + "\n")

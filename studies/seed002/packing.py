@@ -34,7 +34,13 @@ import sys
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-from grainflow.outputs import Run, read_csv, rows_of  # noqa: E402
+
+
+def _outputs():
+    """grainflow.outputs, imported where run files are read: it needs numpy, the tables do not."""
+    import grainflow.outputs
+    return grainflow.outputs
+
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SCENE = os.path.join(ROOT, "scenes", "packing_seed002_letters.toml")
@@ -70,13 +76,13 @@ def shape_mass(binary, letter):
 
 def read_series(path):
     """series.csv as a list of rows, each {column: float} (read by the Python package)."""
-    return rows_of(read_csv(path))
+    return _outputs().rows_of(_outputs().read_csv(path))
 
 
 def run_summary(run_dir):
     """A run folder's summary.json as a dict, or None when there is none yet."""
     try:
-        return Run(run_dir).summary
+        return _outputs().Run(run_dir).summary
     except (OSError, ValueError):
         return None
 

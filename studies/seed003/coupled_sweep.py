@@ -28,7 +28,14 @@ import tempfile
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "python"))
-from grainflow.outputs import Run, read_csv, rows_of  # noqa: E402
+
+
+def _outputs():
+    """grainflow.outputs, imported where run files are read: it needs numpy, the tables do not."""
+    import grainflow.outputs
+    return grainflow.outputs
+
+
 SCENE = "scenes/liquid/settling_grain.toml"
 # The scene's grain and liquid (the closed form's inputs).
 D, RHO_P, RHO_L, MU, G = 2.0e-3, 2500.0, 1000.0, 0.01, 9.81
@@ -74,7 +81,7 @@ def cases():
 
 def last_rows(path):
     """A series.csv as a list of rows, each {column: float} (read by the Python package)."""
-    return rows_of(read_csv(path))
+    return _outputs().rows_of(_outputs().read_csv(path))
 
 
 def one(binary, knob, l0, k, dt, work):
@@ -89,7 +96,7 @@ def one(binary, knob, l0, k, dt, work):
     row = {"knob": knob, "l0": l0, "k": k, "dt": dt}
     lines = [line for line in p.stderr.splitlines() if line.strip()]
     said = [line for line in lines if "error" in line.lower() or "stop" in line.lower()] or lines[-1:]
-    summary = Run(out).summary if os.path.exists(os.path.join(out, "summary.json")) else {}
+    summary = _outputs().Run(out).summary if os.path.exists(os.path.join(out, "summary.json")) else {}
     row["status"] = summary.get("status", f"refused (exit {p.returncode})") if p.returncode == 0 else (
         f"stopped (exit {p.returncode})" if summary else f"refused (exit {p.returncode})")
     row["wall_seconds"] = summary.get("wall_seconds", "")

@@ -42,7 +42,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from coupled_sweep import schiller_naumann_speed  # noqa: E402  (the same bead and liquid)
-from coupled_sweep import Run, last_rows, read_csv  # noqa: E402  (the Python package's readers)
+from coupled_sweep import _outputs, last_rows  # noqa: E402  (the Python package, read lazily)
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 SCENE = "scenes/liquid/fluidised_bed.toml"
@@ -105,7 +105,9 @@ def run(a):
 
 
 def read_state(path):
-    return [float(x) for x in read_csv(path)["x"]]
+    """The grains' x from a state file, without numpy: the ladder's table reads the packed bed's state."""
+    with open(path, newline="") as fh:
+        return [float(r["x"]) for r in csv.DictReader(l for l in fh if not l.startswith("#"))]
 
 
 def bed(xs):
@@ -120,7 +122,7 @@ def bed(xs):
 
 
 def one(folder, drive, u_t, n_rz):
-    summary = Run(folder).summary
+    summary = _outputs().Run(folder).summary
     rows = last_rows(os.path.join(folder, "series.csv"))
     t_end = float(rows[-1]["time"])
     last = [r for r in rows if float(r["time"]) >= t_end - 0.5 + 1e-9]

@@ -42,7 +42,7 @@ def main():
                 for s in sets:
                     cmd += ["--set", s]
                 subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
-                s = sweep.front_error.Run(tmp).summary
+                s = sweep.front_error._outputs().Run(tmp).summary
                 ok = s["status"] == "completed"
                 rms = float("nan")
                 if case == "hydrostatic_2d" and ok:

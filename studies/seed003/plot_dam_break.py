@@ -25,7 +25,7 @@ def main():
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for spec in sys.argv[2:]:
         label, path = spec.rsplit("=", 1)
-        T, Z = front_error.front_curve(front_error.read_csv(path), A, G)
+        T, Z = front_error.front_curve(front_error._outputs().read_csv(path), A, G)
         ax.plot(T, Z, "-", label=label)
     exp = front_error.experiments()
     for src, marker, name in [("martin_moyce_a2.25in", "o", "Martin & Moyce 1952 (a = 2.25 in)"),

@@ -88,7 +88,7 @@ def run_one(binary, scene, duration, l0, dt, out):
     for s in sets:
         cmd += ["--set", s]
     subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
-    return front_error.Run(out).summary
+    return front_error._outputs().Run(out).summary
 
 
 def main():
