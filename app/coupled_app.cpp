@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <memory>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -21,8 +23,10 @@
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
 #include "systems/output/series_csv.hpp"
+#include "systems/output/wall_loads_csv.hpp"
 #include "systems/setup/coupled_checkpoint.hpp"
 #include "systems/setup/coupled_simulation.hpp"
+#include "systems/setup/dem_output_settings.hpp"
 #include "systems/setup/final_state.hpp"
 
 namespace gf {
@@ -66,22 +70,35 @@ void print_coupling(const CoupledScene& s) {
 }
 
 // series.csv: a row every `every` liquid steps, from step 0; a resumed run continues the file from the
-// rows its checkpoint counted.
+// rows its checkpoint counted. Beside it, when the grains have walls, walls.csv: each wall's mean load
+// over the DEM sub-steps since the previous row (wall_loads_csv.hpp), its running sums checkpointed.
 class CoupledSeries : public SystemBase<CoupledSeries>, public Checkpointable {
  public:
-  using Reads = gf::Reads<FluidNodes, Position, Velocity>;
+  using Reads = gf::Reads<FluidNodes, Position, Velocity, Walls, MeshWallLoads>;
   using Writes = gf::Writes<SeriesRow>;  // before the checkpoint, which counts the rows
   CoupledSeries(const std::filesystem::path& file, const CoupledScene& s, std::int64_t every, const CheckpointReader* from)
       : csv_(from ? SeriesCsv::resume(file, coupled_series_columns(), from->value<std::uint64_t>("coupled_series.rows"))
                   : SeriesCsv(file, coupled_series_columns())),
-        s_(s), every_(every), rows_(from ? from->value<std::uint64_t>("coupled_series.rows") : 0) {}
+        s_(s), every_(every), rows_(from ? from->value<std::uint64_t>("coupled_series.rows") : 0) {
+    const SeriesSettings walls = scene_series_settings(s.dem, file.parent_path());
+    if (walls.wall_names.empty()) return;
+    // A resumed run keeps the rows through the checkpoint's time (its row there, if any, came before it).
+    const double resume_time = from ? from->value<double>("clock.t") : std::numeric_limits<double>::quiet_NaN();
+    walls_csv_ = std::make_unique<WallLoadsCsv>(file.parent_path() / "walls.csv", walls.wall_names,
+                                                walls.analytic_walls, resume_time);
+    if (from) walls_csv_->restore(*from);
+  }
   std::string_view name() const override { return "series_output"; }
   void run(World& w, const StepContext&) override {
     if (w.clock.step % every_ != 0) return;
     csv_.append(sample_coupled(w, s_.liquid));
     ++rows_;
+    if (walls_csv_) walls_csv_->write(w.clock.t, &w.resources.get<Walls>().loads, w.resources.find<MeshWallLoads>());
   }
-  void save(CheckpointWriter& out) const override { out.value("coupled_series.rows", rows_); }
+  void save(CheckpointWriter& out) const override {
+    out.value("coupled_series.rows", rows_);
+    if (walls_csv_) walls_csv_->save(out);
+  }
   void restore(const CheckpointReader& in) override { rows_ = in.value<std::uint64_t>("coupled_series.rows"); }
 
  private:
@@ -89,6 +106,7 @@ class CoupledSeries : public SystemBase<CoupledSeries>, public Checkpointable {
   const CoupledScene& s_;
   std::int64_t every_;
   std::uint64_t rows_ = 0;
+  std::unique_ptr<WallLoadsCsv> walls_csv_;
 };
 
 // An MPS liquid with DEM grains (CoupledSimulation), for the run skeleton (run_model.hpp).
@@ -205,9 +223,11 @@ int check_coupled_command(const CliOptions& opt) {
               static_cast<long long>(s.steps()) * s.coupling.substeps);
   const LiquidOutput& o = s.liquid.output;
   const std::string at_end = o.checkpoint_at_end ? "at the end" : "not at the end";
-  std::printf("outputs: series.csv %s; VTK frames %s; summary.json; final_state.csv (the grains); checkpoints "
+  const bool walls = o.series_interval > 0 && !(s.dem.walls.empty() && s.dem.mesh_walls.list.empty());
+  std::printf("outputs: series.csv %s%s; VTK frames %s; summary.json; final_state.csv (the grains); checkpoints "
               "(checkpoints/checkpoint.gfc) %s; run --resume continues from one\n",
               o.series_interval > 0 ? ("every " + short_number(o.series_interval) + " s").c_str() : "none",
+              walls ? ", and walls.csv at its rows" : "",
               o.frame_interval > 0 ? ("every " + short_number(o.frame_interval) + " s (liquid/frames.pvd, grains/frames.pvd)").c_str() : "none",
               o.checkpoint_interval > 0 ? ("every " + short_number(o.checkpoint_interval) + " s and " + at_end).c_str() : at_end.c_str());
   return 0;
