@@ -15,6 +15,7 @@
 #include "systems/output/checkpoint_output.hpp"
 #include "systems/output/dem_observers.hpp"
 #include "systems/output/layer_output.hpp"
+#include "systems/output/picture_legend.hpp"
 #include "systems/output/residence_csv.hpp"
 #include "systems/output/summary_json.hpp"
 #include "systems/setup/dem_checkpoint.hpp"
@@ -87,6 +88,12 @@ int check_dem_command(const CliOptions& opt) {
   std::printf("grains: %zu in %zu species; walls: %zu and %zu of mesh; fills: %zu; feeds: %zu; outlets: %zu\n", n,
               s.species.size(), s.walls.size(), s.mesh_walls.list.size(), s.fills.size(), s.flow.feeds.size(),
               s.flow.outlets.size());
+  for (std::size_t k = 0; k < s.species.size(); ++k) {
+    const SpeciesSpec& sp = s.species[k];
+    std::printf("species %zu '%s': diameter %s, density %s kg/m^3%s\n", k, sp.name.c_str(),
+                sp.size.describe(length_label).c_str(), short_number(sp.density).c_str(),
+                sp.size.is_fixed() ? "" : " (each grain draws its own; contacts scaled to their grains)");
+  }
   std::size_t rotating = 0;
   for (const SpeciesSpec& sp : s.species) rotating += sp.rotates;
   if (rotating == s.species.size())
