@@ -138,3 +138,28 @@ TEST_CASE("the representative-volume law keeps one size per species") {
   CHECK(msg.find("species[0].diameter") != std::string::npos);
   CHECK(msg.find("one size per species") != std::string::npos);
 }
+
+TEST_CASE("a run of size distributions resumed from its checkpoint ends as the run that never stopped") {
+  // Each grain's own diameter, mass and inertia travel in the checkpoint: the final state, the series and
+  // walls.csv of two pieces are the bytes of one run.
+  const gf::test::TempDir dir("species_size_resume");
+  const std::string file = dir.write("scene.toml", box_scene(kNormal, "count = { glass = 400 }") +
+                                                       "[output]\nseries_interval = 2.0e-4\nframe_interval = 0\n")
+                               .string();
+  const auto run = [&](const std::string& out, const std::string& more) {
+    const gf::test::Exit e = gf::test::run_cli(dir, "run " + gf::test::quote(file) + " --out " +
+                                                        gf::test::quote((dir.path / out).string()) +
+                                                        " --threads 1 --quiet --set run.duration=0.002 " + more);
+    INFO(e.err);
+    REQUIRE(e.code == 0);
+  };
+  run("whole", "");
+  run("pieces", "--steps 200");
+  run("pieces", "--resume " + gf::test::quote((dir.path / "pieces" / "checkpoints" / "checkpoint.gfc").string()));
+  for (const char* f : {"final_state.csv", "series.csv", "walls.csv"}) {
+    CAPTURE(f);
+    const std::string whole = gf::test::read_file(dir.path / "whole" / f);
+    REQUIRE(!whole.empty());
+    CHECK(gf::test::read_file(dir.path / "pieces" / f) == whole);
+  }
+}
