@@ -19,20 +19,10 @@ using Catch::Contains;
 
 namespace {
 
-// A 3 cm tank of liquid with a free surface, three 2 mm grains inside, 16 DEM sub-steps per step.
+// The shared tank of liquid with three grains (tests/test_support.hpp).
 std::string scene(const std::string& coupling = "substeps = 16\nsmoothing_radius = 0.0075\n",
                   const std::string& extra = "") {
-  return "[run]\ndt = 5.0e-4\nduration = 0.01\ngravity = [0.0, -9.81, 0.0]\nskin = 2.0e-4\n"
-         "[liquid]\ndim = 3\nl0 = 0.003\ndensity = 1000.0\nviscosity = 1.0e-5\n"
-         "[geometry]\ntype = \"tank\"\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.04, 0.03]\n"
-         "[[fluid]]\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.03, 0.03]\n"
-         "[[species]]\nname = \"glass\"\ndiameter = 2.0e-3\ndensity = 2500.0\n"
-         "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nkr = 1.0e-5\n"
-         "en = 0.3\net = 0.3\ner = 0.3\nfriction = 0.3\nrolling_friction = 5.0e-5\n"
-         "[[wall]]\ntype = \"box\"\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.04, 0.03]\n"
-         "[[fill]]\nkind = \"random\"\n"
-         "region = { shape = \"box\", lo = [0.01, 0.01, 0.01], hi = [0.02, 0.02, 0.02] }\ncount = { glass = 3 }\n"
-         "[coupling]\n" + coupling + extra;
+  return gf::test::coupled_tank_scene(coupling, extra);
 }
 
 double norm(const gf::V3<double>& a) { return std::sqrt(gf::dot(a, a)); }

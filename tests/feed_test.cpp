@@ -51,6 +51,14 @@ double species_mass(const gf::Grains& g, std::int32_t type) {
   return m;
 }
 
+// `events` feed events from t = 0, the table updated after each as the neighbour-list rebuild would.
+void feed_for(gf::Grains& g, const gf::FeedSpec& f, gf::FeedState& s, gf::ResidenceLog& log, int events) {
+  for (int k = 0; k < events; ++k) {
+    gf::feed_events(g, f, s, log, k * f.interval);
+    g.apply_pending();
+  }
+}
+
 }  // namespace
 
 TEST_CASE("feed: the fed mass of each species follows rate x fraction x time to within one grain", "[feed]") {
@@ -58,11 +66,7 @@ TEST_CASE("feed: the fed mass of each species follows rate x fraction x time to 
   gf::FeedState s = gf::start_feed(f);
   gf::ResidenceLog log;
   gf::Grains g;
-  // 20 events, the table updated after each as the neighbour-list rebuild would.
-  for (int k = 0; k < 20; ++k) {
-    gf::feed_events(g, f, s, log, k * f.interval);
-    g.apply_pending();
-  }
+  feed_for(g, f, s, log, 20);
   CHECK(s.events == 20);
   const double fed_time = 20 * f.interval;
   for (const gf::FeedSpecies& sp : f.species) {
@@ -189,10 +193,7 @@ TEST_CASE("feed: grains of a size distribution each draw a diameter and cost the
   gf::FeedState s = gf::start_feed(f);
   gf::ResidenceLog log;
   gf::Grains g;
-  for (int k = 0; k < 20; ++k) {
-    gf::feed_events(g, f, s, log, k * f.interval);
-    g.apply_pending();
-  }
+  feed_for(g, f, s, log, 20);
   const double largest = kRho * std::numbers::pi / 6.0 * std::pow(law->largest(), 3);
   const double want = f.mass_rate * 0.67 * 20 * f.interval, got = species_mass(g, 0);
   CHECK(got <= want + 1e-15);

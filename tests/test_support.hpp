@@ -306,6 +306,22 @@ inline std::string small_drum_scene(double gravity, const std::string& extra_run
   return s.str();
 }
 
+// A 3 cm tank of liquid with a free surface, three 2 mm grains inside, 16 DEM sub-steps per step.
+inline std::string coupled_tank_scene(const std::string& coupling = "substeps = 16\nsmoothing_radius = 0.0075\n",
+                               const std::string& extra = "") {
+  return "[run]\ndt = 5.0e-4\nduration = 0.01\ngravity = [0.0, -9.81, 0.0]\nskin = 2.0e-4\n"
+         "[liquid]\ndim = 3\nl0 = 0.003\ndensity = 1000.0\nviscosity = 1.0e-5\n"
+         "[geometry]\ntype = \"tank\"\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.04, 0.03]\n"
+         "[[fluid]]\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.03, 0.03]\n"
+         "[[species]]\nname = \"glass\"\ndiameter = 2.0e-3\ndensity = 2500.0\n"
+         "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nkr = 1.0e-5\n"
+         "en = 0.3\net = 0.3\ner = 0.3\nfriction = 0.3\nrolling_friction = 5.0e-5\n"
+         "[[wall]]\ntype = \"box\"\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.04, 0.03]\n"
+         "[[fill]]\nkind = \"random\"\n"
+         "region = { shape = \"box\", lo = [0.01, 0.01, 0.01], hi = [0.02, 0.02, 0.02] }\ncount = { glass = 3 }\n"
+         "[coupling]\n" + coupling + extra;
+}
+
 // Starts the grainflow binary with `args` (argv[1] on) in the background, stdout and stderr to the
 // file `log`, and returns its pid (-1 if fork failed). Everything the child needs is prepared
 // before fork; after it, only async-signal-safe calls.

@@ -96,22 +96,6 @@ BedLoads bed_loads(int small, int large, int steps) {
   return b;
 }
 
-// The coupled tests' water tank (30 x 40 x 30 mm, filled to 30 mm, l0 = 3 mm) with three 2 mm glass grains
-// poured just above its floor, inside a box wall, a series row every 10 ms.
-std::string tank_scene() {
-  return "[run]\ndt = 5.0e-4\nduration = 0.3\ngravity = [0.0, -9.81, 0.0]\nskin = 2.0e-4\n"
-         "[liquid]\ndim = 3\nl0 = 0.003\ndensity = 1000.0\nviscosity = 1.0e-5\n"
-         "[geometry]\ntype = \"tank\"\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.04, 0.03]\n"
-         "[[fluid]]\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.03, 0.03]\n"
-         "[[species]]\nname = \"glass\"\ndiameter = 2.0e-3\ndensity = 2500.0\n"
-         "[contact]\nmodel = \"linear_spring_dashpot\"\nkn = 1000.0\nkt = 600.0\nkr = 1.0e-5\n"
-         "en = 0.3\net = 0.3\ner = 0.3\nfriction = 0.3\nrolling_friction = 5.0e-5\n"
-         "[[wall]]\ntype = \"box\"\nlo = [0.0, 0.0, 0.0]\nhi = [0.03, 0.04, 0.03]\n"
-         "[[fill]]\nkind = \"random\"\n"
-         "region = { shape = \"box\", lo = [0.008, 0.001, 0.008], hi = [0.022, 0.004, 0.022] }\ncount = { glass = 3 }\n"
-         "[coupling]\nsubsteps = 16\nsmoothing_radius = 0.0075\n[output]\nseries_interval = 0.01\n";
-}
-
 // The comma-separated fields of one CSV line.
 std::vector<std::string> split_fields(const std::string& line) {
   std::vector<std::string> out;
@@ -213,9 +197,13 @@ TEST_CASE("coupled walls.csv: grains at rest on a liquid-filled tank's floor wei
   // contacts put on them). Measured: 1.003 of it, single rows 0.992 to 1.012 (the liquid's pressure noise at
   // the grains); 2 % bounds the mean. The other faces carry nothing.
   gf::test::TempDir dir("coupled_walls");
-  const std::string file = dir.write("coupled.toml", tank_scene()).string();
-  const gf::test::Exit run =
-      gf::test::run_cli(dir, "run " + gf::test::quote(file) + " --out " + gf::test::quote((dir.path / "run").string()) + " --quiet");
+  const std::string file = dir.write("coupled.toml", gf::test::coupled_tank_scene("substeps = 16\nsmoothing_radius = 0.0075\n",
+                                                                                    "[output]\nseries_interval = 0.01\n"))
+                               .string();
+  const gf::test::Exit run = gf::test::run_cli(
+      dir, "run " + gf::test::quote(file) + " --out " + gf::test::quote((dir.path / "run").string()) +
+               " --quiet --set run.duration=0.3 --set 'fill.0.region.lo=[0.008, 0.001, 0.008]'"
+               " --set 'fill.0.region.hi=[0.022, 0.004, 0.022]'");
   INFO(run.err);
   REQUIRE(run.code == 0);
   const std::vector<std::string> lines = gf::test::read_lines(dir.path / "run" / "walls.csv");
