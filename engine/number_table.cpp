@@ -44,6 +44,13 @@ void fail_number_table(const std::filesystem::path& file, std::size_t line, cons
   throw SceneError(msg + ": " + problem + ". Fix: " + fix);
 }
 
+void fail_at_key(const SceneNode& node, std::string_view key, const SceneError& e) {
+  const std::string m = e.what();
+  const std::size_t at = m.rfind(". Fix: ");
+  if (at == std::string::npos) node.fail(key, m, "correct the file, or the path (relative to the scene file)");
+  node.fail(key, m.substr(0, at), m.substr(at + 7));
+}
+
 std::vector<NumberRow> read_number_table(const std::filesystem::path& file, std::size_t columns, std::string_view what,
                                          std::string_view layout) {
   const std::string name(what);

@@ -27,4 +27,10 @@ std::vector<NumberRow> read_number_table(const std::filesystem::path& file, std:
 [[noreturn]] void fail_number_table(const std::filesystem::path& file, std::size_t line, const std::string& problem,
                                     const std::string& fix);
 
+class SceneNode;
+class SceneError;
+// A table file's error ("<file>:<line>: <problem>. Fix: <fix>") thrown again at the scene key `key` of
+// `node` that named the file, its problem and fix kept.
+[[noreturn]] void fail_at_key(const SceneNode& node, std::string_view key, const SceneError& e);
+
 }  // namespace gf

@@ -55,11 +55,7 @@ SizeDistribution read_size_file(const SceneNode& t, bool by_mass) {
     if (d.empty()) fail_number_table(file, 0, "size table: the file has no rows", "give rows of diameter, fraction");
     return SizeDistribution::discrete(d, w, by_mass);
   } catch (const SceneError& e) {
-    // "<file>:<line>: <problem>. Fix: <fix>" as the scene's message at the key, its fix kept.
-    const std::string m = e.what();
-    const std::size_t at = m.rfind(". Fix: ");
-    if (at == std::string::npos) t.fail("file", m, "correct the file, or the path (relative to the scene file)");
-    t.fail("file", m.substr(0, at), m.substr(at + 7));
+    fail_at_key(t, "file", e);
   } catch (const std::invalid_argument& e) {
     t.fail("file", shown_path(file.string()) + ": size table: " + e.what(), "give at least one size a fraction above 0");
   }

@@ -122,11 +122,7 @@ WallMotion read_wall_motion(const SceneNode& w) {
     try {
       read_velocity_table(w.doc().resolve(w.get_string("velocity_file")), t, v);
     } catch (const SceneError& e) {
-      // "<file>:<line>: <problem>. Fix: <fix>" as the scene's message at the key, its fix kept.
-      const std::string m = e.what();
-      const std::size_t at = m.rfind(". Fix: ");
-      if (at == std::string::npos) w.fail("velocity_file", m, "correct the file, or the path (relative to the scene file)");
-      w.fail("velocity_file", m.substr(0, at), m.substr(at + 7));
+      fail_at_key(w, "velocity_file", e);
     }
     m.set_table(std::move(t), std::move(v));
   }
