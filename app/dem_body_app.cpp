@@ -341,6 +341,7 @@ void BodyModel::observe(Schedule& observers, const std::filesystem::path& out, c
   if (bo.has_outlet) ss.outlet_height = bo.outlet_height;
   ss.initial_moving = initial_moving;
   if (from) ss.resume_rows = from->value<std::uint64_t>("body_series_output.rows");
+  for (const Wall& w : s_.walls) ss.wall_names.push_back(w.name);
   series_ = &observers.emplace<BodySeriesOutput>(ss);
   if (s_.output.frame_interval > 0)
     frames_ = &observers.emplace<BodyFrameOutput>(out, s_.output.frame_interval, frame_labels(*s_.bodies), layers);

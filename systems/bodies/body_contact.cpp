@@ -165,6 +165,7 @@ void check_members(const Bodies& bodies, const Members& members) {
 
 // The wall history's shape follows the members and planes; a new shape starts every spring at zero.
 void shape_wall_history(MemberWallHistory& w, std::size_t members, std::size_t planes, std::size_t width) {
+  w.load.resize(members * planes * MemberWallHistory::kLoad);  // a restored state has none
   if (w.members == members && w.planes == planes && w.width == width) return;
   w.members = members, w.planes = planes, w.width = width;
   w.value.assign(members * planes * width, 0.0);
@@ -179,14 +180,16 @@ Vector3d eig(const V3<double>& v) { return {v.x, v.y, v.z}; }
 
 // Runs law L on a touching contact between bodies A (the owner) and B (none for a wall), with the
 // law's constants k and history h (read and written).
+// A wall moves at wall_velocity and turns at wall_spin (c.arm_b from its rotation point).
 template <class L>
 Outcome evaluate(const Bodies& bodies, const MemberContact& c, std::size_t body_a, std::ptrdiff_t body_b,
-                 const double* k, double* h, double dt, const Vector3d& wall_spin = Vector3d::Zero()) {
+                 const double* k, double* h, double dt, const Vector3d& wall_spin = Vector3d::Zero(),
+                 const Vector3d& wall_velocity = Vector3d::Zero()) {
   const bool wall = body_b < 0;
   const auto b = static_cast<std::size_t>(wall ? 0 : body_b);
   const ContactGeometry<double> g =
       contact_geometry(c, body_velocity(bodies, body_a), body_spin(bodies, body_a),
-                       wall ? Vector3d::Zero() : body_velocity(bodies, b), wall ? wall_spin : body_spin(bodies, b));
+                       wall ? wall_velocity : body_velocity(bodies, b), wall ? wall_spin : body_spin(bodies, b));
   std::array<double, L::kConstants> kc;
   std::copy(k, k + L::kConstants, kc.begin());
   std::array<double, L::kHistory> hs;
@@ -244,19 +247,27 @@ std::vector<Outcome> evaluate_walls(const Bodies& bodies, const Members& members
           continue;
         }
         const BodyPlane& wall = planes.list[p];
-        MemberContact c = wall.cylinder ? member_cylinder(shapes[m], wall.point, wall.normal, wall.radius)
-                                        : member_plane(shapes[m], wall.point, wall.normal);
+        const Vector3d point = wall.point + wall.offset;
+        MemberContact c = wall.cylinder ? member_cylinder(shapes[m], point, wall.normal, wall.radius)
+                                        : member_plane(shapes[m], point, wall.normal);
         w.touching[m * w.planes + p] = c.touching();
         if (!c.touching()) {
           std::fill(h, h + w.width, 0.0);
           continue;
         }
-        // A turning wall's surface moves at omega rot_axis x (point - rot_point) under the contact.
+        // A turning wall's surface moves at v + omega rot_axis x (point - rot_point) under the contact.
+        const Vector3d origin = wall.rot_point + wall.offset;
         const double omega = turning ? wall.omega : 0.0;
-        if (omega != 0.0) c.arm_b = c.point - wall.rot_point;
-        const Outcome o = evaluate<L>(bodies, c, members.body.row[m], -1, &s.list.wall_constants[m * L::kConstants],
-                                      h, dt, omega * wall.rot_axis);
+        if (omega != 0.0) c.arm_b = c.point - origin;
+        const std::size_t body = members.body.row[m];
+        const Outcome o = evaluate<L>(bodies, c, body, -1, &s.list.wall_constants[m * L::kConstants], h, dt,
+                                      omega * wall.rot_axis, wall.velocity);
         std::copy(o.history.begin(), o.history.begin() + static_cast<std::ptrdiff_t>(w.width), h);
+        // The load on the member: its force, and its moment about the wall's rotation point.
+        const Vector3d centre(bodies.pos.x[body], bodies.pos.y[body], bodies.pos.z[body]);
+        const Vector3d moment = (centre - origin).cross(o.force) + o.torque_a;
+        double* load = w.load_at(m, p);
+        for (int q = 0; q < 3; ++q) load[q] = o.force[q], load[3 + q] = moment[q];
         out[m].touching = true;
         out[m].delta = std::max(out[m].delta, o.delta);
         out[m].force += o.force;
@@ -324,6 +335,28 @@ void sum_walls(Bodies& bodies, const Members& members, const std::vector<Outcome
   for (std::uint8_t t : s.walls.touching) report.wall_contacts += t;
 }
 
+// Each plane's load of this evaluation: its touching members' loads summed in member order (so the
+// result does not depend on the thread or process count), the power at the plane's velocity and spin.
+void record_plane_loads(const BodyPlanes& planes, BodyContactState& s, bool turning) {
+  MemberWallHistory& w = s.walls;
+  const std::size_t np = planes.list.size();
+  std::vector<double> sums(6 * np, 0.0);
+  for (std::size_t m = 0; m < w.members; ++m)
+    for (std::size_t p = 0; p < np; ++p) {
+      if (!w.touching[m * np + p]) continue;
+      const double* l = w.load_at(m, p);
+      for (std::size_t q = 0; q < MemberWallHistory::kLoad; ++q) sums[6 * p + q] += l[q];
+    }
+  std::vector<Vec3d> velocity(np), spin(np);
+  for (std::size_t p = 0; p < np; ++p) {
+    const BodyPlane& b = planes.list[p];
+    const double omega = turning ? b.omega : 0.0;
+    velocity[p] = {b.velocity.x(), b.velocity.y(), b.velocity.z()};
+    spin[p] = {omega * b.rot_axis.x(), omega * b.rot_axis.y(), omega * b.rot_axis.z()};
+  }
+  set_wall_loads(sums, s.loads.now, velocity, spin);
+}
+
 // The law's history layout on the pair history; a history of another layout is dropped.
 template <class L>
 void adopt_layout(PairHistory& h) {
@@ -336,6 +369,15 @@ void adopt_layout(PairHistory& h) {
 }  // namespace
 
 // ---- Public -------------------------------------------------------------------------------------
+
+void place_body_planes(BodyPlanes& planes, double t, double lag, bool moving) {
+  for (BodyPlane& b : planes.list) {
+    const Vec3d d = moving ? b.motion.offset(t) : Vec3d{0, 0, 0};
+    const Vec3d v = moving ? b.motion.rate(t - lag) : Vec3d{0, 0, 0};
+    b.offset = {d.x, d.y, d.z};
+    b.velocity = {v.x, v.y, v.z};
+  }
+}
 
 bool member_pairs_stale(const Members& members, const BodyContactState& state) {
   if (!state.valid || state.ref_x.size() != members.n) return true;
@@ -408,6 +450,7 @@ BodyContactReport compute_body_contacts(Bodies& bodies, const Members& members, 
   OverlapSite site;
   sum_pairs(bodies, members, pairs, state, report, site);
   sum_walls(bodies, members, walls, state, report, site);
+  record_plane_loads(planes, state, turning);
   state.worst = site;
   state.last = report;
   return report;

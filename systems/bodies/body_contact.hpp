@@ -75,9 +75,10 @@ namespace gf {
 // A wall the bodies meet: a plane through `point` whose unit `normal` points out of the wall, to the
 // side the bodies are on (as member_plane takes it, and as a scene's plane walls state theirs); or,
 // with `cylinder`, the inside of a cylinder of `radius` about the axis through `point` along the
-// unit `normal` (member_cylinder). Its surface stays in place while it may turn at `omega` (rad/s)
-// about the axis through `rot_point` along `rot_axis` (a drum's mantle, its end plates): the contact
-// then feels the surface's velocity there.
+// unit `normal` (member_cylinder). It may turn at `omega` (rad/s) about the axis through `rot_point`
+// along `rot_axis` (a drum's mantle, its end plates: its surface stays in place), and translate by
+// `motion` (wall_motion.hpp: a velocity, a vibration or a velocity table), which carries the surface
+// and the rotation point with it. The contact feels the surface's velocity there.
 struct BodyPlane {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
@@ -86,10 +87,19 @@ struct BodyPlane {
   double omega = 0;   // rad/s
   Eigen::Vector3d rot_point = Eigen::Vector3d::Zero();
   Eigen::Vector3d rot_axis = Eigen::Vector3d::UnitZ();
+  WallMotion motion{};
+  // At the last placement (place_body_planes): the translation's offset d(t) and velocity (zero
+  // while the walls stand still, and until placed).
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero();
 };
 struct BodyPlanes {
   std::vector<BodyPlane> list;
 };
+
+// Places every plane for time t: offset d(t) and velocity d'(t - lag) (the contacts see the bodies'
+// velocities of the half-step, as walls.hpp says for grains); with moving = false, both zero (the
+// walls stand still while a fill settles).
+void place_body_planes(BodyPlanes& planes, double t, double lag, bool moving);
 
 // The law's parameters: one material for every body (bodies have no species yet), the parameters of
 // every member pair of different bodies, and those against the planes (a law's wall parameters, e.g.
@@ -112,12 +122,17 @@ struct MemberPairList {
   std::size_t pairs() const { return key.size(); }
 };
 
-// Per (member, plane) history of the law, `width` doubles each, zero while apart.
+// Per (member, plane) history of the law, `width` doubles each, zero while apart; and the last
+// evaluation's load of each touching pair on the member: its force and its moment about the plane's
+// rotation point (read only where touching; not checkpointed, as every evaluation sets it).
 struct MemberWallHistory {
+  static constexpr std::size_t kLoad = 6;
   std::size_t members = 0, planes = 0, width = 0;
   std::vector<double> value;           // ((member * planes) + plane) * width + q
   std::vector<std::uint8_t> touching;  // member * planes + plane: in contact at the last evaluation
+  std::vector<double> load;            // ((member * planes) + plane) * kLoad + q: fx fy fz mx my mz
   double* at(std::size_t m, std::size_t p) { return value.data() + (m * planes + p) * width; }
+  double* load_at(std::size_t m, std::size_t p) { return load.data() + (m * planes + p) * kLoad; }
 };
 
 // What one evaluation found.
@@ -147,6 +162,9 @@ struct BodyContactState {
   MemberPairList list;
   PairHistory history;        // member pairs touching at the last evaluation (list order)
   MemberWallHistory walls;
+  // Each plane's load (walls.hpp): the last evaluation's, and the sums over the full steps, which
+  // walls.csv reports and the checkpoints keep.
+  WallLoads loads;
   // Per member, its body's Motion at the last evaluation: a change rebuilds the list, so a removed
   // body's springs are dropped and a fixed body's pairs take the wall's constants.
   std::vector<std::uint8_t> motion;
@@ -173,8 +191,9 @@ void rebuild_member_pairs(const Members& members, BodyContactState& state);
 // L and sets each body's force and torque to their sums. Members must have been placed
 // (place_members) at the bodies' current pose. dt is the step (the springs' increment). Instantiated
 // for every law of ContactLaws. Throws std::invalid_argument for a skin that is not positive, a
-// member naming no body, or law constants that are not finite.
-// With turning = false the walls stand still (a drum while its fill settles). With a split of more
+// member naming no body, or law constants that are not finite. The planes stand at their last
+// placement (place_body_planes), and state.loads.now receives each plane's load.
+// With turning = false the walls do not turn (a drum while its fill settles). With a split of more
 // than one process (body_contact_split.hpp) this process evaluates its share and the outcomes are
 // shared; every process must then make the call with the same state (collective).
 template <class L>
@@ -187,9 +206,9 @@ template <class L>
 class BodyContact : public SystemBase<BodyContact<L>> {
  public:
   using Reads = gf::Reads<BodyPosition, BodyOrientation, BodyVelocity, BodyAngularVelocity, BodyMass, BodyInertia,
-                          BodyMotion, MemberBody, MemberCore, MemberDilation, MemberBound, MemberCentre, CoreVertices, BodyPlanes,
+                          BodyMotion, MemberBody, MemberCore, MemberDilation, MemberBound, MemberCentre, CoreVertices,
                           BodyContactModel<L>, Walls, BodyContactSplit>;
-  using Writes = gf::Writes<BodyForce, BodyTorque, BodyContactState>;
+  using Writes = gf::Writes<BodyForce, BodyTorque, BodyContactState, BodyPlanes>;  // BodyPlanes: their placement
   std::string_view name() const override { return "body_contact"; }
   // The walls turn unless the scene's walls have their rotation off (while a fill settles).
   static bool turning(World& world) {
@@ -198,9 +217,13 @@ class BodyContact : public SystemBase<BodyContact<L>> {
   }
   void run(World& world, const StepContext& step) override {
     BodyContactState& state = world.resources.get<BodyContactState>();
-    compute_body_contacts<L>(world.tables.get<Bodies>(), world.tables.get<Members>(),
-                             world.resources.get<BodyPlanes>(), world.resources.get<BodyContactModel<L>>(), state,
-                             step.dt, turning(world), world.resources.find<BodyContactSplit>());
+    BodyPlanes& planes = world.resources.get<BodyPlanes>();
+    // The bodies' positions were advanced by the first half of the step: they refer to t + dt.
+    place_body_planes(planes, step.t + (step.prime ? 0.0 : step.dt), 0.5 * step.dt, turning(world));
+    compute_body_contacts<L>(world.tables.get<Bodies>(), world.tables.get<Members>(), planes,
+                             world.resources.get<BodyContactModel<L>>(), state, step.dt, turning(world),
+                             world.resources.find<BodyContactSplit>());
+    if (!step.prime) state.loads.accumulate();
     if (state.last.max_overlap > state.overlap_limit) check_body_overlap(state, step);
   }
 };

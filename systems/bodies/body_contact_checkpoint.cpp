@@ -68,6 +68,7 @@ void save_body_contact(CheckpointWriter& out, const BodyContactState& s) {
   out.value("body_contact.walls.width", static_cast<std::uint64_t>(s.walls.width));
   out.value("body_contact.last", s.last);
   contact_sections(out, s);
+  save_wall_loads(out, "body_contact.loads", s.loads);
 }
 
 void restore_body_contact(const CheckpointReader& in, BodyContactState& s, std::size_t members) {
@@ -79,6 +80,7 @@ void restore_body_contact(const CheckpointReader& in, BodyContactState& s, std::
   s.walls.width = in.value<std::uint64_t>("body_contact.walls.width");
   s.last = in.value<BodyContactReport>("body_contact.last");
   contact_sections(in, s);
+  restore_wall_loads(in, "body_contact.loads", s.loads);
   check_body_contact(in, s, members);
 }
 

@@ -116,6 +116,7 @@ std::vector<std::byte> pack_outcomes(std::uint64_t hash, std::span<const Contact
       if (springs.touching[m * planes + p]) {
         w.put(static_cast<std::uint32_t>(p));
         w.put(springs.value.data() + (m * planes + p) * springs.width, springs.width);
+        w.put(springs.load.data() + (m * planes + p) * MemberWallHistory::kLoad, MemberWallHistory::kLoad);
       }
   }
   return out;
@@ -142,6 +143,7 @@ std::uint64_t unpack_outcomes(std::span<const std::byte> bytes, std::span<Contac
       const std::size_t p = checked_index(r.get<std::uint32_t>(), springs.planes, "plane");
       springs.touching[m * springs.planes + p] = 1;
       r.get(springs.at(m, p), springs.width);
+      r.get(springs.load_at(m, p), MemberWallHistory::kLoad);
     }
   }
   if (!r.done()) throw std::runtime_error("a body-contact record from another process has bytes past its end");

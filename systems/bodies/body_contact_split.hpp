@@ -50,11 +50,11 @@ struct SplitBlocks {
 };
 SplitBlocks split_blocks(const BodyContactSplit& split);
 
-// Packs the touching outcomes of this process's items and its members' wall springs.
+// Packs the touching outcomes of this process's items and its members' wall springs and loads.
 std::vector<std::byte> pack_outcomes(std::uint64_t hash, std::span<const ContactOutcome> pairs, std::size_t pair_width,
                                      std::span<const ContactOutcome> walls, const MemberWallHistory& springs,
                                      const SplitBlocks& mine);
-// Writes another process's records into pairs, walls and the wall springs; returns its hash.
+// Writes another process's records into pairs, walls and the wall springs and loads; returns its hash.
 // Throws std::runtime_error when the bytes are not whole records of these sizes.
 std::uint64_t unpack_outcomes(std::span<const std::byte> bytes, std::span<ContactOutcome> pairs, std::size_t pair_width,
                               std::span<ContactOutcome> walls, MemberWallHistory& springs);

@@ -84,15 +84,24 @@ BodySeriesOutput::BodySeriesOutput(BodySeriesSettings s) : s_(std::move(s)) {
     csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, std::move(columns), *s_.resume_rows));
   else
     csv_ = std::make_unique<SeriesCsv>(*s_.csv, std::move(columns));
+  if (s_.wall_names.empty()) return;
+  const std::filesystem::path walls = s_.csv->parent_path() / "walls.csv";
+  const std::size_t n = s_.wall_names.size();
+  if (s_.resume_rows)
+    walls_csv_ = std::make_unique<WallLoadsCsv>(walls, s_.wall_names, n, WallLoadsCsv::KeepRows{*s_.resume_rows});
+  else
+    walls_csv_ = std::make_unique<WallLoadsCsv>(walls, s_.wall_names, n, std::numeric_limits<double>::quiet_NaN());
 }
 
 void BodySeriesOutput::save(CheckpointWriter& out) const {
   out.value("body_series_output.next", next_);
   out.value("body_series_output.rows", static_cast<std::uint64_t>(rows_));
+  if (walls_csv_) walls_csv_->save(out);
 }
 void BodySeriesOutput::restore(const CheckpointReader& in) {
   next_ = in.value<double>("body_series_output.next");
   rows_ = in.value<std::uint64_t>("body_series_output.rows");
+  if (walls_csv_) walls_csv_->restore(in);
 }
 
 void BodySeriesOutput::run(World& world, const StepContext& now) {
@@ -133,6 +142,7 @@ void BodySeriesOutput::sample(World& world, double t) {
                         static_cast<double>(row.moving)};
   if (s_.outlet_height) v.push_back(row.remaining_fraction);
   csv_->append(v);
+  if (walls_csv_) walls_csv_->write(t, &world.resources.get<BodyContactState>().loads, nullptr);
   ++rows_;
 }
 

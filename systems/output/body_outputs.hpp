@@ -39,6 +39,7 @@
 #include "systems/output/picture_legend.hpp"
 #include "systems/output/series_csv.hpp"
 #include "systems/output/vtk_frames.hpp"
+#include "systems/output/wall_loads_csv.hpp"
 #include "systems/output/wall_surfaces.hpp"
 
 namespace gf {
@@ -81,6 +82,9 @@ struct BodySeriesSettings {
   std::optional<double> outlet_height;       // m along -gravity
   std::size_t initial_moving = 0;            // the remaining fraction's denominator
   std::optional<std::size_t> resume_rows;    // continue an existing csv, keeping this many rows
+  // walls.csv beside the csv (wall_loads_csv.hpp), from BodyContactState's loads: the plane walls'
+  // names (none: no file).
+  std::vector<std::string> wall_names;
 };
 
 class BodySeriesOutput : public SystemBase<BodySeriesOutput>, public Checkpointable {
@@ -100,6 +104,7 @@ class BodySeriesOutput : public SystemBase<BodySeriesOutput>, public Checkpointa
   void sample(World& world, double t);
   BodySeriesSettings s_;
   std::unique_ptr<SeriesCsv> csv_;
+  std::unique_ptr<WallLoadsCsv> walls_csv_;  // walls.csv, one row per series row
   double next_ = 0;
   std::size_t rows_ = 0;  // written to the csv by this run and the runs it continues
 };

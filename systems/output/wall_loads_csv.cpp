@@ -48,6 +48,12 @@ WallLoadsCsv::WallLoadsCsv(std::filesystem::path file, std::vector<std::string> 
                                       : SeriesCsv(file, load_csv_columns(names))),
       written_(names.size() * kPerWall, 0.0) {}
 
+WallLoadsCsv::WallLoadsCsv(std::filesystem::path file, std::vector<std::string> names, std::size_t analytic,
+                           KeepRows keep)
+    : analytic_(analytic),
+      csv_(SeriesCsv::resume(file, load_csv_columns(names), keep.rows)),
+      written_(names.size() * kPerWall, 0.0) {}
+
 void WallLoadsCsv::write(double t, const WallLoads* walls, const WallLoads* meshes) {
   const std::size_t nw = written_.size() / kPerWall;
   std::vector<double> sum(nw * kPerWall, 0.0), now(nw * kPerWall, 0.0);

@@ -26,6 +26,11 @@ class WallLoadsCsv {
   // A new file, or with resume_time finite the rows of an existing one up to that time kept. `names`:
   // the first `analytic` are the analytic walls', the rest the meshes'.
   WallLoadsCsv(std::filesystem::path file, std::vector<std::string> names, std::size_t analytic, double resume_time);
+  // The rows of an existing file up to `keep_rows` kept (a run whose series counts its rows).
+  struct KeepRows {
+    std::size_t rows = 0;
+  };
+  WallLoadsCsv(std::filesystem::path file, std::vector<std::string> names, std::size_t analytic, KeepRows keep);
   // One row at time t from the analytic walls' and the meshes' loads (either may be absent).
   void write(double t, const WallLoads* walls, const WallLoads* meshes);
   // The running sums at the last row (the loads' own sums are checkpointed with the walls), so that

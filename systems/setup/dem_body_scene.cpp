@@ -203,9 +203,12 @@ void read_body_outputs(const DemScene& s, const SceneNode& root, BodiesSpec& b) 
   o.overlap_scale = std::numeric_limits<double>::infinity();
   for (const BodyPlacement& p : b.placed)
     if (!p.fixed) o.overlap_scale = std::min(o.overlap_scale, smallest_edge(b.shapes[p.shape].shape));
-  // A turning drum's mantle may move at most 0.1 of the thinnest shape per step (as for grains).
+  // A turning drum's mantle, and a translating wall, may move at most 0.1 of the thinnest shape per
+  // step (as for grains).
   for (const SceneNode& w : root.tables("wall")) {
     const std::string type = w.get_string("type", "plane");
+    if (has_wall_motion(w))
+      require_motion_step(s, w, read_wall_motion(w), o.overlap_scale, "the thinnest moving shape");
     if ((type != "cylinder" && type != "drum") || !w.has("omega")) continue;
     const double step = std::abs(w.get_double("omega", Range::any())) * w.get_double("radius", Range::positive()) * s.dt;
     if (step > 0.1 * o.overlap_scale)
@@ -597,6 +600,7 @@ void build_body_world(const DemScene& s, World& world) {
     b.omega = w.omega;
     b.rot_point = e(w.rot_point);
     b.rot_axis = e(w.rot_axis);
+    b.motion = w.motion;
     planes.list.push_back(b);
   }
   BodyContactState& state = world.resources.emplace<BodyContactState>();

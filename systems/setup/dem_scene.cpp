@@ -124,25 +124,15 @@ std::vector<Vec3d> circle_points(const Vec3d& center, const Vec3d& axis, double 
   return out;
 }
 
-// A wall's translation (wall_motion.hpp): for spherical grains, and its surface may move at most 0.1
-// of the smallest diameter per step, as for a turning wall.
+// A wall's translation (wall_motion.hpp), its step checked against the smallest diameter
+// (composite grains: against the thinnest shape, in read_body_outputs).
 WallMotion read_motion(const DemScene& s, const SceneNode& w, bool bodies) {
   if (!has_wall_motion(w)) return {};
-  for (const char* k : {"velocity", "vibration_amplitude", "vibration_frequency", "vibration_phase", "velocity_file"})
-    if ((bodies || s.species.empty()) && w.has(k))
-      w.fail(k, "walls that translate or vibrate act on spherical grains ([[species]]), not on composite bodies",
-             "remove the key; a scene of [[bodies]] takes fixed or turning walls");
   WallMotion m = read_wall_motion(w);
+  if (bodies || s.species.empty()) return m;
   double smallest = s.species.front().smallest();
   for (const SpeciesSpec& sp : s.species) smallest = std::min(smallest, sp.smallest());
-  const double step = m.fastest() * s.dt;
-  if (step > 0.1 * smallest) {
-    const char* key = w.has("velocity_file") ? "velocity_file" : (w.has("velocity") ? "velocity" : "vibration_amplitude");
-    w.fail(key, "the wall's translation reaches " + short_number(m.fastest()) + " m/s and moves it " +
-                    short_number(step) + " m per step, more than 0.1 of the smallest diameter (" +
-                    short_number(smallest) + " m)",
-           "lower the speed (is it in mm/s? is the amplitude in mm?), the frequency (Hz, not rad/s) or run.dt");
-  }
+  require_motion_step(s, w, m, smallest, "the smallest diameter");
   return m;
 }
 
@@ -991,6 +981,16 @@ void build_dem_world(const DemScene& s, World& world) {
       throw SceneError(s.file.string() + ": " + e.what());
     }
   }
+}
+
+void require_motion_step(const DemScene& s, const SceneNode& w, const WallMotion& m, double smallest,
+                         const std::string& what) {
+  const double step = m.fastest() * s.dt;
+  if (!(step > 0.1 * smallest)) return;
+  const char* key = w.has("velocity_file") ? "velocity_file" : (w.has("velocity") ? "velocity" : "vibration_amplitude");
+  w.fail(key, "the wall's translation reaches " + short_number(m.fastest()) + " m/s and moves it " +
+                  short_number(step) + " m per step, more than 0.1 of " + what + " (" + short_number(smallest) + " m)",
+         "lower the speed (is it in mm/s? is the amplitude in mm?), the frequency (Hz, not rad/s) or run.dt");
 }
 
 }  // namespace gf

@@ -132,6 +132,10 @@ DemScene load_dem_scene(const SceneDoc& doc, const DemLoadOptions& options);
 std::vector<PlacedGrain> place_fill(const DemScene& s, const FillSpec& f, std::span<const PlacedGrain> existing);
 // A [[fill]]'s region table (box or cylinder; a cylinder's max_height measured against gravity).
 Region read_fill_region(const SceneNode& node, const Gravity& g);
+// Refuses a wall whose translation m moves it more than 0.1 of `smallest` (m; `what` names it) per
+// step, at the motion's key, naming the likely unit mistakes.
+void require_motion_step(const DemScene& s, const SceneNode& w, const WallMotion& m, double smallest,
+                         const std::string& what);
 // The index of the species called `name` (the value of `key` in `node`); a SceneError listing the
 // scene's species if there is none.
 std::int32_t species_index(const DemScene& s, const SceneNode& node, std::string_view key, const std::string& name);

@@ -1,6 +1,9 @@
 #include "systems/walls/walls.hpp"
 
 #include <cmath>
+#include <string>
+
+#include "engine/checkpoint_file.hpp"
 
 namespace gf {
 
@@ -52,6 +55,27 @@ double wall_gap(const Wall& w, const Vec3d& p, Vec3d& towards) {
     towards = (1.0 / std::sqrt(dot(perp, perp))) * perp;
   }
   return w.radius - rho;
+}
+
+void save_wall_loads(CheckpointWriter& out, const std::string& key, const WallLoads& l) {
+  std::vector<double> v;
+  for (const WallLoad& w : l.sum)
+    v.insert(v.end(), {w.force.x, w.force.y, w.force.z, w.moment.x, w.moment.y, w.moment.z, w.power});
+  out.vector(key + ".sum", std::move(v));
+  out.value(key + ".steps", l.steps);
+}
+
+void restore_wall_loads(const CheckpointReader& in, const std::string& key, WallLoads& l) {
+  if (!in.has(key + ".sum")) return;
+  std::vector<double> v;
+  in.vector(key + ".sum", v);
+  in.require(v.size() % 7 == 0, "the walls' load sums", "resume with the scene that wrote the checkpoint");
+  l.sum.resize(v.size() / 7);
+  for (std::size_t w = 0; w < l.sum.size(); ++w) {
+    const double* a = &v[7 * w];
+    l.sum[w] = {{a[0], a[1], a[2]}, {a[3], a[4], a[5]}, a[6]};
+  }
+  l.steps = in.value<std::int64_t>(key + ".steps");
 }
 
 }  // namespace gf

@@ -69,6 +69,14 @@ struct WallLoads {
   }
 };
 
+class CheckpointWriter;
+class CheckpointReader;
+// A WallLoads' running sums in a checkpoint under `key`: seven numbers per wall, and the steps
+// summed. A checkpoint of an older build has none: the sums restart, and the first row after it
+// averages the steps since the resume.
+void save_wall_loads(CheckpointWriter& out, const std::string& key, const WallLoads& l);
+void restore_wall_loads(const CheckpointReader& in, const std::string& key, WallLoads& l);
+
 // One wall's load of one evaluation from the sums of its contacts' forces and moments on the grains
 // (six numbers), with the power at the wall's velocity and spin.
 inline WallLoad wall_load(const double* sums, const Vec3d& velocity, const Vec3d& spin) {

@@ -1,6 +1,6 @@
 # grainflow_mpi's checkpoints as a user meets them (cmake -P, from ctest): a run of 200 steps, and the
 # same scene stopped at step 137 (checkpoints every 50 steps and at the end) then resumed with
-# --resume, end with the same final_state.csv, series.csv and frames.pvd, byte for byte; the same
+# --resume, end with the same final_state.csv, series.csv, walls.csv and frames.pvd, byte for byte; the same
 # checkpoint resumed on three ranks and on one ends within round-off of the uninterrupted run.
 #   -D MPIEXEC=... -D NP_FLAG=... -D PROGRAM=grainflow_mpi -D SCENE=checkpoint_box.toml -D WORK=folder
 #   -D PYTHON=python3
@@ -27,7 +27,7 @@ run_ranks(2 0 out --out ${WORK}/split --steps 200 ${every_50} --resume ${index})
 if(NOT out MATCHES "resuming from [^\n]*checkpoint_ranks.gfc at step 137")
   message(FATAL_ERROR "the resumed run does not say where it resumed:\n${out}")
 endif()
-foreach(file final_state.csv series.csv frames.pvd)
+foreach(file final_state.csv series.csv walls.csv frames.pvd)
   execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/whole/${file} ${WORK}/split/${file}
                   RESULT_VARIABLE differ)
   if(differ)
@@ -45,12 +45,14 @@ foreach(ranks 3 1)
   if(NOT out MATCHES "at step 137 [^\n]*written on 2 ranks")
     message(FATAL_ERROR "the run resumed on ${ranks} ranks does not say the checkpoint's rank count:\n${out}")
   endif()
-  execute_process(COMMAND ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/compare_series_end.py ${WORK}/whole/series.csv
-                          ${WORK}/on${ranks}/series.csv 1e-12
-                  RESULT_VARIABLE differ OUTPUT_VARIABLE said ERROR_VARIABLE said)
-  if(differ)
-    message(FATAL_ERROR "resumed on ${ranks} ranks: ${said}")
-  endif()
+  foreach(file series.csv walls.csv)
+    execute_process(COMMAND ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/compare_series_end.py ${WORK}/whole/${file}
+                            ${WORK}/on${ranks}/${file} 1e-12
+                    RESULT_VARIABLE differ OUTPUT_VARIABLE said ERROR_VARIABLE said)
+    if(differ)
+      message(FATAL_ERROR "resumed on ${ranks} ranks: ${said}")
+    endif()
+  endforeach()
 endforeach()
 message(STATUS "resumed run identical on 2 ranks, within round-off on 3 and 1")
 

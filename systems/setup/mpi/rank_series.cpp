@@ -9,6 +9,7 @@
 #include "systems/analysis/drum_section.hpp"
 #include "systems/flow/flow_systems.hpp"
 #include "systems/setup/mpi/gathered_grains.hpp"
+#include "systems/setup/mpi/rank_wall_loads.hpp"
 
 namespace gf {
 
@@ -45,6 +46,14 @@ RankSeries::RankSeries(SeriesSettings s, const MpiContext& mpi) : s_(std::move(s
       csv_ = std::make_unique<SeriesCsv>(SeriesCsv::resume(*s_.csv, columns_, *s_.resume_rows));
     else
       csv_ = std::make_unique<SeriesCsv>(*s_.csv, columns_);
+    if (s_.wall_names.empty()) return;
+    const std::filesystem::path walls = s_.csv->parent_path() / "walls.csv";
+    if (s_.resume_rows)
+      walls_csv_ = std::make_unique<WallLoadsCsv>(walls, s_.wall_names, s_.analytic_walls,
+                                                  WallLoadsCsv::KeepRows{*s_.resume_rows});
+    else
+      walls_csv_ = std::make_unique<WallLoadsCsv>(walls, s_.wall_names, s_.analytic_walls,
+                                                  std::numeric_limits<double>::quiet_NaN());
   });
 }
 
@@ -52,12 +61,14 @@ void RankSeries::save(CheckpointWriter& out) const {
   out.value("rank_series.next", next_);
   out.value("rank_series.rows", static_cast<std::uint64_t>(rows_));
   out.value("rank_series.row", row_);
+  if (walls_csv_) walls_csv_->save(out);
 }
 
 void RankSeries::restore(const CheckpointReader& in) {
   next_ = in.value<double>("rank_series.next");
   rows_ = in.value<std::uint64_t>("rank_series.rows");
   row_ = in.value<SeriesRow>("rank_series.row");
+  if (walls_csv_) walls_csv_->restore(in);  // rank 0, from part 0 whatever the rank count
 }
 
 void RankSeries::observe(World& w) {
@@ -107,10 +118,15 @@ void RankSeries::sample(World& w, double t) {
   row.valid = true;
   row_ = row;
   const Grains all = needs_all() ? gather_shapes(g, mpi) : Grains{};
+  const bool loads = !s_.wall_names.empty() && s_.csv;  // alike on every rank
+  const WallLoads wall_loads = loads ? gather_wall_loads(walls.loads, mpi) : WallLoads{};
+  const MeshWallLoads* mine = w.resources.find<MeshWallLoads>();
+  const WallLoads mesh_loads = loads && mine ? gather_wall_loads(*mine, mpi) : WallLoads{};
   on_every_rank(mpi, [&] {
     if (mpi.rank() != 0) return;
     if (needs_all()) sample_whole(all, w, row_);
     if (csv_) csv_->append(series_values(row_, s_));
+    if (walls_csv_) walls_csv_->write(t, &wall_loads, mine ? &mesh_loads : nullptr);
   });
   ++rows_;
 }

@@ -9,7 +9,8 @@
 // for the rows written; only position, radius, species and id travel. With feeds and outlets the
 // grains and hold-up mass are sums over the ranks, the fed, discharged and owed masses the flow's
 // state, which every rank holds alike (rank_flow.hpp). The sums are taken in
-// another order than on one rank, so the values agree to round-off, not bit for bit.
+// another order than on one rank, so the values agree to round-off, not bit for bit. walls.csv, beside
+// it, holds the walls' loads summed over the ranks (rank_wall_loads.hpp), one row per series row.
 #pragma once
 
 #include <filesystem>
@@ -49,6 +50,7 @@ class RankSeries {
   const MpiContext* mpi_;
   std::vector<std::string> columns_;
   std::unique_ptr<SeriesCsv> csv_;  // rank 0 only
+  std::unique_ptr<WallLoadsCsv> walls_csv_;  // walls.csv; rank 0 only
   SeriesRow row_;
   double next_ = 0;
   std::size_t rows_ = 0;

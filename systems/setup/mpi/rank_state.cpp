@@ -14,6 +14,7 @@
 #include "systems/broadphase/broadphase.hpp"
 #include "systems/broadphase/broadphase_checkpoint.hpp"
 #include "systems/setup/mpi/rank_simulation.hpp"
+#include "systems/setup/mpi/rank_wall_loads.hpp"
 #include "systems/decomposition/row_bytes.hpp"
 #include "systems/flow/flow_systems.hpp"
 #include "systems/broadphase/list_sections.hpp"
@@ -169,6 +170,7 @@ void RankSimulation::save(CheckpointWriter& out) {
   BroadphaseState& bp = w.resources.get<BroadphaseState>();
   save_broadphase(out, bp, "rank.");
   out.value("rank.walls.rotation_enabled", w.resources.get<Walls>().rotation_enabled);
+  save_rank_wall_loads(out, w, *mpi_);
   list_sections(out, w.resources.get<NeighborList>(), w.resources.get<PairHistory>(), bp, "rank.");
   save_ghosts(out, ghosts_);
   out.value("rank.listed", listed_);
@@ -193,6 +195,7 @@ void RankSimulation::restore(const CheckpointReader& in) {
   const std::vector<RawColumn> cols = raw_row_columns(g);
   for (std::size_t k = 0; k < cols.size(); ++k) in.copy_raw(column_name(k), cols[k].data, cols[k].elem_size, n);
   restore_clock(in, w);
+  restore_rank_wall_loads(in, w);
   restore_broadphase(in, bp, "rank.");
   NeighborList& list = w.resources.get<NeighborList>();
   PairHistory& history = w.resources.get<PairHistory>();
@@ -292,6 +295,7 @@ void RankSimulation::restore_portable(const CheckpointReader& first, std::span<c
                  kSameRun);
   });
   restore_clock(first, w);
+  restore_rank_wall_loads_portable(first, w, *mpi_);
   bp.rebuilds = first.value<std::int64_t>("rank.broadphase.rebuilds");
   bp.checks = first.value<std::int64_t>("rank.broadphase.checks");
   bp.cover.kept = first.value<std::int64_t>("rank.broadphase.kept");
