@@ -29,7 +29,7 @@ std::string driven(const std::string& keys = "mean_velocity = 7.35e-3\n",
 
 }  // namespace
 
-TEST_CASE("a driven channel reaches its target mean velocity on the plane Poiseuille body force") {
+TEST_CASE("a driven channel reaches its target mean velocity on the plane Poiseuille body force", "[long]") {
   // The channel under its fixed body force f0 = 0.08 m/s^2 for 1 s (about 9 e-folds of the slowest
   // mode: steady), then driven to the mean velocity that gave over its last 0.2 s.
   auto fixed = LiquidSimulation::from_file(test::liquid_scene("poiseuille_2d.toml"));

@@ -376,7 +376,7 @@ TEST_CASE("representative volume: species without rotation carry no angular colu
   CHECK(g.pos.x.size() >= 300);
 }
 
-TEST_CASE("representative volume: the cut-off's effect on a settled bed", "[contact][rv][cutoff]") {
+TEST_CASE("representative volume: the cut-off's effect on a settled bed", "[contact][rv][cutoff][long]") {
   // The box scene settled at three cut-offs: the bed's centre of mass (the height the amplitude law
   // sets), its kinetic energy left, and the interacting pairs, which grow with the reach
   // k_d R* ln(1/A_c). Recorded in representative_volume_cutoff.csv (studies/contact/results/).
