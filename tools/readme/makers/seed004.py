@@ -96,4 +96,33 @@ def seed004_side_by_side():
     return "\n".join(rows) + "\n"
 
 
-TABLES = {"seed004_side_by_side": seed004_side_by_side}
+SAMPLING_LABELS = (("pool1_cell50", "one instant, 50 mm cells"), ("pool40_cell50", "20 s pooled, 50 mm cells (the study's)"),
+                   ("pool200_cell50", "100 s pooled, 50 mm cells"), ("pool40_cell25", "20 s pooled, 25 mm cells"))
+SAMPLING_AT = (0.025, 0.1, 0.125, 0.25, 0.4)
+
+
+def _at(layers, distance):
+    for v in layers:
+        if abs(v["distance"] - distance) < 1e-9:
+            return v
+    raise KeyError(f"no layer at {distance} m")
+
+
+def seed004_vc_sampling():
+    """Vc of one steady run sampled four ways (studies/seed004/vc_sampling.py): median of the rows, and
+    below it the spread a random mixture of the cells' visits gives."""
+    s = _load("studies/seed004/results/vc_sampling.json")
+    head = "| sampling | visits a cell | " + " | ".join(f"Vc at L = {d} m" for d in SAMPLING_AT) + " |"
+    rows = [head, "|---|---|" + "---|" * len(SAMPLING_AT)]
+    for key, label in SAMPLING_LABELS:
+        layers = s["variants"][key]
+        visits = sorted(v["visits_per_cell"] for v in layers)[len(layers) // 2]
+        cells = []
+        for d in SAMPLING_AT:
+            v = _at(layers, d)
+            cells.append(f"{100 * v['vc_median']:.1f} % (random {100 * v['random_vc_median']:.1f} %)")
+        rows.append(f"| {label} | {visits:.0f} | " + " | ".join(cells) + " |")
+    return "\n".join(rows) + f"\n\nDesign 1, representative volumes, 100 s from its steady state; build {s['commit']}.\n"
+
+
+TABLES = {"seed004_side_by_side": seed004_side_by_side, "seed004_vc_sampling": seed004_vc_sampling}
