@@ -38,6 +38,10 @@ def seed004_side_by_side():
     designs = mixer["designs"]
     finest = next(m for m in mixer["models"] if m["model"] == "sphere DEM, factor 3")
     inlet, far = paper["vc_near_inlet_percent"], paper["vc_at_0p4_m_percent"]
+    seg = _load("studies/seed004/results/vc_segregation.json")["variants"]
+
+    def seg_pct(variant, distance):
+        return f"{100 * _at(seg[variant], distance)['vc_median']:.1f} %"
 
     def rng(spec):
         return f"{spec['low']}–{spec['high']} % (± {spec['reading_uncertainty']} reading)"
@@ -46,10 +50,12 @@ def seed004_side_by_side():
     for d in designs:
         v = _vc(d, 0.025)
         ok = _in_range(100 * v["vc_mean"], inlet)
-        why = "—" if ok else (f"cause not yet measured; the random-mixture spread of cells of about "
-                              f"{v['grains_per_cell']:.0f} model particles explains "
-                              f"{100 * (v['vc_mean'] - v['vc_corrected_mean']):.1f} points of it "
-                              f"(corrected {100 * v['vc_corrected_mean']:.1f} %)")
+        why = "—" if ok else (f"segregation by size and density where the feed lands (measured in design 1: with the "
+                              f"key the carrier's size and density, {seg_pct('identical', 0.025)}; equal size only "
+                              f"{seg_pct('same_size', 0.025)}, equal density only {seg_pct('same_density', 0.025)}; "
+                              f"the seed's {seg_pct('seed', 0.025)}, vc_segregation.json); the random-mixture spread "
+                              f"of cells of about {v['grains_per_cell']:.0f} model particles explains "
+                              f"{100 * (v['vc_mean'] - v['vc_corrected_mean']):.1f} points of it")
         lengths = "/".join(f"{1000 * x:.0f}" for x in d["blade_lengths_m"])
         rows.append(f"| Vc at L = 0.025 m, design {d['design']} (blades {lengths} mm), representative volumes | "
                     f"{rng(inlet)} | {_pct(v)} | {'yes' if ok else 'no'} | {why} |")
@@ -57,11 +63,15 @@ def seed004_side_by_side():
         v = _vc(d, 0.4)
         ok = _in_range(100 * v["vc_mean"], far)
         c = comp[f"design{d['design']}"]["compartments"]
-        why = "—" if ok else (f"the key particles sink to the housing side in the compartments either side of this "
-                              f"layer (wall-side minus free-surface key fraction {c[2]['wall_minus_top']:+.2f} in "
-                              f"stage III, "
-                              f"{c[3]['wall_minus_top']:+.2f} in the outlet compartment); why more than in "
-                              "the paper's mixer is not measured")
+        why = "—" if ok else (f"segregation by size (measured in design 1: with the key as large as the carrier "
+                              f"{seg_pct('same_size', 0.4)}, as with a key that is only a label "
+                              f"{seg_pct('identical', 0.4)}, which is the cells' random-mixture spread "
+                              f"({100 * _at(seg['identical'], 0.4)['random_vc_median']:.1f} %); with equal densities "
+                              f"{seg_pct('same_density', 0.4)}; "
+                              f"vc_segregation.json): the key particles sink to the housing side either side of "
+                              f"this layer (wall-side minus free-surface key fraction {c[2]['wall_minus_top']:+.2f} "
+                              f"in stage III, {c[3]['wall_minus_top']:+.2f} in the outlet compartment); why the "
+                              "paper's mixer segregates less is not measured")
         rows.append(f"| Vc at L = 0.4 m (the last partition), design {d['design']} | {rng(far)} | {_pct(v)} | "
                     f"{'yes' if ok else 'no'} | {why} |")
     falls = [(d["design"], _vc(d, 0.025)["vc_mean"], _vc(d, 0.1)["vc_mean"]) for d in designs]
@@ -125,4 +135,27 @@ def seed004_vc_sampling():
     return "\n".join(rows) + f"\n\nDesign 1, representative volumes, 100 s from its steady state; build {s['commit']}.\n"
 
 
-TABLES = {"seed004_side_by_side": seed004_side_by_side, "seed004_vc_sampling": seed004_vc_sampling}
+SEGREGATION_LABELS = (("seed", "the seed's: key 0.778 of the size, 0.786 of the density"),
+                      ("same_size", "key as large as the carrier"), ("same_density", "key as dense as the carrier"),
+                      ("identical", "key the carrier's size and density (a label)"))
+SEGREGATION_AT = (0.025, 0.1, 0.2, 0.3, 0.4, 0.475)
+
+
+def seed004_vc_segregation():
+    """Vc(L) with the key's size and density set to the carrier's, one or both
+    (studies/seed004/vc_segregation.py): median of the pooled rows in steady state (their range)."""
+    s = _load("studies/seed004/results/vc_segregation.json")
+    head = "| key component | " + " | ".join(f"Vc at L = {d} m" for d in SEGREGATION_AT) + " |"
+    rows = [head, "|---|" + "---|" * len(SEGREGATION_AT)]
+    for key, label in SEGREGATION_LABELS:
+        cells = []
+        for d in SEGREGATION_AT:
+            v = _at(s["variants"][key], d)
+            cells.append(f"{100 * v['vc_median']:.1f} % ({100 * v['vc_min']:.1f}–{100 * v['vc_max']:.1f})")
+        rows.append(f"| {label} | " + " | ".join(cells) + " |")
+    return "\n".join(rows) + (f"\n\nDesign 1, representative volumes, 300 s from empty, rows of 20 s pooled from "
+                              f"{s['steady_from_s']:.0f} s; build {s['commit']}.\n")
+
+
+TABLES = {"seed004_side_by_side": seed004_side_by_side, "seed004_vc_sampling": seed004_vc_sampling,
+          "seed004_vc_segregation": seed004_vc_segregation}
