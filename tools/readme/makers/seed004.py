@@ -38,7 +38,7 @@ def seed004_side_by_side():
     designs = mixer["designs"]
     finest = next(m for m in mixer["models"] if m["model"] == "sphere DEM, factor 3")
     inlet, far = paper["vc_near_inlet_percent"], paper["vc_at_0p4_m_percent"]
-    seg = _load("studies/seed004/results/vc_segregation.json")["variants"]
+    seg = _load("studies/seed004/results/vc_segregation.json")["vc"]
 
     def seg_pct(variant, distance):
         return f"{100 * _at(seg[variant], distance)['vc_median']:.1f} %"
@@ -143,14 +143,14 @@ SEGREGATION_AT = (0.025, 0.1, 0.2, 0.3, 0.4, 0.475)
 
 def seed004_vc_segregation():
     """Vc(L) with the key's size and density set to the carrier's, one or both
-    (studies/seed004/vc_segregation.py): median of the pooled rows in steady state (their range)."""
+    (studies/seed004/vc_variants.py): median of the pooled rows in steady state (their range)."""
     s = _load("studies/seed004/results/vc_segregation.json")
     head = "| key component | " + " | ".join(f"Vc at L = {d} m" for d in SEGREGATION_AT) + " |"
     rows = [head, "|---|" + "---|" * len(SEGREGATION_AT)]
     for key, label in SEGREGATION_LABELS:
         cells = []
         for d in SEGREGATION_AT:
-            v = _at(s["variants"][key], d)
+            v = _at(s["vc"][key], d)
             cells.append(f"{100 * v['vc_median']:.1f} % ({100 * v['vc_min']:.1f}–{100 * v['vc_max']:.1f})")
         rows.append(f"| {label} | " + " | ".join(cells) + " |")
     return "\n".join(rows) + (f"\n\nDesign 1, representative volumes, 300 s from empty, rows of 20 s pooled from "
