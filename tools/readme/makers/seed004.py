@@ -141,13 +141,17 @@ SEGREGATION_LABELS = (("seed", "the seed's: key 0.778 of the size, 0.786 of the 
 SEGREGATION_AT = (0.025, 0.1, 0.2, 0.3, 0.4, 0.475)
 
 
-def seed004_vc_segregation():
-    """Vc(L) with the key's size and density set to the carrier's, one or both
-    (studies/seed004/vc_variants.py): median of the pooled rows in steady state (their range)."""
-    s = _load("studies/seed004/results/vc_segregation.json")
-    head = "| key component | " + " | ".join(f"Vc at L = {d} m" for d in SEGREGATION_AT) + " |"
+READING_LABELS = (("seed", "the scene's: cut-off 1e-3, friction regularised below 0.01 m/s"),
+                  ("cutoff_1e-4", "tails cut at 1e-4"), ("slip_1e-3", "friction regularised below 1 mm/s"))
+
+
+def _vc_variants(experiment, labels):
+    """Vc(L) of design 1 run with one thing changed (studies/seed004/vc_variants.py EXPERIMENT): median of
+    the pooled rows in steady state (their range)."""
+    s = _load(f"studies/seed004/results/vc_{experiment}.json")
+    head = "| variant | " + " | ".join(f"Vc at L = {d} m" for d in SEGREGATION_AT) + " |"
     rows = [head, "|---|" + "---|" * len(SEGREGATION_AT)]
-    for key, label in SEGREGATION_LABELS:
+    for key, label in labels:
         cells = []
         for d in SEGREGATION_AT:
             v = _at(s["vc"][key], d)
@@ -157,5 +161,13 @@ def seed004_vc_segregation():
                               f"{s['steady_from_s']:.0f} s; build {s['commit']}.\n")
 
 
+def seed004_vc_segregation():
+    return _vc_variants("segregation", SEGREGATION_LABELS)
+
+
+def seed004_vc_reading():
+    return _vc_variants("reading", READING_LABELS)
+
+
 TABLES = {"seed004_side_by_side": seed004_side_by_side, "seed004_vc_sampling": seed004_vc_sampling,
-          "seed004_vc_segregation": seed004_vc_segregation}
+          "seed004_vc_segregation": seed004_vc_segregation, "seed004_vc_reading": seed004_vc_reading}
