@@ -6,6 +6,7 @@
 //  - a floor sliding under it: friction drags the clump until it moves with the floor, and the drive
 //    supplied v * m * dv (the momentum it gave, at its own speed);
 //  - a rising floor carries it up at the static overlap;
+//  - a wall that would move too far per step is refused, naming its key;
 //  - walls.csv of a composite-grain run: seven columns per wall, a row per series row.
 #include <catch2/catch.hpp>
 
@@ -108,6 +109,20 @@ TEST_CASE("a rising floor carries a clump at its static overlap", "[bodies][wall
   INFO("y " << b.pos.y[0] << " m, expected " << expected << " m; speed " << b.vel.y[0] << " m/s");
   CHECK(std::abs(b.pos.y[0] - expected) < 1e-9);
   CHECK(b.vel.y[0] == Approx(0.05).epsilon(1e-6));
+}
+
+TEST_CASE("a wall translating faster than 0.1 of the thinnest shape per step is refused at its key", "[bodies][walls]") {
+  // The clump's thinnest outer dimension is 10 mm: 0.1 of it per step of 1e-5 s is 100 m/s. 150 m/s (a
+  // speed typed in mm/s) is refused at `velocity`, naming the shape's scale; 50 m/s is accepted.
+  const std::string e = gf::test::scene_error_of(
+      [] { gf::DemSimulation::from_text(clump_on_floor(0.01, 0.0, 0.0, "velocity = [150.0, 0.0, 0.0]\n")); });
+  INFO(e);
+  CHECK(e.find("key 'wall[0].velocity'") != std::string::npos);
+  CHECK(e.find("the thinnest moving shape") != std::string::npos);
+  CHECK(e.find("mm/s") != std::string::npos);
+  CHECK(gf::test::scene_error_of(
+            [] { gf::DemSimulation::from_text(clump_on_floor(0.01, 0.0, 0.0, "velocity = [50.0, 0.0, 0.0]\n")); })
+            .empty());
 }
 
 TEST_CASE("walls.csv of a composite-grain run: a row per series row, seven columns per wall", "[bodies][walls][cli]") {
