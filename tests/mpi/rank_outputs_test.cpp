@@ -155,8 +155,9 @@ TEST_CASE("series.csv from several ranks is the one-rank run's series", "[mpi][r
   // walls.csv: the same columns and rows; the drum's torque about its axis and its power, averaged
   // over the rows, within the bed's run-to-run noise: its pose differs as the series' measures do, and
   // the torque of a bed just set turning (0.45 rad) follows its few contacts with the mantle's ends.
-  // Measured 4.6 % away on two ranks and 7.8 % on three; a rank's grains lost or counted twice would
-  // move it by about half.
+  // Measured 4.6 % away on two ranks and 7.8 % on three. How much this mean follows the bed's details:
+  // six pours of the drum on one process (run.seed 1 to 6) give -2.9e-5 to -9.0e-5 N m. The bound, 20 %,
+  // is far below what a rank's grains lost or counted twice would make (about half).
   const gf::test::Csv wa = gf::test::read_csv(dir / "ranks" / "walls.csv");
   const gf::test::Csv wb = gf::test::read_csv(dir / "one" / "walls.csv");
   REQUIRE(wa.columns == wb.columns);
