@@ -8,7 +8,7 @@ namespace gf {
 
 namespace {
 
-constexpr std::size_t kPerWall = 7;
+constexpr std::size_t kPerWall = kWallLoadNumbers;
 constexpr const char* kSuffix[kPerWall] = {".fx", ".fy", ".fz", ".tx", ".ty", ".tz", ".power"};
 
 std::vector<std::string> load_csv_columns(const std::vector<std::string>& names) {

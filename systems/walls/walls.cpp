@@ -59,8 +59,7 @@ double wall_gap(const Wall& w, const Vec3d& p, Vec3d& towards) {
 
 void save_wall_loads(CheckpointWriter& out, const std::string& key, const WallLoads& l) {
   std::vector<double> v;
-  for (const WallLoad& w : l.sum)
-    v.insert(v.end(), {w.force.x, w.force.y, w.force.z, w.moment.x, w.moment.y, w.moment.z, w.power});
+  for (const WallLoad& w : l.sum) append_wall_load(v, w);
   out.vector(key + ".sum", std::move(v));
   out.value(key + ".steps", l.steps);
 }
@@ -69,12 +68,9 @@ void restore_wall_loads(const CheckpointReader& in, const std::string& key, Wall
   if (!in.has(key + ".sum")) return;
   std::vector<double> v;
   in.vector(key + ".sum", v);
-  in.require(v.size() % 7 == 0, "the walls' load sums", "resume with the scene that wrote the checkpoint");
-  l.sum.resize(v.size() / 7);
-  for (std::size_t w = 0; w < l.sum.size(); ++w) {
-    const double* a = &v[7 * w];
-    l.sum[w] = {{a[0], a[1], a[2]}, {a[3], a[4], a[5]}, a[6]};
-  }
+  in.require(v.size() % kWallLoadNumbers == 0, "the walls' load sums", "resume with the scene that wrote the checkpoint");
+  l.sum.resize(v.size() / kWallLoadNumbers);
+  for (std::size_t w = 0; w < l.sum.size(); ++w) l.sum[w] = wall_load_of(&v[kWallLoadNumbers * w]);
   l.steps = in.value<std::int64_t>(key + ".steps");
 }
 

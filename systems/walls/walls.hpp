@@ -69,6 +69,14 @@ struct WallLoads {
   }
 };
 
+// A WallLoad as its seven numbers in a flat array (force, moment, power), as checkpoints and messages
+// between processes carry it, and back.
+constexpr std::size_t kWallLoadNumbers = 7;
+inline void append_wall_load(std::vector<double>& out, const WallLoad& l) {
+  out.insert(out.end(), {l.force.x, l.force.y, l.force.z, l.moment.x, l.moment.y, l.moment.z, l.power});
+}
+inline WallLoad wall_load_of(const double* a) { return {{a[0], a[1], a[2]}, {a[3], a[4], a[5]}, a[6]}; }
+
 class CheckpointWriter;
 class CheckpointReader;
 // A WallLoads' running sums in a checkpoint under `key`: seven numbers per wall, and the steps

@@ -10,16 +10,11 @@ namespace gf {
 
 namespace {
 
-constexpr std::size_t kPerWall = 7;
-
-void put(std::vector<double>& v, const WallLoad& l) {
-  v.insert(v.end(), {l.force.x, l.force.y, l.force.z, l.moment.x, l.moment.y, l.moment.z, l.power});
-}
-
 void add(WallLoad& l, const double* a) {
-  l.force = l.force + Vec3d{a[0], a[1], a[2]};
-  l.moment = l.moment + Vec3d{a[3], a[4], a[5]};
-  l.power += a[6];
+  const WallLoad x = wall_load_of(a);
+  l.force = l.force + x.force;
+  l.moment = l.moment + x.moment;
+  l.power += x.power;
 }
 
 // Zero sums of this shape: the ranks but 0 continue from none.
@@ -35,8 +30,8 @@ WallLoads zeros_like(const WallLoads& l) {
 
 WallLoads gather_wall_loads(const WallLoads& mine, const MpiContext& mpi) {
   std::vector<double> v;
-  for (const WallLoad& l : mine.now) put(v, l);
-  for (const WallLoad& l : mine.sum) put(v, l);
+  for (const WallLoad& l : mine.now) append_wall_load(v, l);
+  for (const WallLoad& l : mine.sum) append_wall_load(v, l);
   std::vector<std::byte> bytes(v.size() * sizeof(double));
   if (!v.empty()) std::memcpy(bytes.data(), v.data(), bytes.size());
   const std::vector<std::vector<std::byte>> all = mpi.gather(bytes, 0);
@@ -47,9 +42,9 @@ WallLoads gather_wall_loads(const WallLoads& mine, const MpiContext& mpi) {
     if (part.size() != bytes.size()) throw std::logic_error("a rank sent another number of wall loads");
     std::vector<double> r(v.size());
     if (!r.empty()) std::memcpy(r.data(), part.data(), part.size());
-    for (std::size_t k = 0; k < total.now.size(); ++k) add(total.now[k], &r[kPerWall * k]);
-    const std::size_t base = kPerWall * total.now.size();
-    for (std::size_t k = 0; k < total.sum.size(); ++k) add(total.sum[k], &r[base + kPerWall * k]);
+    for (std::size_t k = 0; k < total.now.size(); ++k) add(total.now[k], &r[kWallLoadNumbers * k]);
+    const std::size_t base = kWallLoadNumbers * total.now.size();
+    for (std::size_t k = 0; k < total.sum.size(); ++k) add(total.sum[k], &r[base + kWallLoadNumbers * k]);
   }
   return total;
 }
