@@ -49,8 +49,8 @@ def profile(run_dir, t_from):
             continue
         used += 1
         liq = read_vtp(path)
-        for (_, y, z), (u, _, _), kind in zip(liq["Points"], liq["velocity"], liq["type"]):
-            if kind == 1:
+        for (_, y, z), (u, _, _), kind in zip(liq["Points"], liq["velocity"], tp.node_kinds(liq)):
+            if kind == tp.FLUID:
                 k = tp.ring(math.hypot(y, z))
                 count[k] += 1
                 total[k] += u

@@ -81,7 +81,7 @@ def half_curl(folder):
         if t < FROM - 1e-9 or t not in grains:
             continue
         liq, g = read_vtp(liquid[t]), read_vtp(grains[t])
-        fluid = np.array(liq["type"]) == 1
+        fluid = np.array(tp.node_kinds(liq)) == tp.FLUID
         P, U = np.array(liq["Points"])[fluid], np.array(liq["velocity"])[fluid]
         values = []
         for p in np.array(g["Points"]):

@@ -102,6 +102,14 @@ def frames(run_dir, part):
             for t, f in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)]
 
 
+FLUID = 0  # a liquid frame's `species` is the node's kind: 0 fluid, 1 wall, 2 dummy
+
+
+def node_kinds(liq):
+    """Each node's kind in a liquid frame read by read_vtp."""
+    return liq["species"]
+
+
 def ring(r):
     return min(RINGS - 1, int(r / R * RINGS))
 
@@ -114,8 +122,8 @@ def reduce_frame(t, liquid_file, grain_file):
     """One row of frames.csv from a frame of both parts."""
     count, u_sum, grains = [0] * RINGS, [0.0] * RINGS, [0] * RINGS
     liq = read_vtp(liquid_file)
-    for (_, y, z), (u, _, _), kind in zip(liq["Points"], liq["velocity"], liq["type"]):
-        if kind == 1:  # fluid nodes only
+    for (_, y, z), (u, _, _), kind in zip(liq["Points"], liq["velocity"], node_kinds(liq)):
+        if kind == FLUID:
             k = ring(math.hypot(y, z))
             count[k] += 1
             u_sum[k] += u
@@ -204,7 +212,7 @@ def pictures(run_dirs, path):
         t, lf = frames(d, "liquid")[-1]
         _, gf = frames(d, "grains")[-1]
         liq, g = read_vtp(lf), read_vtp(gf)
-        pts = [(p, v[0]) for p, v, k in zip(liq["Points"], liq["velocity"], liq["type"]) if k == 1]
+        pts = [(p, v[0]) for p, v, k in zip(liq["Points"], liq["velocity"], node_kinds(liq)) if k == FLUID]
         side, top = axes[0][col], axes[1][col]
         slab = [(p[1], p[0], u) for p, u in pts if abs(p[2]) < 0.005]
         sc = side.scatter([s[0] for s in slab], [s[1] for s in slab], c=[s[2] for s in slab], s=9, cmap="viridis",
