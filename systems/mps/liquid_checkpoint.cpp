@@ -10,6 +10,7 @@
 #include "systems/mps/flow_drive.hpp"
 #include "systems/mps/fluid_nodes.hpp"
 #include "systems/mps/neighbors.hpp"
+#include "systems/mps/ppe.hpp"
 #include "systems/mps/stability.hpp"
 
 namespace gf {
@@ -142,6 +143,8 @@ void save_liquid_nodes(CheckpointWriter& out, World& world, const LiquidScene& s
   const auto& force = world.resources.get<LiquidParams>().body_force;
   for (std::size_t c = 0; c < 3; ++c) out.value("liquid.body_force." + std::to_string(c), force[c]);
   if (const FlowDrive* d = world.resources.find<FlowDrive>()) out.value("liquid.drive.last_mean", d->last_mean);
+  // A resumed run builds its multigrid hierarchy at its first solve; so does the run that wrote this.
+  if (PpeWorkspace* ws = world.resources.find<PpeWorkspace>()) multigrid_invalidate(ws->multigrid);
 }
 
 void restore_liquid_nodes(const CheckpointReader& in, World& world, const LiquidScene& scene) {

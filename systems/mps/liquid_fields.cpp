@@ -42,6 +42,8 @@ const Field kSolver[] = {
     {"tolerance", "", {0, 0.1, true, false}, "", 1e-8, "1e-8", "relative residual ‖b − Ap‖/‖b‖ to reach"},
     {"max_iterations", "", {1, 1e6, false, false}, "(integers)", 2000, "",
      "iterations before the run stops with the solver's message"},
+    {"multigrid_reuse", "", {1, 1e6, false, false}, "(integers)", 1, "",
+     "steps one multigrid hierarchy serves before it is rebuilt from the nodes' positions (`multigrid` only)"},
 };
 
 const Field kRun[] = {

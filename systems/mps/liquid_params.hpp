@@ -22,6 +22,7 @@ struct MultigridSettings {
   double correction = 1.5; // the coarse correction's scale (piecewise-constant P undershoots: Braess)
   int cycle = 2;           // visits of the next level per cycle: 1 (V) or 2 (W)
   int coarsest = 128;      // unknowns of the directly solved level, at most
+  int reuse = 1;           // solves one hierarchy serves before it is rebuilt
 };
 
 struct PpeSettings {

@@ -125,6 +125,10 @@ void read_solver(LiquidParams& p, const SceneNode& liq) {
              "use kind = \"parallel_cg\" (the default) with it, or \"jacobi\" / \"incomplete_cholesky\" with eigen_cg");
   p.solver.tolerance = read_number(*sv, T.field("tolerance"));
   p.solver.max_iterations = static_cast<int>(read_integer(*sv, T.field("max_iterations")));
+  p.solver.multigrid.reuse = static_cast<int>(read_integer(*sv, T.field("multigrid_reuse")));
+  if (p.solver.multigrid.reuse != 1 && p.solver.preconditioner != Preconditioner::Multigrid)
+    sv->fail("multigrid_reuse", "only the multigrid preconditioner has a hierarchy to reuse",
+             "set preconditioner = \"multigrid\", or remove multigrid_reuse");
 }
 
 // liquid.turbulence, after the geometry: the mixing length needs a pipe's axis and radius.

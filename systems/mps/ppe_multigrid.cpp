@@ -214,9 +214,16 @@ void cycle(const CompactPpe& sys, double c, const MultigridSettings& s, PpeMulti
 
 }  // namespace
 
+bool multigrid_stale(const CompactPpe& sys, const MultigridSettings& s, const PpeMultigrid& mg) {
+  return mg.depth == 0 || mg.solves >= s.reuse || mg.node_of != sys.node_of;
+}
+
 void multigrid_setup(const CompactPpe& sys, const PpeProblem& pb, const FluidNodes& f, double side,
                      const MultigridSettings& s, PpeMultigrid& mg) {
   if (mg.levels.empty()) mg.levels.resize(1);
+  mg.node_of = sys.node_of;
+  mg.solves = 0;
+  ++mg.builds;
   finest_cubes(sys, f, side, mg.levels[0]);
   mg.depth = 1;
   for (;;) {
@@ -251,7 +258,16 @@ PpeResult ppe_solve_multigrid(CompactPpe& sys, const PpeProblem& pb, const Fluid
   const double bnorm = ppe_load(sys, pb, p);
   if (m == 0 || bnorm == 0) return res;
   const PpeSettings& s = lp.solver;
-  multigrid_setup(sys, pb, f, s.multigrid.aggregate * lp.k.l0, s.multigrid, mg);
+  if (multigrid_stale(sys, s.multigrid, mg)) {
+    multigrid_setup(sys, pb, f, s.multigrid.aggregate * lp.k.l0, s.multigrid, mg);
+  } else {
+    // The coarse levels stay; the finest level's smoother follows this step's diagonal.
+    MultigridLevel& L0 = mg.levels[0];
+    for_row_blocks(m, [&](std::size_t, std::size_t i0, std::size_t i1) {
+      for (std::size_t i = i0; i < i1; ++i) L0.inv[i] = s.multigrid.omega / sys.diag[i];
+    });
+  }
+  ++mg.solves;
   mg.z.resize(m);
   mg.part1.assign(row_blocks(m), 0.0);
   mg.part2.assign(row_blocks(m), 0.0);

@@ -11,8 +11,11 @@
 //   - one cycle: damped Jacobi sweeps, the restricted residual solved on the next level (once: V, twice: W),
 //     prolonged back with a scale, the same sweeps again. Pre- and post-smoothing mirror each other, so the cycle
 //     is a symmetric positive definite operator and CG may use it.
-// The hierarchy is rebuilt every solve: the nodes move every step and the setup costs about two products with
-// the fine matrix. Every pass runs over fixed blocks of rows and sums in a fixed order (row_blocks.hpp): the
+// The hierarchy serves `reuse` solves (1 by default: rebuilt every step). A hierarchy built at an earlier step
+// still gives a symmetric positive definite cycle, so CG converges to the same tolerance with it; only the
+// iterations grow as the nodes move away from the cubes they were grouped in. The finest level is always this
+// step's matrix. The hierarchy is rebuilt when the system's rows change (another active set) and after a
+// checkpoint (multigrid_invalidate), so that a resumed run builds the same one as the unbroken run. Every pass runs over fixed blocks of rows and sums in a fixed order (row_blocks.hpp): the
 // result does not depend on the thread count.
 #pragma once
 
@@ -48,6 +51,9 @@ struct MultigridLevel {
 struct PpeMultigrid {
   std::vector<MultigridLevel> levels;  // the first `depth` are in use; the rest keep their storage
   std::size_t depth = 0;
+  int solves = 0;                      // solves served by the current hierarchy
+  std::int64_t builds = 0;             // hierarchies built
+  std::vector<std::uint32_t> node_of;  // the compact rows' nodes when it was built
   Eigen::LDLT<Eigen::MatrixXd> coarsest;
   std::vector<double> z, part1, part2;  // the CG's preconditioned residual and block sums
 };
@@ -56,6 +62,12 @@ struct PpeMultigrid {
 // positions of the nodes in f. `side`: the finest cubes' side in metres.
 void multigrid_setup(const CompactPpe& sys, const PpeProblem& pb, const FluidNodes& f, double side,
                      const MultigridSettings& s, PpeMultigrid& mg);
+
+// Whether the next solve must rebuild the hierarchy: none yet, `reuse` solves served, or other rows.
+bool multigrid_stale(const CompactPpe& sys, const MultigridSettings& s, const PpeMultigrid& mg);
+
+// The next solve rebuilds the hierarchy (called where a checkpoint is written).
+inline void multigrid_invalidate(PpeMultigrid& mg) { mg.depth = 0; }
 
 // z = M r: one cycle from z = 0 (vectors over the compact rows).
 void multigrid_apply(const CompactPpe& sys, double c, const MultigridSettings& s, PpeMultigrid& mg, const double* r,
