@@ -13,7 +13,9 @@
 
 namespace gf::bench {
 
-inline std::unique_ptr<LiquidSimulation> liquid_tank(int dim, int side, const std::string& solver = "parallel_cg",
+// `solver`: the keys of [liquid.solver], e.g. R"(kind = "eigen_cg")".
+inline std::unique_ptr<LiquidSimulation> liquid_tank(int dim, int side,
+                                                     const std::string& solver = R"(kind = "parallel_cg")",
                                                      int warm_steps = 5) {
   const double l0 = 0.005, L = side * l0;
   char text[1600];
@@ -28,7 +30,7 @@ dim = %d
 l0 = %.17g
 density = 1000.0
 viscosity = 1.0e-6
-solver = { kind = "%s" }
+solver = { %s }
 [geometry]
 type = "tank"
 lo = [0.0, 0.0, 0.0]

@@ -1,7 +1,6 @@
 #include "systems/mps/neighbors.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -138,7 +137,7 @@ void scan_row(const FluidNodes& f, const Grid& g, double r2max, const Periodicit
 }  // namespace
 
 bool neighbors_stale(const FluidNodes& f, const NeighborPairs& nb, double skin, double dt) {
-  if (nb.x0.size() != f.size() || std::getenv("GF_ALWAYS_REBUILD")) return true;
+  if (nb.x0.size() != f.size()) return true;
   // The fluid's mean displacement since the build and its mean velocity: the common drift.
   double drift[3] = {0, 0, 0}, mean_u[3] = {0, 0, 0}, fluid = 0;
   for (std::size_t i = 0; i < f.size(); ++i) {
