@@ -9,6 +9,9 @@ periodic pipe of water at the seed's transport speeds, and the seed's observable
       pieces of at most the budget (grainflow.resumable: a piece stops with a checkpoint and the
       next resumes from it), each to its end before the next; after each piece the new frames are reduced
       to rows of frames.csv and the case archived under studies/seed003/results/transport_pipe/<case>; then collect
+      --tag T names the cases u<U>_T; --courant C steps the liquid at dt = C l0 / U (the drive's relaxation
+      scaled to keep its 0.2 s time constant); --frame-interval S; --prune deletes each liquid frame once it is
+      reduced, all but the newest (a 100 s case writes about 3 MB a frame); --set KEY=VALUE passes an override on
   /usr/bin/python3 studies/seed003/transport_pipe.py collect [--from 1.0]
       studies/seed003/results/transport_pipe.json and studies/seed003/results/transport_pipe.png (profiles) from the cases'
       frames.csv, studies/seed003/results/transport_pipe_views.png (pictures) from the last frames where a run
@@ -58,9 +61,10 @@ def resumable():
 
 
 def cases(a):
-    out = [(f"u{u:g}", u, 0.0) for u in a.speeds]
+    tag = f"_{a.tag}" if getattr(a, "tag", None) else ""
+    out = [(f"u{u:g}{tag}", u, 0.0) for u in a.speeds]
     if a.offaxis:
-        out += [(f"u{u:g}_offaxis", u, 0.01) for u in a.speeds]
+        out += [(f"u{u:g}_offaxis{tag}", u, 0.01) for u in a.speeds]
     return out
 
 
@@ -73,6 +77,23 @@ def overrides(u, shift, duration):
     return sets
 
 
+def step_overrides(u, courant, l0=0.01, tau=0.2):
+    """The liquid's step at U dt / l0 = courant, and the drive's relaxation that keeps the mean speed's time
+    constant at tau seconds (the relaxation acts once a step)."""
+    dt = courant * l0 / u
+    return [f"run.dt={dt:.6g}", f"drive.relaxation={dt / tau:.6g}"]
+
+
+def prune_liquid_frames(run_dir):
+    """Deletes the liquid frames already reduced to frames.csv, all but the newest (a long run's pictures need
+    only its last); the grains' frames are small and kept."""
+    have = {round(r["time"], 9) for r in read_rows(os.path.join(run_dir, "frames.csv"))}
+    listed = frames(run_dir, "liquid")
+    for t, path in listed[:-1]:
+        if round(t, 9) in have and os.path.exists(path):
+            os.remove(path)
+
+
 def run(a):
     r = resumable()
     pathlib = __import__("pathlib")
@@ -81,9 +102,17 @@ def run(a):
         r.restore(folder, dest)
         done = lambda s: float(s[-1]["time"]) >= a.duration - 1e-9  # noqa: E731
         while True:
-            piece = r.run_piece(name, a.binary, pathlib.Path(ROOT) / SCENE, folder, overrides(u, shift, a.duration),
+            sets = overrides(u, shift, a.duration)
+            if a.courant:
+                sets += step_overrides(u, a.courant)
+            if a.frame_interval:
+                sets.append(f"output.frame_interval={a.frame_interval}")
+            sets += a.set or []
+            piece = r.run_piece(name, a.binary, pathlib.Path(ROOT) / SCENE, folder, sets,
                                 a.threads, a.budget_minutes * 60, done)
             update_frames(str(folder))
+            if a.prune:
+                prune_liquid_frames(str(folder))
             s = r.load_series(folder)
             finished = s is not None and done(s)
             r.archive(folder, dest, finished, extra=("frames.csv", "final_state.csv"))
@@ -324,6 +353,11 @@ def main():
     r.add_argument("--budget-minutes", type=float, default=30.0)
     r.add_argument("--binary", default="build/grainflow")
     r.add_argument("--from", dest="from_s", type=float, default=1.0)
+    r.add_argument("--tag", help="appended to each case's name (u2_TAG)")
+    r.add_argument("--courant", type=float, help="the liquid's step from U dt / l0 (the scene's dt without it)")
+    r.add_argument("--frame-interval", type=float, help="s between frames (the scene's without it)")
+    r.add_argument("--prune", action="store_true", help="delete the liquid frames once reduced, all but the newest")
+    r.add_argument("--set", action="append", help="another override, as grainflow's --set")
     c = sub.add_parser("collect")
     c.add_argument("--from", dest="from_s", type=float, default=1.0)
     t = sub.add_parser("table")
