@@ -1,6 +1,7 @@
 #include "systems/mps/neighbors.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -8,6 +9,8 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include "engine/simd.hpp"
 
 namespace gf {
 
@@ -32,6 +35,10 @@ struct Grid {
   double cell[3];
   std::int64_t dims[3];
   std::vector<std::uint32_t> cell_of, start, order;
+  // The nodes' coordinates and kinds in cell order (order[s] is node s's row): a cell's candidates are read
+  // from consecutive memory, whatever order the flow has left the rows in.
+  std::vector<double> sx, sy, sz;
+  std::vector<std::int32_t> skind;
 };
 
 void bin(const FluidNodes& f, double radius, const Periodicity& per, Grid& g) {
@@ -84,6 +91,17 @@ void bin(const FluidNodes& f, double radius, const Periodicity& per, Grid& g) {
   g.order.resize(n);
   std::vector<std::uint32_t> fill(g.start.begin(), g.start.end() - 1);
   for (std::size_t i = 0; i < n; ++i) g.order[fill[g.cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  g.sx.resize(n);
+  g.sy.resize(n);
+  g.sz.resize(n);
+  g.skind.resize(n);
+  for (std::size_t s = 0; s < n; ++s) {
+    const std::uint32_t i = g.order[s];
+    g.sx[s] = f.x[i];
+    g.sy[s] = f.y[i];
+    g.sz[s] = f.z[i];
+    g.skind[s] = f.kind[i];
+  }
 }
 
 // Calls emit(j, image) for every neighbour of row i.
@@ -93,6 +111,7 @@ void scan_row(const FluidNodes& f, const Grid& g, double r2max, const Periodicit
   std::int64_t id[3];
   for (int a = 0; a < 3; ++a) id[a] = (g.cell_of[i] / (a == 0 ? 1 : a == 1 ? g.dims[0] : g.dims[0] * g.dims[1])) % g.dims[a];
   const bool dummy_row = f.kind[i] == kDummy;
+  const double *sx = g.sx.data(), *sy = g.sy.data(), *sz = g.sz.data();
   const int rz = g.dims[2] > 1 ? 1 : 0;
   const double L = per.period();
   for (int oz = -rz; oz <= rz; ++oz)
@@ -123,13 +142,25 @@ void scan_row(const FluidNodes& f, const Grid& g, double r2max, const Periodicit
         }
         if (skip) continue;
         const std::size_t cid = static_cast<std::size_t>((cc[2] * g.dims[1] + cc[1]) * g.dims[0] + cc[0]);
-        for (std::uint32_t s = g.start[cid]; s < g.start[cid + 1]; ++s) {
-          const std::uint32_t q = g.order[s];
-          if (q == i) continue;
-          if (dummy_row && f.kind[q] != kWall) continue;
-          double d[3] = {f.x[q] - p[0], f.y[q] - p[1], f.z[q] - p[2]};
-          if (image != 0) d[per.axis] += image * L;
-          if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < r2max) emit(q, image);
+        double add[3] = {0, 0, 0};  // the image's period (adding 0 is exact: the same sums as without it)
+        if (image != 0) add[per.axis] = image * L;
+        // Candidates kLanes at a time from the cell's start (the batches do not depend on the thread count), those
+        // within the radius emitted in cell order, then the cell's last few one by one.
+        auto take = [&](std::uint32_t s) {
+          if (g.order[s] != i && (!dummy_row || g.skind[s] == kWall)) emit(g.order[s], image);
+        };
+        const std::uint32_t end = g.start[cid + 1];
+        std::uint32_t s = g.start[cid];
+        const BatchD px(p[0]), py(p[1]), pz(p[2]), ax(add[0]), ay(add[1]), az(add[2]), r2(r2max);
+        for (; s + kLanes <= end; s += kLanes) {
+          const BatchD dx = (BatchD::load_unaligned(sx + s) - px) + ax, dy = (BatchD::load_unaligned(sy + s) - py) + ay,
+                       dz = (BatchD::load_unaligned(sz + s) - pz) + az;
+          for (std::uint32_t bits = lane_bits(dx * dx + dy * dy + dz * dz < r2); bits != 0; bits &= bits - 1)
+            take(s + static_cast<std::uint32_t>(std::countr_zero(bits)));
+        }
+        for (; s < end; ++s) {
+          const double dx = (sx[s] - p[0]) + add[0], dy = (sy[s] - p[1]) + add[1], dz = (sz[s] - p[2]) + add[2];
+          if (dx * dx + dy * dy + dz * dz < r2max) take(s);
         }
       }
 }
