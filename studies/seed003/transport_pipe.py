@@ -13,6 +13,9 @@ periodic pipe of water at the seed's transport speeds, and the seed's observable
       scaled to keep its 0.2 s time constant); --frame-interval S; --prune deletes each liquid frame once it is
       reduced, all but the newest (a 100 s case writes about 3 MB a frame); --set KEY=VALUE passes an override on
   /usr/bin/python3 studies/seed003/transport_pipe.py collect [--from 1.0]
+      (a case named *_long starts its statistics at the earliest of 1, 2, 5, 10, 20 s after which the grains'
+      mean speed and var(r/R) are flat within their noise: over ten blocks to the end, the later half's mean
+      within two standard errors of the earlier half's; its JSON keeps the test and the block means' errors)
       studies/seed003/results/transport_pipe.json and studies/seed003/results/transport_pipe.png (profiles) from the cases'
       frames.csv, studies/seed003/results/transport_pipe_views.png (pictures) from the last frames where a run
       folder has them
@@ -228,6 +231,61 @@ def measure(run_dir, t_from):
     }
 
 
+LONG_STARTS = (1.0, 2.0, 5.0, 10.0, 20.0)  # s: the candidate starts of a long case's statistics, earliest first
+BLOCKS = 10  # a long case's statistics window in this many blocks of equal frame counts
+
+
+def frame_variance(r):
+    return r["r2_mean"] - r["r_mean"] ** 2
+
+
+def block_means(rows, value):
+    n = len(rows) // BLOCKS
+    return [sum(value(r) for r in rows[k * n:(k + 1) * n]) / n for k in range(BLOCKS)]
+
+
+def half_drift(blocks):
+    """The later half's mean less the earlier half's, and the standard error of that difference from the
+    blocks' own spread (blocks taken as independent)."""
+    h = len(blocks) // 2
+    m = sum(blocks) / len(blocks)
+    var = sum((b - m) ** 2 for b in blocks) / (len(blocks) - 1)
+    return sum(blocks[h:]) / (len(blocks) - h) - sum(blocks[:h]) / h, (var / h + var / (len(blocks) - h)) ** 0.5
+
+
+def steadiness(run_dir):
+    """A long case's statistics start: the earliest of LONG_STARTS from which the grains' mean axial speed and
+    the frames' variance of r/R are flat within their noise, i.e. over BLOCKS blocks of the window to the end,
+    the later half's mean differs from the earlier half's by less than two standard errors. Returns the start
+    (None when no candidate passes) and each candidate's test."""
+    rows = read_rows(os.path.join(run_dir, "frames.csv"))
+    tests = []
+    for t0 in LONG_STARTS:
+        window = [r for r in rows if r["time"] >= t0 - 1e-9]
+        if len(window) < 4 * BLOCKS:
+            break
+        test = {"from_s": t0}
+        for name, value in (("grain_speed", lambda r: r["grain_vx"]), ("r_variance", frame_variance)):
+            drift, se = half_drift(block_means(window, value))
+            test[name] = {"drift": drift, "se": se, "flat": abs(drift) < 2.0 * se}
+        tests.append(test)
+        if test["grain_speed"]["flat"] and test["r_variance"]["flat"]:
+            return t0, tests
+    return None, tests
+
+
+def block_errors(run_dir, t0):
+    """Standard errors of the window's means from BLOCKS block means (the frames are correlated in time)."""
+    rows = [r for r in read_rows(os.path.join(run_dir, "frames.csv")) if r["time"] >= t0 - 1e-9]
+    out = {}
+    for name, value in (("r_variance", frame_variance), ("spin", lambda r: r["spin"]),
+                        ("grain_speed", lambda r: r["grain_vx"]), ("centre_speed", lambda r: r["u_0"])):
+        b = block_means(rows, value)
+        m = sum(b) / len(b)
+        out[name] = (sum((v - m) ** 2 for v in b) / (len(b) - 1) / len(b)) ** 0.5
+    return out
+
+
 def pictures(run_dirs, path):
     """Per speed, the last frame: a side view (a slab |z| < 10 mm: liquid nodes by axial speed, grains in
     it as circles) and a cross-section (every grain projected along the axis, liquid nodes of one layer)."""
@@ -305,9 +363,13 @@ def collect(a):
         folder, dest = pathlib.Path(ROOT) / RUNS / name, pathlib.Path(ROOT) / ARCHIVE / name
         r.restore(folder, dest)
         update_frames(str(folder))
-        m = measure(str(folder), a.from_s)
+        t0, tests = (steadiness(str(folder)) if name.endswith("_long") else (a.from_s, None))
+        m = measure(str(folder), t0 if t0 is not None else LONG_STARTS[-1])
         if m is None:
             continue
+        if tests is not None:
+            m["steadiness"] = {"start": t0, "tests": tests}
+            m["block_se"] = block_errors(str(folder), m["from_s"])
         m["speed"] = float(name[1:].split("_")[0])
         result["runs"][name] = m
         if frames(str(folder), "liquid"):
@@ -335,11 +397,15 @@ def table(a):
                   "| | | | | | | |")
             continue
         var, pr, pp, spin = SEED.get(int(m["speed"]), (None,) * 4)
+
+        def se(key, spec, m=m):  # a long case's standard error of the mean from its block means
+            return f"; mean ± {format(m['block_se'][key], spec)}" if "block_se" in m else ""
         centre = m["u_profile"][0] / m["speed"] if m["u_profile"][0] is not None else None
         print(f"| {name} | {m['speed']:g} | {m['from_s']:g}–{m['to_s']:.2f} ({m['frames']} frames) | "
-              f"{m['r_variance']:.4f} (± {m['r_variance_frame_sd']:.4f}) / {fmt(var, '.4f')} | {m['phi_peak_r']:.2f} / {fmt(pr, '.2f')} | "
-              f"{m['phi_peak']:.1f} / {fmt(pp, '.1f')} | {m['spin']:.2f} / {fmt(spin, '.2f')} | "
-              f"{m['grain_speed']:.2f} | {fmt(centre, '.3f')} | {m['wall_seconds']:.0f} |")
+              f"{m['r_variance']:.4f} (± {m['r_variance_frame_sd']:.4f}{se('r_variance', '.4f')}) / {fmt(var, '.4f')} | "
+              f"{m['phi_peak_r']:.2f} / {fmt(pr, '.2f')} | "
+              f"{m['phi_peak']:.1f} / {fmt(pp, '.1f')} | {m['spin']:.2f}{se('spin', '.2f')} / {fmt(spin, '.2f')} | "
+              f"{m['grain_speed']:.2f}{se('grain_speed', '.3f')} | {fmt(centre, '.3f')} | {m['wall_seconds']:.0f} |")
 
 
 def main():
