@@ -27,7 +27,8 @@ struct LiquidForceSystem : SystemBase<LiquidForceSystem> {
     const double half = 0.5 * step.dt;
     for (std::size_t i = 0; i < g.n_owned; ++i) {
       const V3<double> u{at.ux[i], at.uy[i], at.uz[i]}, v{g.vel.x[i], g.vel.y[i], g.vel.z[i]};
-      const V3<double> F = liquid_force(u, v, at.eps[i], 2.0 * g.radius.r[i], c.liquid.props, gv, *c.drag);
+      V3<double> F = liquid_force(u, v, at.eps[i], 2.0 * g.radius.r[i], c.liquid.props, gv, *c.drag);
+      if (c.shear_lift || c.spin_lift) F = F + lift(g, at, c, i, u - v);
       if (!step.prime) {
         // The integrator's closing half-kick of this sub-step uses F, its opening one the force before.
         j.x[i] += half * (f.x[i] + F.x);
@@ -39,6 +40,19 @@ struct LiquidForceSystem : SystemBase<LiquidForceSystem> {
       f.z[i] = F.z;
     }
     if (c.rotational_drag) set_torques(g, c);
+  }
+  // Shear and spin lift from the slip and the liquid's curl at the step's start, and the grain's spin now.
+  static V3<double> lift(const Grains& g, const LiquidAtGrain& at, const CouplingState& c, std::size_t i,
+                         const V3<double>& slip) {
+    const V3<double> W{at.curl_x[i], at.curl_y[i], at.curl_z[i]};
+    const double d = 2.0 * g.radius.r[i];
+    V3<double> F{0, 0, 0};
+    if (c.shear_lift) F = F + shear_lift(slip, W, d, c.liquid.props);
+    if (c.spin_lift) {
+      const V3<double> rel{0.5 * W.x - g.omega.x[i], 0.5 * W.y - g.omega.y[i], 0.5 * W.z - g.omega.z[i]};
+      F = F + spin_lift(slip, rel, d, c.liquid.props);
+    }
+    return F;
   }
   // T = rotational drag on the spin relative to half the liquid's curl at the step's start.
   static void set_torques(Grains& g, const CouplingState& c) {
@@ -88,7 +102,7 @@ std::vector<double> share_grains(const Grains& g, const PointSet& carriers, cons
 void sample_at_grains(Grains& g, const CouplingState& c, const PointSet& carriers, const PointSet& velocity) {
   const std::vector<double> eps = at_grains(c.shares, c.node_eps);
   std::vector<V3<double>> curl;
-  if (c.rotational_drag) {
+  if (c.needs_curl()) {
     const std::size_t n = g.n_owned;
     const PointSet grains{owned(g.pos.x, n), owned(g.pos.y, n), owned(g.pos.z, n)};
     curl = curl_at_grains(c.shares, grains, carriers, velocity, {c.liquid.periodic_axis, c.liquid.period_lo, c.liquid.period_hi});
@@ -138,6 +152,8 @@ void attach_coupling(const CouplingSpec& coupling, const LiquidFacts& liquid, Wo
   c.h = coupling.smoothing_radius;
   c.drag = coupling.drag;
   c.rotational_drag = coupling.rotational_drag;
+  c.shear_lift = coupling.shear_lift;
+  c.spin_lift = coupling.spin_lift;
   c.eps_min = coupling.min_liquid_fraction;
   c.liquid = liquid;
   c.fluid_nodes_only = coupling.fluid_nodes_only;

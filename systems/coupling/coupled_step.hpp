@@ -3,7 +3,7 @@
 //   coupling_prepare   shares of every grain on the nodes within h (void_fraction.hpp), the nodes' liquid
 //                      fraction eps_i, and the liquid's velocity and fraction read at each grain
 //   dem_substeps       k DEM steps (with coupling.fixed_grains only liquid_force, the grains staying put);
-//                      in each, liquid_force sets F = F_d/eps - V_p rho_l g on every grain
+//                      in each, liquid_force sets F = F_d/eps - V_p rho_l g (+ lift: lift.hpp) on every grain
 //                      (drag.hpp: the scene's drag law with the grain's own velocity, the liquid's read at
 //                      the step's start; buoyancy in Archimedes' form) and adds the impulse the
 //                      integrator's two half-kicks give it, h/2 (F_old + F_new), to the grain's tally
@@ -28,6 +28,7 @@
 #include "systems/coupling/coupled_liquid.hpp"
 #include "systems/coupling/coupling_settings.hpp"
 #include "systems/coupling/drag.hpp"
+#include "systems/coupling/lift.hpp"
 #include "systems/coupling/rotational_drag.hpp"
 #include "systems/coupling/void_fraction.hpp"
 #include "systems/integrate/force_terms.hpp"
@@ -43,7 +44,7 @@ struct LiquidForce {
 // grain's row in that step's shares (rows may be re-sorted during the sub-steps).
 struct LiquidAtGrain {
   ColumnD ux, uy, uz, eps;
-  ColumnD curl_x, curl_y, curl_z;  // 1/s, the liquid's curl (with rotational drag; zero without)
+  ColumnD curl_x, curl_y, curl_z;  // 1/s, the liquid's curl (with rotational drag or lift; zero without)
   Column<std::int32_t> row;
   auto columns() { return std::tie(ux, uy, uz, eps, curl_x, curl_y, curl_z, row); }
 };
@@ -64,6 +65,8 @@ struct CouplingState {
   double h = 0;            // m, smoothing radius
   DragModel drag = &drag_laws()[0];
   bool rotational_drag = false;  // the liquid's torque on spinning grains
+  bool shear_lift = false, spin_lift = false;  // lift forces (lift.hpp)
+  bool needs_curl() const { return rotational_drag || shear_lift || spin_lift; }
   double eps_min = 0.2;
   LiquidFacts liquid;      // the liquid's density, viscosity, carrier volume and periodic axis
   bool fluid_nodes_only = false;  // shares over moving carriers only (coupling.share_with = "fluid_nodes")

@@ -13,6 +13,8 @@ struct CouplingSpec {
   double smoothing_radius = 0;     // m
   DragModel drag = &drag_laws()[0];
   bool rotational_drag = false;    // rotational_drag = "dennis": the liquid's torque on spinning grains
+  bool shear_lift = false;         // shear_lift = "saffman_mei" (lift.hpp)
+  bool spin_lift = false;          // spin_lift = "oesterle_bui_dinh" (lift.hpp)
   double min_liquid_fraction = 0.2;
   bool modified_pressure = false;
   bool fixed_grains = false;

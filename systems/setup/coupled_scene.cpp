@@ -107,6 +107,8 @@ void read_coupling(CoupledScene& s, const SceneNode& root) {
            "set smoothing_radius >= l0, e.g. " + short_number(2.5 * l0) + " m (2.5 l0)");
   s.coupling.drag = &drag_law(read_choice(c, T.field("drag"), drag_law_names()));
   s.coupling.rotational_drag = read_choice(c, T.field("rotational_drag"), {"none", "dennis"}) == "dennis";
+  s.coupling.shear_lift = read_choice(c, T.field("shear_lift"), {"none", "saffman_mei"}) == "saffman_mei";
+  s.coupling.spin_lift = read_choice(c, T.field("spin_lift"), {"none", "oesterle_bui_dinh"}) == "oesterle_bui_dinh";
   s.coupling.min_liquid_fraction = read_number(c, T.field("min_liquid_fraction"));
   s.coupling.fluid_nodes_only = read_choice(c, T.field("share_with"), {"all_nodes", "fluid_nodes"}) == "fluid_nodes";
   s.coupling.averaged = read_bool(c, T.field("averaged"));
