@@ -21,7 +21,10 @@ between grains (the wall's kept at 0.2: what the grains' own collisions give it)
 5.7e-4 m^2/s, a developed turbulent pipe's near its axis at 2 m/s (kappa u* R / 6 with u* = 0.083 m/s from the
 smooth-pipe friction factor 0.0137 at Re_D = 4e5): the momentum turbulence would carry into the notch that the
 grains' cloud cuts into the liquid; Prandtl's mixing length with Nikuradse's profile (liquid.turbulence), the
-eddy viscosity a turbulent pipe has, small at the wall and in the flat core.
+eddy viscosity a turbulent pipe has, small at the wall and in the flat core; Saffman's shear lift with Mei's
+factor and the Magnus spin lift (coupling.shear_lift, coupling.spin_lift), run after the pipe's solver became the
+multigrid kept 20 steps (the same physics to the solver's tolerance). collect keeps the rows of candidates whose
+run folders are gone.
 """
 import argparse
 import concurrent.futures
@@ -46,6 +49,8 @@ CANDIDATES = {
     "grains_frictionless": ["contact.friction=0.0", "contact.wall={friction=0.2}"],
     "eddy_viscosity": ["liquid.eddy_viscosity=5.7e-4"],
     "mixing_length": ['liquid.turbulence="mixing_length"'],
+    "shear_lift": ['coupling.shear_lift="saffman_mei"'],
+    "spin_lift": ['coupling.spin_lift="oesterle_bui_dinh"'],
 }
 # The mixing length at the seed's other transport speeds (the same 2 s from rest): its trend with the speed.
 SPEEDS = {f"mixing_length_u{u}": u for u in (3, 4, 5)}
@@ -104,10 +109,14 @@ def collect():
     out = {"speed_m_s": SPEED, "duration_s": DURATION, "statistics_from_s": FROM, "scene": tp.SCENE,
            "seed_2_m_s": dict(zip(("r_variance", "phi_peak_r", "phi_peak_percent", "spin"), tp.SEED[2])),
            "candidates": {}}
+    # A candidate whose run folder is gone keeps its row from the file (runs/ is not kept between sessions).
+    kept = json.load(open(OUT))["candidates"] if os.path.exists(OUT) else {}
     for name, sets in CANDIDATES.items():
         folder = os.path.join(RUNS, name)
         m = tp.measure(folder, FROM) if os.path.isdir(folder) else None
         if m is None:
+            if name in kept:
+                out["candidates"][name] = kept[name]
             continue
         rows = tp.read_rows(os.path.join(folder, "frames.csv"))
         curl = half_curl(folder)
@@ -131,6 +140,8 @@ LABELS = {
     "grains_frictionless": "no grain-grain friction (wall 0.2)",
     "eddy_viscosity": "eddy viscosity 5.7e-4 m²/s",
     "mixing_length": "mixing-length eddy viscosity (Nikuradse)",
+    "shear_lift": "shear lift (Saffman-Mei)",
+    "spin_lift": "spin lift (Magnus, Oesterlé-Bui Dinh)",
     **{n: "mixing-length eddy viscosity (Nikuradse)" for n in SPEEDS},
 }
 
