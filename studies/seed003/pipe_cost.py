@@ -17,6 +17,9 @@ transport_pipe.py reads its cases (frames.csv, statistics from 1.0 s on). The va
       studies/seed003/results/pipe_cost.json: per variant its overrides, status (and what stopped it), wall time
       per simulated second, the pressure solve's mean iterations, the largest CFL number reached, and the
       observables (var(r/R) with the frames' spread, the volume-fraction peak, spin, grains' speed, centre/U)
+  /usr/bin/python3 studies/seed003/pipe_cost.py chart
+      studies/seed003/results/pipe_cost.png (run and collect draw it too): wall time per simulated second against
+      each observable, the two pours' range shaded
   /usr/bin/python3 studies/seed003/pipe_cost.py table [studies/seed003/results/pipe_cost.json]
       the results page's table (tools/readme/tables.py calls it; needs no numpy)
 """
@@ -134,6 +137,39 @@ def table(path):
     return "\n".join(lines)
 
 
+def chart(path, out):
+    """Each completed variant's wall time per simulated second against its observables, the two pours' range
+    shaded: what a setting buys in time and what it moves beyond the case's own spread."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    doc = json.load(open(path))
+    done = [v for v in doc["variants"] if v["status"] == "completed"]
+    pours = [v for v in done if v["name"] in ("shipped", "pour2")]
+    keys = [("r_variance", "var(r/R)"), ("spin", "mean spin (rad/s)"), ("centre_over_u", "centre liquid / U"),
+            ("grain_speed", "grains' speed (m/s)")]
+    fig, axes = plt.subplots(1, len(keys), figsize=(4.0 * len(keys), 3.6))
+    for ax, (key, label) in zip(axes, keys):
+        lo, hi = min(v[key] for v in pours), max(v[key] for v in pours)
+        ax.axhspan(lo, hi, color="0.85", label="two pours of the shipped case")
+        for v in done:
+            ax.plot(v["wall_per_simulated_s"], v[key], "o")
+            ax.annotate(v["name"], (v["wall_per_simulated_s"], v[key]), fontsize=7, xytext=(3, 3),
+                        textcoords="offset points")
+        ax.set_xscale("log")
+        ax.set_xlabel("wall s per simulated s (2 threads)")
+        ax.set_ylabel(label)
+    axes[0].legend(fontsize=7, loc="lower left")
+    failed = [v for v in doc["variants"] if v["status"] == "failed"]
+    note = "; ".join(f"{v['name']}: stopped at {v['simulated_s']:.3g} s ({v.get('failure', '').split(':')[0]})"
+                     for v in failed)
+    fig.suptitle(f"Transport pipe at {doc['speed']:g} m/s, statistics over {doc['from_s']:g}-{doc['duration']:g} s"
+                 + (f"\n{note}" if note else ""), fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    print("wrote", os.path.relpath(out, ROOT))
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="cmd", required=True)
@@ -142,6 +178,7 @@ def main():
     r.add_argument("--threads", type=int, default=2)
     r.add_argument("--binary", default=os.path.join(ROOT, "build/grainflow"))
     sub.add_parser("collect")
+    sub.add_parser("chart")
     t = sub.add_parser("table")
     t.add_argument("path", nargs="?", default=OUT)
     a = p.parse_args()
@@ -149,8 +186,12 @@ def main():
         for name in a.only or VARIANTS:
             print(name, "exit", run_one(name, a.binary, a.threads), flush=True)
         collect()
+        chart(OUT, OUT.replace(".json", ".png"))
     elif a.cmd == "collect":
         collect()
+        chart(OUT, OUT.replace(".json", ".png"))
+    elif a.cmd == "chart":
+        chart(OUT, OUT.replace(".json", ".png"))
     else:
         print(table(a.path))
 
