@@ -15,7 +15,8 @@ periodic pipe of water at the seed's transport speeds, and the seed's observable
   /usr/bin/python3 studies/seed003/transport_pipe.py collect [--from 1.0]
       (a case named *_long starts its statistics at the earliest of 1, 2, 5, 10, 20 s after which the grains'
       mean speed and var(r/R) are flat within their noise: over ten blocks to the end, the later half's mean
-      within two standard errors of the earlier half's; its JSON keeps the test and the block means' errors)
+      within two standard errors of the earlier half's; its JSON keeps the test, the block means' errors and the
+      grains' axial concentration correlation over the periodic length: is 0.4 m long enough)
       studies/seed003/results/transport_pipe.json and studies/seed003/results/transport_pipe.png (profiles) from the cases'
       frames.csv, studies/seed003/results/transport_pipe_views.png (pictures) from the last frames where a run
       folder has them
@@ -286,6 +287,39 @@ def block_errors(run_dir, t0):
     return out
 
 
+AXIAL_BINS = 20  # bins of the periodic length (20 mm, one grain diameter) for the axial correlation
+
+
+def axial_correlation(run_dir, t_from):
+    """The grains' axial concentration correlation over the periodic length, averaged over the grain frames
+    from t_from on: per frame the grains counted in AXIAL_BINS bins along x, the fluctuations' periodic
+    autocorrelation C(lag) = sum_k d_k d_(k+lag) / sum_k d_k^2. A pipe long enough for its grains has C near
+    the uncorrelated value -1/(bins - 1) well before half the period. Returns the lags (m), C, the frames used
+    and the shortest lag where C falls below 1/e (None if it never does)."""
+    sums, used = [0.0] * AXIAL_BINS, 0
+    for t, path in frames(run_dir, "grains"):
+        if t < t_from - 1e-9:
+            continue
+        counts = [0] * AXIAL_BINS
+        for x, _, _ in read_vtp(path)["Points"]:
+            counts[min(AXIAL_BINS - 1, max(0, int(x % LENGTH / LENGTH * AXIAL_BINS)))] += 1
+        mean = sum(counts) / AXIAL_BINS
+        d = [c - mean for c in counts]
+        var = sum(v * v for v in d)
+        if var <= 0:
+            continue
+        for lag in range(AXIAL_BINS):
+            sums[lag] += sum(d[k] * d[(k + lag) % AXIAL_BINS] for k in range(AXIAL_BINS)) / var
+        used += 1
+    if not used:
+        return None
+    c = [v / used for v in sums[:AXIAL_BINS // 2 + 1]]
+    lags = [k * LENGTH / AXIAL_BINS for k in range(len(c))]
+    below = next((lag for lag, v in zip(lags, c) if v < math.exp(-1.0)), None)
+    return {"lags_m": lags, "correlation": c, "frames": used, "decorrelated_by_m": below,
+            "uncorrelated": -1.0 / (AXIAL_BINS - 1)}
+
+
 def pictures(run_dirs, path):
     """Per speed, the last frame: a side view (a slab |z| < 10 mm: liquid nodes by axial speed, grains in
     it as circles) and a cross-section (every grain projected along the axis, liquid nodes of one layer)."""
@@ -370,6 +404,7 @@ def collect(a):
         if tests is not None:
             m["steadiness"] = {"start": t0, "tests": tests}
             m["block_se"] = block_errors(str(folder), m["from_s"])
+            m["axial_correlation"] = axial_correlation(str(folder), m["from_s"])
         m["speed"] = float(name[1:].split("_")[0])
         result["runs"][name] = m
         if frames(str(folder), "liquid"):
