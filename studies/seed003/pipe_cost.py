@@ -9,6 +9,7 @@ transport_pipe.py reads its cases (frames.csv, statistics from 1.0 s on). The va
   - the pressure solver (Jacobi CG; multigrid CG with its hierarchy kept 20 steps), and the solver's tolerance;
   - another pour (the fill's seed 2): how far two runs of the same case differ after 1 s of statistics, the
     yardstick for every other difference;
+  - the DEM sub-steps per liquid step, twice the computed number (fewer are refused by the contact's step limit);
   - the seed's spacing l0 = 7.5 mm (2.4 times the nodes).
 
   /usr/bin/python3 studies/seed003/pipe_cost.py run [--only NAME ...] [--threads 2] [--binary build/grainflow]
@@ -58,6 +59,7 @@ VARIANTS = {  # name: (what changes, overrides)
     "dt_1.25e-3": ("dt 1.25e-3 s", step(1.25e-3)),
     "dt_1.5e-3": ("dt 1.5e-3 s", step(1.5e-3)),
     "dt_2e-3": ("dt 2e-3 s", step(2e-3)),
+    "substeps_36": ("DEM sub-steps 36 (twice the 18 computed)", ["coupling.substeps=36"]),
     "l0_7.5mm": ("l0 7.55 mm (the seed: 7.5; 53 spacings along the 0.4 m period)", ["liquid.l0=0.0075471698"]),
 }
 
@@ -119,6 +121,11 @@ def fmt(v, spec):
     return "—" if v is None else format(v, spec)
 
 
+def threads(v):
+    """A variant run on other than two threads says so beside its wall time (not comparable with the others)."""
+    return "" if v.get("threads") in (None, 2) else f" ({v['threads']} thread{'s' if v['threads'] != 1 else ''})"
+
+
 def table(path):
     doc = json.load(open(path))
     lines = ["| variant | status | dt (s) | fluid nodes | wall s per simulated s | PPE iterations | largest CFL | "
@@ -131,7 +138,7 @@ def table(path):
             if v.get("r_variance") is not None else "—"
         peak = f"{fmt(v.get('phi_peak_r'), '.2f')} ({fmt(v.get('phi_peak'), '.1f')})" if v.get("phi_peak_r") else "—"
         lines.append(f"| {v['what']} | {status} | {fmt(v.get('dt'), 'g')} | {fmt(v.get('fluid_nodes'), ',')} | "
-                     f"{fmt(v.get('wall_per_simulated_s'), '.1f')} | {fmt(v.get('ppe_iterations'), '.1f')} | "
+                     f"{fmt(v.get('wall_per_simulated_s'), '.1f')}{threads(v)} | {fmt(v.get('ppe_iterations'), '.1f')} | "
                      f"{fmt(v.get('cfl_max'), '.2f')} | {var} | {peak} | {fmt(v.get('spin'), '.2f')} | "
                      f"{fmt(v.get('grain_speed'), '.2f')} | {fmt(v.get('centre_over_u'), '.3f')} |")
     return "\n".join(lines)
