@@ -22,7 +22,8 @@ between grains (the wall's kept at 0.2: what the grains' own collisions give it)
 smooth-pipe friction factor 0.0137 at Re_D = 4e5): the momentum turbulence would carry into the notch that the
 grains' cloud cuts into the liquid; Prandtl's mixing length with Nikuradse's profile (liquid.turbulence), the
 eddy viscosity a turbulent pipe has, small at the wall and in the flat core; Saffman's shear lift with Mei's
-factor and the Magnus spin lift (coupling.shear_lift, coupling.spin_lift), run after the pipe's solver became the
+factor and the Magnus spin lift (coupling.shear_lift, coupling.spin_lift), and a restitution of 0.5 for every
+contact instead of 0.9, run after the pipe's solver became the
 multigrid kept 20 steps (the same physics to the solver's tolerance). collect keeps the rows of candidates whose
 run folders are gone.
 """
@@ -51,6 +52,7 @@ CANDIDATES = {
     "mixing_length": ['liquid.turbulence="mixing_length"'],
     "shear_lift": ['coupling.shear_lift="saffman_mei"'],
     "spin_lift": ['coupling.spin_lift="oesterle_bui_dinh"'],
+    "restitution_0.5": ["contact.restitution=0.5"],
 }
 # The mixing length at the seed's other transport speeds (the same 2 s from rest): its trend with the speed.
 SPEEDS = {f"mixing_length_u{u}": u for u in (3, 4, 5)}
@@ -142,6 +144,7 @@ LABELS = {
     "mixing_length": "mixing-length eddy viscosity (Nikuradse)",
     "shear_lift": "shear lift (Saffman-Mei)",
     "spin_lift": "spin lift (Magnus, Oesterlé-Bui Dinh)",
+    "restitution_0.5": "restitution 0.5 (the scene: 0.9)",
     **{n: "mixing-length eddy viscosity (Nikuradse)" for n in SPEEDS},
 }
 
