@@ -14,8 +14,9 @@ periodic pipe of water at the seed's transport speeds, and the seed's observable
       reduced, all but the newest (a 100 s case writes about 3 MB a frame); --set KEY=VALUE passes an override on
   /usr/bin/python3 studies/seed003/transport_pipe.py collect [--from 1.0]
       (a case named *_long starts its statistics at the earliest of 1, 2, 5, 10, 20 s after which the grains'
-      mean speed and var(r/R) are flat within their noise: over ten blocks to the end, the later half's mean
-      within two standard errors of the earlier half's; its JSON keeps the test, the block means' errors and the
+      mean speed, var(r/R) and the liquid's centre speed are flat within their noise: over twenty blocks to the
+      end, the later half's mean within two standard errors of the earlier half's and the first block's within
+      two of the others'; its JSON keeps the test, the block means' errors and the
       grains' axial concentration correlation over the periodic length: is 0.4 m long enough)
       studies/seed003/results/transport_pipe.json and studies/seed003/results/transport_pipe.png (profiles) from the cases'
       frames.csv, studies/seed003/results/transport_pipe_views.png (pictures) from the last frames where a run
@@ -233,7 +234,7 @@ def measure(run_dir, t_from):
 
 
 LONG_STARTS = (1.0, 2.0, 5.0, 10.0, 20.0)  # s: the candidate starts of a long case's statistics, earliest first
-BLOCKS = 10  # a long case's statistics window in this many blocks of equal frame counts
+BLOCKS = 20  # a long case's statistics window in this many blocks of equal frame counts
 
 
 def frame_variance(r):
@@ -254,11 +255,25 @@ def half_drift(blocks):
     return sum(blocks[h:]) / (len(blocks) - h) - sum(blocks[:h]) / h, (var / h + var / (len(blocks) - h)) ** 0.5
 
 
+def first_block_step(blocks):
+    """The first block's mean less the others', and the standard error of that difference from the blocks'
+    spread: a transient at the window's start that the halves' comparison would average away."""
+    rest = blocks[1:]
+    m = sum(blocks) / len(blocks)
+    var = sum((b - m) ** 2 for b in blocks) / (len(blocks) - 1)
+    return blocks[0] - sum(rest) / len(rest), (var + var / len(rest)) ** 0.5
+
+
+STEADY = (("grain_speed", lambda r: r["grain_vx"]), ("r_variance", frame_variance),
+          ("centre_speed", lambda r: r["u_0"]))
+
+
 def steadiness(run_dir):
-    """A long case's statistics start: the earliest of LONG_STARTS from which the grains' mean axial speed and
-    the frames' variance of r/R are flat within their noise, i.e. over BLOCKS blocks of the window to the end,
-    the later half's mean differs from the earlier half's by less than two standard errors. Returns the start
-    (None when no candidate passes) and each candidate's test."""
+    """A long case's statistics start: the earliest of LONG_STARTS from which the grains' mean axial speed, the
+    frames' variance of r/R and the liquid's centre speed (the slowest to develop) are flat within their noise:
+    over BLOCKS blocks of the window to the end, the later half's mean lies within two standard errors of the
+    earlier half's, and the first block's within two standard errors of the others'. Returns the start (None
+    when no candidate passes) and each candidate's test."""
     rows = read_rows(os.path.join(run_dir, "frames.csv"))
     tests = []
     for t0 in LONG_STARTS:
@@ -266,11 +281,14 @@ def steadiness(run_dir):
         if len(window) < 4 * BLOCKS:
             break
         test = {"from_s": t0}
-        for name, value in (("grain_speed", lambda r: r["grain_vx"]), ("r_variance", frame_variance)):
-            drift, se = half_drift(block_means(window, value))
-            test[name] = {"drift": drift, "se": se, "flat": abs(drift) < 2.0 * se}
+        for name, value in STEADY:
+            blocks = block_means(window, value)
+            drift, se = half_drift(blocks)
+            step, se_step = first_block_step(blocks)
+            test[name] = {"drift": drift, "se": se, "first_block_step": step, "se_step": se_step,
+                          "flat": abs(drift) < 2.0 * se and abs(step) < 2.0 * se_step}
         tests.append(test)
-        if test["grain_speed"]["flat"] and test["r_variance"]["flat"]:
+        if all(test[name]["flat"] for name, _ in STEADY):
             return t0, tests
     return None, tests
 
