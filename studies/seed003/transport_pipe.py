@@ -430,8 +430,13 @@ def collect(a):
     with open(os.path.join(ROOT, DOCS), "w") as fh:
         json.dump(result, fh, indent=1)
     chart(result, os.path.join(ROOT, DOCS.replace(".json", ".png")))
-    if pictured:
-        pictures(pictured, os.path.join(ROOT, DOCS.replace(".json", "_views.png")))
+    # The 2-s cases' pictures and the long cases' apart: a folder holds frames only while its run is on disk.
+    short = [(n, d) for n, d in pictured if not n.endswith("_long")]
+    long_ = [(n, d) for n, d in pictured if n.endswith("_long")]
+    if short:
+        pictures(short, os.path.join(ROOT, DOCS.replace(".json", "_views.png")))
+    if long_:
+        pictures(long_, os.path.join(ROOT, DOCS.replace(".json", "_long_views.png")))
     print(f"wrote {DOCS} ({len(result['runs'])} cases; pictures of {len(pictured)})")
 
 
