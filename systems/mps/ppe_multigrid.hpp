@@ -15,8 +15,9 @@
 // still gives a symmetric positive definite cycle, so CG converges to the same tolerance with it; only the
 // iterations grow as the nodes move away from the cubes they were grouped in. The finest level is always this
 // step's matrix. The hierarchy is rebuilt when the system's rows change (another active set) and after a
-// checkpoint (multigrid_invalidate), so that a resumed run builds the same one as the unbroken run. Every pass runs over fixed blocks of rows and sums in a fixed order (row_blocks.hpp): the
-// result does not depend on the thread count.
+// checkpoint (multigrid_invalidate), so that a resumed run builds the same one as the unbroken run.
+// Every pass runs over fixed blocks of rows and sums in a fixed order (row_blocks.hpp): the result does not
+// depend on the thread count.
 #pragma once
 
 #include <cstdint>
