@@ -11,7 +11,8 @@ periodic pipe of water at the seed's transport speeds, and the seed's observable
       to rows of frames.csv and the case archived under studies/seed003/results/transport_pipe/<case>; then collect
       --tag T names the cases u<U>_T; --courant C steps the liquid at dt = C l0 / U (the drive's relaxation
       scaled to keep its 0.2 s time constant); --frame-interval S; --prune deletes each liquid frame once it is
-      reduced, all but the newest (a 100 s case writes about 3 MB a frame); --set KEY=VALUE passes an override on
+      reduced, all but the newest (a 100 s case writes about 3 MB a frame); --set KEY=VALUE passes an override on;
+      a finished *_long case's archived series.csv keeps a row every 0.5 s
   /usr/bin/python3 studies/seed003/transport_pipe.py collect [--from 1.0]
       (a case named *_long starts its statistics at the earliest of 1, 2, 5, 10, 20 s after which the grains'
       mean speed, var(r/R) and the liquid's centre speed are flat within their noise: over twenty blocks to the
@@ -89,6 +90,25 @@ def step_overrides(u, courant, l0=0.01, tau=0.2):
     return [f"run.dt={dt:.6g}", f"drive.relaxation={dt / tau:.6g}"]
 
 
+LONG_SERIES_EVERY = 0.5  # s between the rows a finished long case keeps in its archived series.csv
+
+
+def thin_series(path):
+    """A finished long case's archived series.csv cut to a row every LONG_SERIES_EVERY seconds and its last row
+    (its statistics come from frames.csv; the series is kept to show the run's course)."""
+    with open(path) as fh:
+        lines = fh.read().splitlines()
+    head, rows = lines[0], lines[1:]
+    kept, next_t = [], 0.0
+    for k, line in enumerate(rows):
+        t = float(line.split(",", 1)[0])
+        if t >= next_t - 1e-9 or k == len(rows) - 1:
+            kept.append(line)
+            next_t = t + LONG_SERIES_EVERY
+    with open(path, "w") as fh:
+        fh.write("\n".join([head] + kept) + "\n")
+
+
 def prune_liquid_frames(run_dir):
     """Deletes the liquid frames already reduced to frames.csv, all but the newest (a long run's pictures need
     only its last); the grains' frames are small and kept."""
@@ -121,6 +141,8 @@ def run(a):
             s = r.load_series(folder)
             finished = s is not None and done(s)
             r.archive(folder, dest, finished, extra=("frames.csv", "final_state.csv"))
+            if finished and name.endswith("_long"):
+                thin_series(dest / "series.csv")
             if piece is None or piece["status"] != "interrupted":
                 break
     collect(a)
