@@ -268,12 +268,17 @@ def block_means(rows, value):
     return [sum(value(r) for r in rows[k * n:(k + 1) * n]) / n for k in range(BLOCKS)]
 
 
+def block_variance(blocks):
+    """The sample variance of the block means."""
+    m = sum(blocks) / len(blocks)
+    return sum((b - m) ** 2 for b in blocks) / (len(blocks) - 1)
+
+
 def half_drift(blocks):
     """The later half's mean less the earlier half's, and the standard error of that difference from the
     blocks' own spread (blocks taken as independent)."""
     h = len(blocks) // 2
-    m = sum(blocks) / len(blocks)
-    var = sum((b - m) ** 2 for b in blocks) / (len(blocks) - 1)
+    var = block_variance(blocks)
     return sum(blocks[h:]) / (len(blocks) - h) - sum(blocks[:h]) / h, (var / h + var / (len(blocks) - h)) ** 0.5
 
 
@@ -281,8 +286,7 @@ def first_block_step(blocks):
     """The first block's mean less the others', and the standard error of that difference from the blocks'
     spread: a transient at the window's start that the halves' comparison would average away."""
     rest = blocks[1:]
-    m = sum(blocks) / len(blocks)
-    var = sum((b - m) ** 2 for b in blocks) / (len(blocks) - 1)
+    var = block_variance(blocks)
     return blocks[0] - sum(rest) / len(rest), (var + var / len(rest)) ** 0.5
 
 
@@ -322,8 +326,7 @@ def block_errors(run_dir, t0):
     for name, value in (("r_variance", frame_variance), ("spin", lambda r: r["spin"]),
                         ("grain_speed", lambda r: r["grain_vx"]), ("centre_speed", lambda r: r["u_0"])):
         b = block_means(rows, value)
-        m = sum(b) / len(b)
-        out[name] = (sum((v - m) ** 2 for v in b) / (len(b) - 1) / len(b)) ** 0.5
+        out[name] = (block_variance(b) / len(b)) ** 0.5
     return out
 
 
