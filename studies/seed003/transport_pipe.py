@@ -222,9 +222,9 @@ def read_rows(path):
     return [dict(zip(head, map(float, l.split(",")))) for l in lines[1:]]
 
 
-def measure(run_dir, t_from):
-    """The observables of one case, averaged over its frames.csv rows from t_from on."""
-    rows = [r for r in read_rows(os.path.join(run_dir, "frames.csv")) if r["time"] >= t_from - 1e-9]
+def measure(run_dir, t_from, t_to=math.inf):
+    """The observables of one case, averaged over its frames.csv rows from t_from to t_to."""
+    rows = [r for r in read_rows(os.path.join(run_dir, "frames.csv")) if t_from - 1e-9 <= r["time"] <= t_to + 1e-9]
     summary_path = os.path.join(run_dir, "summary.json")
     if not os.path.exists(summary_path):
         return None

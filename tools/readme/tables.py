@@ -404,6 +404,8 @@ TABLES = {
     "liquid_bench_ppe": lambda: script("studies/seed003/bench_table.py", "--ppe", "studies/seed003/results/bench_ppe.json"),
     "spin_candidates": lambda: script("studies/seed003/spin_candidates.py", "table",
                                       "studies/seed003/results/spin_candidates.json"),
+    "developed_branches": lambda: script("studies/seed003/developed_branches.py", "table",
+                                         "studies/seed003/results/developed_branches.json"),
     "pipe_cost": lambda: script("studies/seed003/pipe_cost.py", "table", "studies/seed003/results/pipe_cost.json"),
     "liquid_bench_multigrid": lambda: script("studies/seed003/bench_table.py", "--multigrid",
                                              "studies/seed003/results/bench_multigrid.json"),
