@@ -15,8 +15,16 @@ random mixture of the cells' visits gives (vc_sampling.py) beside it. Two experi
                  seed          the scene's: cut-off 1e-3, friction regularised below 0.01 m/s
                  cutoff_1e-4   the exponential tails cut at 1e-4 of their amplitude
                  slip_1e-3     friction regularised below 1 mm/s (run.dt 5e-5 s, under 0.1 of its time-step term)
+                 slip_0.1      friction regularised below 0.1 m/s: the control for 'swapped', which needs it
+                 swapped       the other reading of the paper's coefficients, k_r and k_p swapped for grains
+                               (k_r 0.15, k_p 15) and walls (k_r 0.1, k_p 10); friction regularised below 0.1 m/s
+                               so that run.dt 6.5e-5 s stays under 0.1 of its time-step term (at 0.01 m/s it
+                               would need 6.8e-6 s, 60 times the steps of the scene); run.max_overlap 1.0,
+                               since a fed grain landing on the housing overlaps it by 0.40 of its diameter
+                               at 0.35 s under the weaker approach force (1.1 against 11 of its separation
+                               force) and the scene's 0.4 stops the run
 
-  vc_variants.py run EXPERIMENT [--binary build/grainflow] [--runs runs/seed004_EXPERIMENT]
+  vc_variants.py run EXPERIMENT [--only VARIANT ...] [--threads 1] [--binary build/grainflow] [--runs runs/seed004_EXPERIMENT]
   vc_variants.py report EXPERIMENT [--runs runs/seed004_EXPERIMENT] [--out studies/seed004/results/vc_EXPERIMENT.json]
 """
 import argparse
@@ -44,6 +52,10 @@ EXPERIMENTS = {
         "seed": [],
         "cutoff_1e-4": ["--set", "contact.cutoff=1e-4"],
         "slip_1e-3": ["--set", "contact.slip_speed=0.001", "--set", "run.dt=5e-5"],
+        "slip_0.1": ["--set", "contact.slip_speed=0.1"],
+        "swapped": ["--set", "contact.kr=0.15", "--set", "contact.kp=15", "--set", "contact.wall.kr=0.1",
+                    "--set", "contact.wall.kp=10", "--set", "contact.slip_speed=0.1", "--set", "run.dt=6.5e-5",
+                    "--set", "run.max_overlap=1.0"],
     },
 }
 STEADY_FROM = 150.0  # s
@@ -56,34 +68,76 @@ def median(v):
 
 
 def run(args):
-    for name, extra in EXPERIMENTS[args.experiment].items():
+    variants = EXPERIMENTS[args.experiment]
+    unknown = sorted(set(args.only or []) - set(variants))
+    if unknown:
+        sys.exit(f"vc_variants.py: no variant {', '.join(unknown)} in {args.experiment}; "
+                 f"it has {', '.join(variants)}")
+    for name, extra in variants.items():
+        if args.only and name not in args.only:
+            continue
         out = pathlib.Path(args.runs) / name
-        subprocess.run([args.binary, "run", str(SCENE), "--out", str(out)] + QUIET + extra, check=True)
+        subprocess.run([args.binary, "run", str(SCENE), "--out", str(out), "--threads", str(args.threads)]
+                       + QUIET + extra, check=True)
+
+
+def layer_vc(folder):
+    """Vc per layer over the pooled rows of layers.csv from STEADY_FROM: median, range, and the median
+    Vc a random mixture of the cells' visits would give."""
+    from grainflow.outputs import read_csv, rows_of
+    rows = [r for r in rows_of(read_csv(folder / "layers.csv"))
+            if math.isfinite(r["vc"]) and r["time"] >= STEADY_FROM]
+    layers = []
+    for d in sorted({r["distance"] for r in rows}):
+        at = [r for r in rows if r["distance"] == d]
+        random = [math.sqrt((1 - r["fraction_a"]) / (r["fraction_a"] * r["grains"] / r["cells"]))
+                  for r in at if 0 < r["fraction_a"] < 1]
+        vc = [r["vc"] for r in at]
+        layers.append({"distance": d, "rows": len(at), "vc_median": median(vc), "vc_min": min(vc),
+                       "vc_max": max(vc), "random_vc_median": median(random) if random else None,
+                       "key_fraction": median([r["fraction_a"] for r in at])})
+    return layers
+
+
+def holdup(folder):
+    """Median model particles and kg in the mixer from STEADY_FROM, and the largest overlap (of the smaller
+    diameter) of the whole run (series.csv)."""
+    from grainflow.outputs import read_csv, rows_of
+    every = list(rows_of(read_csv(folder / "series.csv")))
+    rows = [r for r in every if r["time"] >= STEADY_FROM]
+    return {"grains": median([r["grains"] for r in rows]), "kg": median([r["holdup_mass"] for r in rows]),
+            "max_overlap_ratio": max(r["max_overlap_ratio"] for r in every)}
 
 
 def report(args):
-    from grainflow.outputs import read_csv, rows_of
+    """Measures each variant whose run folder is here; keeps the committed results of those whose folder
+    this checkout lacks, each with the build that ran it."""
     variants = EXPERIMENTS[args.experiment]
+    out = pathlib.Path(args.out)
+    kept = json.loads(out.read_text()) if out.exists() else {"vc": {}}
     result = {"scene": str(SCENE.relative_to(ROOT)), "steady_from_s": STEADY_FROM,
               "command": f"studies/seed004/vc_variants.py run {args.experiment} && "
                          f"studies/seed004/vc_variants.py report {args.experiment}",
-              "variants": {n: variants[n] for n in variants}, "vc": {}}
+              "variants": {n: variants[n] for n in variants}, "vc": {}, "commits": {}, "holdup": {},
+              "wall_seconds": {}}
     for name in variants:
         folder = pathlib.Path(args.runs) / name
+        if not (folder / "summary.json").exists():
+            if name not in kept["vc"]:
+                sys.exit(f"vc_variants.py: no run of {name} in {folder} and none in {out}; "
+                         f"run: vc_variants.py run {args.experiment} --only {name}")
+            result["vc"][name] = kept["vc"][name]
+            for key in ("commits", "holdup", "wall_seconds"):
+                if name in kept.get(key, {}):
+                    result[key][name] = kept[key][name]
+            if name not in result["commits"] and "commit" in kept:
+                result["commits"][name] = kept["commit"]
+            continue
         summary = json.loads((folder / "summary.json").read_text())
-        result.setdefault("commit", summary.get("commit"))
-        rows = [r for r in rows_of(read_csv(folder / "layers.csv"))
-                if math.isfinite(r["vc"]) and r["time"] >= STEADY_FROM]
-        layers = []
-        for d in sorted({r["distance"] for r in rows}):
-            at = [r for r in rows if r["distance"] == d]
-            random = [math.sqrt((1 - r["fraction_a"]) / (r["fraction_a"] * r["grains"] / r["cells"]))
-                      for r in at if 0 < r["fraction_a"] < 1]
-            vc = [r["vc"] for r in at]
-            layers.append({"distance": d, "rows": len(at), "vc_median": median(vc), "vc_min": min(vc),
-                           "vc_max": max(vc), "random_vc_median": median(random) if random else None,
-                           "key_fraction": median([r["fraction_a"] for r in at])})
-        result["vc"][name] = layers
+        result["commits"][name] = summary.get("commit")
+        result["wall_seconds"][name] = summary.get("wall_seconds")
+        result["vc"][name] = layer_vc(folder)
+        result["holdup"][name] = holdup(folder)
     pathlib.Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
     names = list(variants)
     print("L (m)  " + "  ".join(f"{n:>22}" for n in names) + "   (Vc median %, random-mixture %)")
@@ -106,6 +160,8 @@ def main():
         c.add_argument("--runs", help="default runs/seed004_EXPERIMENT")
         if command == "run":
             c.add_argument("--binary", default=str(ROOT / "build" / "grainflow"))
+            c.add_argument("--only", nargs="+", metavar="VARIANT", help="run these variants only")
+            c.add_argument("--threads", type=int, default=1)
         else:
             c.add_argument("--out", help="default studies/seed004/results/vc_EXPERIMENT.json")
         c.set_defaults(func=func)

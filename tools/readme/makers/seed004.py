@@ -99,11 +99,34 @@ def seed004_side_by_side():
         rows.append(f"| {label}, design 1 as sphere DEM (Hertz–Mindlin, coarse-graining factor 3, "
                     f"{finest['holdup_grains_mean']:,.0f} grains) | {rng(spec)} | {_pct(v)} | "
                     f"{'yes' if ok else 'no'} | {why} |")
+    rows += _swapped_rows(inlet, far, rng)
     rows.append("")
     rows.append("grainflow's Vc: mean of the pooled layer rows in steady state (their range), from "
                 "studies/seed004/results/mixer.json. agree?: a value within the paper's range widened by its reading "
                 "uncertainty; a count or fraction within 5 %; a trend in every design.")
     return "\n".join(rows) + "\n"
+
+
+def _swapped_rows(inlet, far, rng):
+    """Design 1 with the paper's other reading of its coefficients (k_r and k_p swapped), from
+    studies/seed004/results/vc_reading.json (studies/seed004/vc_variants.py): median of the pooled rows."""
+    reading = _load("studies/seed004/results/vc_reading.json")
+    swapped, control = reading["vc"]["swapped"], reading["vc"]["slip_0.1"]
+    rows = []
+    for dist, spec in ((0.025, inlet), (0.4, far)):
+        v, c = _at(swapped, dist), _at(control, dist)
+        ok = _in_range(100 * v["vc_median"], spec)
+        why = "—" if ok else (
+            f"friction 15 times the separation force mixes the bed: Vc lies "
+            f"{100 * (v['vc_median'] - v['random_vc_median']):.1f} points above the cells' random-mixture spread "
+            f"({100 * v['random_vc_median']:.1f} % here), and it no longer falls along the mixer "
+            f"({100 * _at(swapped, 0.025)['vc_median']:.1f} % at 0.025 m, {100 * _at(swapped, 0.1)['vc_median']:.1f} % "
+            f"at 0.1 m); the same run with the scene's coefficients gives {100 * c['vc_median']:.1f} % "
+            f"(vc_reading.json)")
+        rows.append(f"| Vc at L = {dist} m, design 1, the coefficients' other reading (k_r 0.15, k_p 15; walls 0.1, "
+                    f"10), representative volumes | {rng(spec)} | {100 * v['vc_median']:.1f} % "
+                    f"({100 * v['vc_min']:.1f}–{100 * v['vc_max']:.1f}), median | {'yes' if ok else 'no'} | {why} |")
+    return rows
 
 
 SAMPLING_LABELS = (("pool1_cell50", "one instant, 50 mm cells"), ("pool40_cell50", "20 s pooled, 50 mm cells (the study's)"),
@@ -142,7 +165,10 @@ SEGREGATION_AT = (0.025, 0.1, 0.2, 0.3, 0.4, 0.475)
 
 
 READING_LABELS = (("seed", "the scene's: cut-off 1e-3, friction regularised below 0.01 m/s"),
-                  ("cutoff_1e-4", "tails cut at 1e-4"), ("slip_1e-3", "friction regularised below 1 mm/s"))
+                  ("cutoff_1e-4", "tails cut at 1e-4"), ("slip_1e-3", "friction regularised below 1 mm/s"),
+                  ("slip_0.1", "friction regularised below 0.1 m/s (the control for the next row)"),
+                  ("swapped", "k_r and k_p swapped (grains 0.15 and 15, walls 0.1 and 10), friction regularised "
+                              "below 0.1 m/s"))
 
 
 def _vc_variants(experiment, labels):
@@ -157,8 +183,12 @@ def _vc_variants(experiment, labels):
             v = _at(s["vc"][key], d)
             cells.append(f"{100 * v['vc_median']:.1f} % ({100 * v['vc_min']:.1f}–{100 * v['vc_max']:.1f})")
         rows.append(f"| {label} | " + " | ".join(cells) + " |")
+    commits = sorted(set(s["commits"].values())) if "commits" in s else [s["commit"]]
+    builds = ("build " + commits[0] if len(commits) == 1 else
+              "builds " + "; ".join(f"{c} ({', '.join(n for n, k in s['commits'].items() if k == c)})"
+                                    for c in commits))
     return "\n".join(rows) + (f"\n\nDesign 1, representative volumes, 300 s from empty, rows of 20 s pooled from "
-                              f"{s['steady_from_s']:.0f} s; build {s['commit']}.\n")
+                              f"{s['steady_from_s']:.0f} s; {builds}.\n")
 
 
 def seed004_vc_segregation():
