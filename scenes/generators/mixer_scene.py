@@ -176,7 +176,9 @@ STEADY_STATE = "data/mixer_design1_steady.csv"  # design 1 at its hold-up, turne
 STEADY_DURATION = 100.0  # s from the steady state: five pooled rows of layers.csv
 
 
-def scene(design, dem=None, steady=False):
+def scene(design, dem=None, steady=False, length=LENGTH, partitions=PARTITIONS, outlet_hole=OUTLET_HOLE):
+    """The scene's text; length (the end ring's x), partitions and the end ring's hole are the housing's,
+    for variants."""
     lengths = DESIGNS[design]
     vk = KEY_VOLUME_FRACTION
     key_mass = vk * KEY[2] / (vk * KEY[2] + (1 - vk) * CARRIER[2])
@@ -191,9 +193,9 @@ def scene(design, dem=None, steady=False):
 
 """.replace("{start}", STARTS[steady]) + physics(dem).replace("{seed}", str(design)), housing(),
            ring("inlet-wall", 0.0, 0.0)]
-    for i, x in enumerate(PARTITIONS):
+    for i, x in enumerate(partitions):
         out.append(ring(f"partition-{i + 1}", x, PARTITION_HOLE))
-    out.append(ring("end-ring", LENGTH, OUTLET_HOLE))
+    out.append(ring("end-ring", length, outlet_hole))
     for s, (x, l) in enumerate(zip(STAGES, lengths)):
         for k in range(4):
             out.append(blade("I" * (s + 1) if s < 3 else str(s), k, x, l))
@@ -211,7 +213,7 @@ region = {{ shape = "box", lo = [0.012, -0.01, -0.045], hi = [0.045, 0.06, 0.045
 
 [[outlet]]
 interval = 0.1
-region = {{ shape = "box", lo = [{LENGTH + 0.015}, -1.0, -1.0], hi = [2.0, 1.0, 1.0] }}
+region = {{ shape = "box", lo = [{length + 0.015}, -1.0, -1.0], hi = [2.0, 1.0, 1.0] }}
 
 [analysis]
 species = "key"

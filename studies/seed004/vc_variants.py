@@ -24,6 +24,14 @@ random mixture of the cells' visits gives (vc_sampling.py) beside it. Two experi
                                at 0.35 s under the weaker approach force (1.1 against 11 of its separation
                                force) and the scene's 0.4 stops the run
 
+  geometry     is the high Vc at 0.4 m the bladeless outlet compartment (0.40 to 0.5 m) that the scene adds?
+               The seed reports Vc to L = 0.4 m and does not give the housing's length:
+                 seed          the scene's: partitions at 0.16, 0.28 and 0.40 m, the end ring at 0.5 m
+                 end_at_0.4    the end ring (its 0.08 m hole) where the last partition was, at 0.40 m: no
+                               outlet compartment (scene written by scenes/generators/mixer_scene.py)
+                 end_at_0.4_hole_0.06  the same with a 0.06 m outlet hole, to hold more
+               Layers at and past the end ring (L + 11 mm > 0.40 m) lie outside this housing.
+
   vc_variants.py run EXPERIMENT [--only VARIANT ...] [--threads 1] [--binary build/grainflow] [--runs runs/seed004_EXPERIMENT]
   vc_variants.py report EXPERIMENT [--runs runs/seed004_EXPERIMENT] [--out studies/seed004/results/vc_EXPERIMENT.json]
 """
@@ -57,7 +65,15 @@ EXPERIMENTS = {
                     "--set", "contact.wall.kp=10", "--set", "contact.slip_speed=0.1", "--set", "run.dt=6.5e-5",
                     "--set", "run.max_overlap=1.0"],
     },
+    "geometry": {
+        "seed": [],
+        "end_at_0.4": [],
+        "end_at_0.4_hole_0.06": [],
+    },
 }
+# Variants whose scene is another geometry, written by the generator into the run's folder.
+SCENES = {("geometry", "end_at_0.4"): {"length": 0.40, "partitions": [0.16, 0.28]},
+          ("geometry", "end_at_0.4_hole_0.06"): {"length": 0.40, "partitions": [0.16, 0.28], "outlet_hole": 0.06}}
 STEADY_FROM = 150.0  # s
 
 
@@ -77,7 +93,14 @@ def run(args):
         if args.only and name not in args.only:
             continue
         out = pathlib.Path(args.runs) / name
-        subprocess.run([args.binary, "run", str(SCENE), "--out", str(out), "--threads", str(args.threads)]
+        scene = SCENE
+        if (args.experiment, name) in SCENES:
+            sys.path.insert(0, str(ROOT / "scenes" / "generators"))
+            import mixer_scene
+            scene = pathlib.Path(args.runs) / f"{name}.toml"
+            scene.parent.mkdir(parents=True, exist_ok=True)
+            scene.write_text(mixer_scene.scene(1, **SCENES[(args.experiment, name)]))
+        subprocess.run([args.binary, "run", str(scene), "--out", str(out), "--threads", str(args.threads)]
                        + QUIET + extra, check=True)
 
 
@@ -118,7 +141,9 @@ def report(args):
     result = {"scene": str(SCENE.relative_to(ROOT)), "steady_from_s": STEADY_FROM,
               "command": f"studies/seed004/vc_variants.py run {args.experiment} && "
                          f"studies/seed004/vc_variants.py report {args.experiment}",
-              "variants": {n: variants[n] for n in variants}, "vc": {}, "commits": {}, "holdup": {},
+              "variants": {n: variants[n] for n in variants},
+              "scenes": {n: SCENES[(args.experiment, n)] for n in variants if (args.experiment, n) in SCENES},
+              "vc": {}, "commits": {}, "holdup": {},
               "wall_seconds": {}}
     for name in variants:
         folder = pathlib.Path(args.runs) / name
@@ -141,14 +166,15 @@ def report(args):
     pathlib.Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
     names = list(variants)
     print("L (m)  " + "  ".join(f"{n:>22}" for n in names) + "   (Vc median %, random-mixture %)")
-    for k, l in enumerate(result["vc"][names[0]]):
+    for d in sorted({v["distance"] for n in names for v in result["vc"][n]}):
         cells = []
         for n in names:
-            v = result["vc"][n][k]
-            rnd = v["random_vc_median"]
-            cells.append(f"{100 * v['vc_median']:5.1f} ({100 * v['vc_min']:4.1f}-{100 * v['vc_max']:4.1f}) "
+            v = next((x for x in result["vc"][n] if x["distance"] == d), None)
+            rnd = None if v is None else v["random_vc_median"]
+            cells.append("-" if v is None else
+                         f"{100 * v['vc_median']:5.1f} ({100 * v['vc_min']:4.1f}-{100 * v['vc_max']:4.1f}) "
                          + ("  -" if rnd is None else f"{100 * rnd:4.1f}"))
-        print(f"{l['distance']:.3f}  " + "  ".join(f"{c:>22}" for c in cells))
+        print(f"{d:.3f}  " + "  ".join(f"{c:>22}" for c in cells))
 
 
 def main():

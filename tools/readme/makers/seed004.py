@@ -39,6 +39,7 @@ def seed004_side_by_side():
     finest = next(m for m in mixer["models"] if m["model"] == "sphere DEM, factor 3")
     inlet, far = paper["vc_near_inlet_percent"], paper["vc_at_0p4_m_percent"]
     seg = _load("studies/seed004/results/vc_segregation.json")["vc"]
+    geo = _load("studies/seed004/results/vc_geometry.json")["vc"]
 
     def seg_pct(variant, distance):
         return f"{100 * _at(seg[variant], distance)['vc_median']:.1f} %"
@@ -70,8 +71,10 @@ def seed004_side_by_side():
                               f"{seg_pct('same_density', 0.4)}; "
                               f"vc_segregation.json): the key particles sink to the housing side either side of "
                               f"this layer (wall-side minus free-surface key fraction {c[2]['wall_minus_top']:+.2f} "
-                              f"in stage III, {c[3]['wall_minus_top']:+.2f} in the outlet compartment); why the "
-                              "paper's mixer segregates less is not measured")
+                              f"in stage III, {c[3]['wall_minus_top']:+.2f} in the outlet compartment); not the "
+                              f"bladeless outlet compartment as such: with the end ring at 0.40 m the last layer "
+                              f"inside reads {100 * _at(geo['end_at_0.4'], 0.375)['vc_median']:.1f} % "
+                              f"(vc_geometry.json); why the paper's mixer segregates less is not measured")
         rows.append(f"| Vc at L = 0.4 m (the last partition), design {d['design']} | {rng(far)} | {_pct(v)} | "
                     f"{'yes' if ok else 'no'} | {why} |")
     falls = [(d["design"], _vc(d, 0.025)["vc_mean"], _vc(d, 0.1)["vc_mean"]) for d in designs]
@@ -191,6 +194,35 @@ def _vc_variants(experiment, labels):
                               f"{s['steady_from_s']:.0f} s; {builds}.\n")
 
 
+GEOMETRY_LABELS = (("seed", "the scene's: partitions at 0.16, 0.28, 0.40 m, end ring at 0.5 m"),
+                   ("end_at_0.4", "end ring at 0.40 m, no outlet compartment"),
+                   ("end_at_0.4_hole_0.06", "end ring at 0.40 m with a 0.06 m hole"))
+GEOMETRY_AT = (0.025, 0.1, 0.2, 0.3, 0.375, 0.4)
+
+
+def seed004_vc_geometry():
+    """Design 1 with and without the bladeless outlet compartment (studies/seed004/vc_variants.py
+    geometry): Vc median (range) per layer, and the steady hold-up."""
+    s = _load("studies/seed004/results/vc_geometry.json")
+    head = ("| housing | hold-up (model particles) | " + " | ".join(f"Vc at L = {d} m" for d in GEOMETRY_AT) +
+            " |")
+    rows = [head, "|---|---|" + "---|" * len(GEOMETRY_AT)]
+    for key, label in GEOMETRY_LABELS:
+        end = s["scenes"].get(key, {}).get("length", 0.5)
+        cells = []
+        for d in GEOMETRY_AT:
+            v = next((x for x in s["vc"][key] if abs(x["distance"] - d) < 1e-9), None)
+            outside = d + 0.011 > end  # the layer (22 mm thick) reaches the end ring or past it
+            cells.append("outside" if outside else "—" if v is None else
+                         f"{100 * v['vc_median']:.1f} % ({100 * v['vc_min']:.1f}–{100 * v['vc_max']:.1f}); "
+                         f"random {100 * v['random_vc_median']:.1f} %")
+        rows.append(f"| {label} | {s['holdup'][key]['grains']:.0f} | " + " | ".join(cells) + " |")
+    commits = sorted(set(s["commits"].values()))
+    return "\n".join(rows) + (f"\n\nDesign 1, representative volumes, 300 s from empty, rows of 20 s pooled from "
+                              f"{s['steady_from_s']:.0f} s: median (range); random: the median Vc a random mixture "
+                              f"of the cells' visits gives; build {', '.join(commits)}.\n")
+
+
 def seed004_vc_segregation():
     return _vc_variants("segregation", SEGREGATION_LABELS)
 
@@ -200,4 +232,5 @@ def seed004_vc_reading():
 
 
 TABLES = {"seed004_side_by_side": seed004_side_by_side, "seed004_vc_sampling": seed004_vc_sampling,
-          "seed004_vc_segregation": seed004_vc_segregation, "seed004_vc_reading": seed004_vc_reading}
+          "seed004_vc_segregation": seed004_vc_segregation, "seed004_vc_reading": seed004_vc_reading,
+          "seed004_vc_geometry": seed004_vc_geometry}
