@@ -115,13 +115,16 @@ def ensemble(path):
         key = (shape_of(e["overrides"]), round(40 / grain_side_mm(e["overrides"]), 1))
         groups.setdefault(key, []).append(e)
     print("| grains | gate in grain sides | pours | ended on an arch | stops of 0.1 s or more per pour "
-          "| first stop (s): median (range) | left at the end: median (range) |")
-    print("|---" * 7 + "|")
+          "| first stop (s): median (range) | first stops, each pour, sorted (s) | left at the end: median (range) |")
+    print("|---" * 8 + "|")
     for (shape, sides), es in sorted(groups.items()):
         stops = [first_stop(e) for e in es if first_stop(e) is not None]
         arches = sum(verdict(e) == "arch" for e in es)
         counts = ", ".join(str(len(e["stalls"]) + (verdict(e) != "still flowing")) for e in es)
-        print(f"| {shape} | {sides:.1f} | {len(es)} | {arches} | {counts} | {spread(stops, '{:.2f}')} "
+        each = ", ".join(f"{t:.2f}" for t in sorted(stops)) or "—"
+        if len(stops) < len(es):
+            each += f"; {len(es) - len(stops)} without a stop"
+        print(f"| {shape} | {sides:.1f} | {len(es)} | {arches} | {counts} | {spread(stops, '{:.2f}')} | {each} "
               f"| {spread([e['remaining_at_end'] for e in es], '{:.3f}')} |")
 
 
