@@ -124,7 +124,7 @@ def _swapped_rows(inlet, far, rng):
             f"{100 * (v['vc_median'] - v['random_vc_median']):.1f} points above the cells' random-mixture spread "
             f"({100 * v['random_vc_median']:.1f} % here), and it no longer falls along the mixer "
             f"({100 * _at(swapped, 0.025)['vc_median']:.1f} % at 0.025 m, {100 * _at(swapped, 0.1)['vc_median']:.1f} % "
-            f"at 0.1 m); the same run with the scene's coefficients gives {100 * c['vc_median']:.1f} % "
+            f"at 0.1 m); the control, the scene's coefficients regularised alike, gives {100 * c['vc_median']:.1f} % "
             f"(vc_reading.json)")
         rows.append(f"| Vc at L = {dist} m, design 1, the coefficients' other reading (k_r 0.15, k_p 15; walls 0.1, "
                     f"10), representative volumes | {rng(spec)} | {100 * v['vc_median']:.1f} % "
