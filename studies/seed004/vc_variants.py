@@ -2,7 +2,7 @@
 """Design 1 of the seed-004 mixer with the representative-volume law, run from empty for 300 s with one
 thing changed at a time, and Vc(L) of each: the median of layers.csv's pooled rows (20 s each) after
 the hold-up is steady (from 150 s, as studies/seed004/mixer_report.py finds it), with the spread a
-random mixture of the cells' visits gives (vc_sampling.py) beside it. Two experiments:
+random mixture of the cells' visits gives (vc_sampling.py) beside it. Three experiments:
 
   segregation  is the high Vc segregation by size or density, or the way the mixture travels? The feed's
                key volume fraction 0.33 kept:
