@@ -176,9 +176,10 @@ STEADY_STATE = "data/mixer_design1_steady.csv"  # design 1 at its hold-up, turne
 STEADY_DURATION = 100.0  # s from the steady state: five pooled rows of layers.csv
 
 
-def scene(design, dem=None, steady=False, length=LENGTH, partitions=PARTITIONS, outlet_hole=OUTLET_HOLE):
-    """The scene's text; length (the end ring's x), partitions and the end ring's hole are the housing's,
-    for variants."""
+def scene(design, dem=None, steady=False, length=LENGTH, partitions=PARTITIONS, outlet_hole=OUTLET_HOLE,
+          partition_hole=PARTITION_HOLE):
+    """The scene's text; length (the end ring's x), partitions, their hole and the end ring's hole are the
+    housing's, for variants."""
     lengths = DESIGNS[design]
     vk = KEY_VOLUME_FRACTION
     key_mass = vk * KEY[2] / (vk * KEY[2] + (1 - vk) * CARRIER[2])
@@ -194,7 +195,7 @@ def scene(design, dem=None, steady=False, length=LENGTH, partitions=PARTITIONS, 
 """.replace("{start}", STARTS[steady]) + physics(dem).replace("{seed}", str(design)), housing(),
            ring("inlet-wall", 0.0, 0.0)]
     for i, x in enumerate(partitions):
-        out.append(ring(f"partition-{i + 1}", x, PARTITION_HOLE))
+        out.append(ring(f"partition-{i + 1}", x, partition_hole))
     out.append(ring("end-ring", length, outlet_hole))
     for s, (x, l) in enumerate(zip(STAGES, lengths)):
         for k in range(4):

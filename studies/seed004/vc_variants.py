@@ -2,7 +2,7 @@
 """Design 1 of the seed-004 mixer with the representative-volume law, run from empty for 300 s with one
 thing changed at a time, and Vc(L) of each: the median of layers.csv's pooled rows (20 s each) after
 the hold-up is steady (from 150 s, as studies/seed004/mixer_report.py finds it), with the spread a
-random mixture of the cells' visits gives (vc_sampling.py) beside it. Three experiments:
+random mixture of the cells' visits gives (vc_sampling.py) beside it. Four experiments:
 
   segregation  is the high Vc segregation by size or density, or the way the mixture travels? The feed's
                key volume fraction 0.33 kept:
@@ -31,6 +31,14 @@ random mixture of the cells' visits gives (vc_sampling.py) beside it. Three expe
                                outlet compartment (scene written by scenes/generators/mixer_scene.py)
                  end_at_0.4_hole_0.06  the same with a 0.06 m outlet hole, to hold more
                Layers at and past the end ring (L + 11 mm > 0.40 m) lie outside this housing.
+
+  partitions   does the key gather against the partitions because they hold back the bed's bottom, where the
+               smaller key sinks? The seed has annular partitions but gives neither their height nor where
+               they sit; the scene's rise 15 mm from the housing (inner radius 0.085 m):
+                 seed          the scene's partitions at 0.16, 0.28 and 0.40 m, 15 mm high
+                 rings_10mm    the same partitions 10 mm high (inner radius 0.09 m)
+                 rings_30mm    30 mm high (inner radius 0.07 m)
+                 none          no partitions: blades, the inlet wall and the end ring only
 
   vc_variants.py run EXPERIMENT [--only VARIANT ...] [--threads 1] [--binary build/grainflow] [--runs runs/seed004_EXPERIMENT]
   vc_variants.py report EXPERIMENT [--runs runs/seed004_EXPERIMENT] [--out studies/seed004/results/vc_EXPERIMENT.json]
@@ -70,10 +78,19 @@ EXPERIMENTS = {
         "end_at_0.4": [],
         "end_at_0.4_hole_0.06": [],
     },
+    "partitions": {
+        "seed": [],
+        "rings_10mm": [],
+        "rings_30mm": [],
+        "none": [],
+    },
 }
 # Variants whose scene is another geometry, written by the generator into the run's folder.
 SCENES = {("geometry", "end_at_0.4"): {"length": 0.40, "partitions": [0.16, 0.28]},
-          ("geometry", "end_at_0.4_hole_0.06"): {"length": 0.40, "partitions": [0.16, 0.28], "outlet_hole": 0.06}}
+          ("geometry", "end_at_0.4_hole_0.06"): {"length": 0.40, "partitions": [0.16, 0.28], "outlet_hole": 0.06},
+          ("partitions", "rings_10mm"): {"partition_hole": 0.09},
+          ("partitions", "rings_30mm"): {"partition_hole": 0.07},
+          ("partitions", "none"): {"partitions": []}}
 STEADY_FROM = 150.0  # s
 
 

@@ -40,6 +40,7 @@ def seed004_side_by_side():
     inlet, far = paper["vc_near_inlet_percent"], paper["vc_at_0p4_m_percent"]
     seg = _load("studies/seed004/results/vc_segregation.json")["vc"]
     geo = _load("studies/seed004/results/vc_geometry.json")["vc"]
+    part = _load("studies/seed004/results/vc_partitions.json")["vc"]
 
     def seg_pct(variant, distance):
         return f"{100 * _at(seg[variant], distance)['vc_median']:.1f} %"
@@ -74,7 +75,13 @@ def seed004_side_by_side():
                               f"in stage III, {c[3]['wall_minus_top']:+.2f} in the outlet compartment); not the "
                               f"bladeless outlet compartment as such: with the end ring at 0.40 m the last layer "
                               f"inside reads {100 * _at(geo['end_at_0.4'], 0.375)['vc_median']:.1f} % "
-                              f"(vc_geometry.json); why the paper's mixer segregates less is not measured")
+                              f"(vc_geometry.json); the partitions hold the sunken key back: without them "
+                              f"{100 * _at(part['none'], 0.4)['vc_median']:.1f} % here, the key's volume fraction "
+                              f"{_at(part['none'], 0.4)['key_fraction']:.2f} against "
+                              f"{_at(part['seed'], 0.4)['key_fraction']:.2f}, and "
+                              f"{_at(part['rings_10mm'], 0.4)['key_fraction']:.2f} / "
+                              f"{_at(part['rings_30mm'], 0.4)['key_fraction']:.2f} behind partitions 10 / 30 mm "
+                              f"high (ours 15 mm; the paper gives no height; vc_partitions.json)")
         rows.append(f"| Vc at L = 0.4 m (the last partition), design {d['design']} | {rng(far)} | {_pct(v)} | "
                     f"{'yes' if ok else 'no'} | {why} |")
     falls = [(d["design"], _vc(d, 0.025)["vc_mean"], _vc(d, 0.1)["vc_mean"]) for d in designs]
@@ -200,27 +207,45 @@ GEOMETRY_LABELS = (("seed", "the scene's: partitions at 0.16, 0.28, 0.40 m, end 
 GEOMETRY_AT = (0.025, 0.1, 0.2, 0.3, 0.375, 0.4)
 
 
-def seed004_vc_geometry():
-    """Design 1 with and without the bladeless outlet compartment (studies/seed004/vc_variants.py
-    geometry): Vc median (range) per layer, and the steady hold-up."""
-    s = _load("studies/seed004/results/vc_geometry.json")
-    head = ("| housing | hold-up (model particles) | " + " | ".join(f"Vc at L = {d} m" for d in GEOMETRY_AT) +
-            " |")
-    rows = [head, "|---|---|" + "---|" * len(GEOMETRY_AT)]
-    for key, label in GEOMETRY_LABELS:
-        end = s["scenes"].get(key, {}).get("length", 0.5)
+def _housing_table(experiment, labels, at, first, key=False):
+    """Design 1 in other housings (studies/seed004/vc_variants.py EXPERIMENT): Vc median (range) per layer,
+    with the random-mixture Vc or the key's volume fraction, and the steady hold-up."""
+    s = _load(f"studies/seed004/results/vc_{experiment}.json")
+    head = (f"| {first} | hold-up (model particles) | " + " | ".join(f"Vc at L = {d} m" for d in at) + " |")
+    rows = [head, "|---|---|" + "---|" * len(at)]
+    for name, label in labels:
+        end = s["scenes"].get(name, {}).get("length", 0.5)
         cells = []
-        for d in GEOMETRY_AT:
-            v = next((x for x in s["vc"][key] if abs(x["distance"] - d) < 1e-9), None)
+        for d in at:
+            v = next((x for x in s["vc"][name] if abs(x["distance"] - d) < 1e-9), None)
             outside = d + 0.011 > end  # the layer (22 mm thick) reaches the end ring or past it
+            tail = (f"key {v['key_fraction']:.2f}" if key else f"random {100 * v['random_vc_median']:.1f} %") if v else ""
             cells.append("outside" if outside else "—" if v is None else
-                         f"{100 * v['vc_median']:.1f} % ({100 * v['vc_min']:.1f}–{100 * v['vc_max']:.1f}); "
-                         f"random {100 * v['random_vc_median']:.1f} %")
-        rows.append(f"| {label} | {s['holdup'][key]['grains']:.0f} | " + " | ".join(cells) + " |")
+                         f"{100 * v['vc_median']:.1f} % ({100 * v['vc_min']:.1f}–{100 * v['vc_max']:.1f}); {tail}")
+        rows.append(f"| {label} | {s['holdup'][name]['grains']:.0f} | " + " | ".join(cells) + " |")
     commits = sorted(set(s["commits"].values()))
+    what = ("key: the key's volume fraction in the layer (median)" if key else
+            "random: the median Vc a random mixture of the cells' visits gives")
     return "\n".join(rows) + (f"\n\nDesign 1, representative volumes, 300 s from empty, rows of 20 s pooled from "
-                              f"{s['steady_from_s']:.0f} s: median (range); random: the median Vc a random mixture "
-                              f"of the cells' visits gives; build {', '.join(commits)}.\n")
+                              f"{s['steady_from_s']:.0f} s: median (range); {what}; build {', '.join(commits)}.\n")
+
+
+def seed004_vc_geometry():
+    """Design 1 with and without the bladeless outlet compartment (vc_variants.py geometry)."""
+    return _housing_table("geometry", GEOMETRY_LABELS, GEOMETRY_AT, "housing")
+
+
+PARTITION_LABELS = (("seed", "the scene's: 15 mm high (inner radius 0.085 m)"),
+                    ("rings_10mm", "10 mm high (inner radius 0.09 m)"),
+                    ("rings_30mm", "30 mm high (inner radius 0.07 m)"),
+                    ("none", "no partitions"))
+PARTITION_AT = (0.025, 0.1, 0.15, 0.2, 0.275, 0.3, 0.375, 0.4, 0.45)
+
+
+def seed004_vc_partitions():
+    """Design 1 with its partitions (0.16, 0.28, 0.40 m) lower, higher or left out (vc_variants.py
+    partitions)."""
+    return _housing_table("partitions", PARTITION_LABELS, PARTITION_AT, "partitions", key=True)
 
 
 def seed004_vc_segregation():
@@ -233,4 +258,4 @@ def seed004_vc_reading():
 
 TABLES = {"seed004_side_by_side": seed004_side_by_side, "seed004_vc_sampling": seed004_vc_sampling,
           "seed004_vc_segregation": seed004_vc_segregation, "seed004_vc_reading": seed004_vc_reading,
-          "seed004_vc_geometry": seed004_vc_geometry}
+          "seed004_vc_geometry": seed004_vc_geometry, "seed004_vc_partitions": seed004_vc_partitions}
