@@ -42,17 +42,41 @@ SHAPES = ["hollow_block", "tetrapod", "twisted_i", "twisted_king"]  # the seed's
 DURATION = 12.0  # s after the orifice opens, the scene's run.duration
 # Longer discharges: case -> (shape, duration in s after the orifice opens).
 LONG = {"hollow_block_long": ("hollow_block", 40.0)}
-CASES = SHAPES + list(LONG)
+# What makes three shapes arch? case -> (shape, duration in s after the orifice opens, overrides, what
+# changes). Short: the scene's grains arch within 1 to 4 s of the orifice opening.
+
+
+def _friction(mu):
+    return [f"contact.friction={mu}", f"contact.wall.friction={mu}"]
+
+
+# The seed's 4000 grains: the lattice twice as tall (to 58 m), and 2 s more for it to land and settle.
+SEED_COUNT = ["bodies.3.count=4000", 'bodies.3.region={ shape = "box", lo = [-10.0, 0.1, -10.0], hi = [10.0, 70.0, 10.0] }',
+              "settle.time=7.0"]
+CAUSES = {"twisted_i_friction_0.2": ("twisted_i", 4.0, _friction(0.2), "friction 0.2 (the scene: 0.5)"),
+          "tetrapod_friction_0.2": ("tetrapod", 4.0, _friction(0.2), "friction 0.2 (the scene: 0.5)"),
+          "twisted_i_friction_0": ("twisted_i", 4.0, _friction(0.0), "no friction"),
+          "twisted_i_4000": ("twisted_i", 4.0, SEED_COUNT, "4000 grains, the seed's (the scene: 2000)")}
+CASES = SHAPES + list(LONG) + list(CAUSES)
 STOPPED = 2.0  # s without a grain leaving: a long discharge has stopped
 ORIFICE = 8.0  # m, the side of the scene's square orifice
 
 
 def shape_of(case):
-    return LONG[case][0] if case in LONG else case
+    return LONG[case][0] if case in LONG else CAUSES[case][0] if case in CAUSES else case
 
 
 def duration_of(case):
-    return LONG[case][1] if case in LONG else DURATION
+    return LONG[case][1] if case in LONG else CAUSES[case][1] if case in CAUSES else DURATION
+
+
+def label_of(case):
+    name = shape_of(case).replace("_", " ")
+    if case in LONG:
+        return f"{name} (up to {duration_of(case):g} s)"
+    if case in CAUSES:
+        return f"{name}, {CAUSES[case][3]}, {duration_of(case):g} s"
+    return name
 
 
 def stopped(series):
@@ -78,8 +102,10 @@ def stop_for(case):
 
 def overrides(case):
     o = [f'shape.0.path="data/shapes/{shape_of(case)}.obj"', "output.checkpoint_interval=1.0"]
-    if case in LONG:
+    if case in LONG or case in CAUSES:
         o.append(f"run.duration={duration_of(case)}")
+    if case in CAUSES:
+        o += CAUSES[case][2]
     return o
 
 
@@ -87,6 +113,14 @@ def crossing(t, f, level):
     for k in range(1, len(t)):
         if f[k] <= level < f[k - 1]:
             return t[k - 1] + (t[k] - t[k - 1]) * (f[k - 1] - level) / (f[k - 1] - f[k])
+    return None
+
+
+def fraction_at(t, f, when):
+    """The remaining fraction at time `when` (linear between rows), None past the series."""
+    for k in range(1, len(t)):
+        if t[k - 1] <= when <= t[k]:
+            return f[k - 1] + (f[k] - f[k - 1]) * (when - t[k - 1]) / (t[k] - t[k - 1]) if t[k] > t[k - 1] else f[k]
     return None
 
 
@@ -109,7 +143,7 @@ def measure(folder, case):
     rate = 0.4 * grains / (t5 - t9) if t9 is not None and t5 is not None else None
     return {"grains": grains, "end_s": t[-1], "t_0.9": t9, "t_0.5": t5, "rate_grains_per_s": rate,
             "rate_kg_per_s": rate * mass if rate is not None and mass else None, "grain_mass": mass,
-            "left_at_end": f[-1], "repose": summary.get("repose", {}),
+            "left_at_end": f[-1], "left_at_4s": fraction_at(t, f, 4.0), "repose": summary.get("repose", {}),
             "repose_mean_deg": sum(angles) / len(angles) if angles else None,
             "repose_range_deg": [min(angles), max(angles)] if angles else None,
             "repose_flanks": len(angles),  # of 4: a flank without a slope to fit (a flat bed) has none
@@ -134,10 +168,10 @@ def report(out, docs):
             if s is not None:  # running: how far it got, drawn dashed
                 rows[shape] = {"in_progress": float(s[-1]["time"])}
                 ax.plot(s["time"], s["remaining_fraction"], "--",
-                        label=f"{shape.replace('_', ' ')} (running, to {float(s[-1]['time']):.2f} s)")
+                        label=f"{label_of(shape)} (running, to {float(s[-1]['time']):.2f} s)")
             continue
         rows[shape] = m
-        ax.plot(s["time"], s["remaining_fraction"], label=shape.replace("_", " "))
+        ax.plot(s["time"], s["remaining_fraction"], ":" if shape in CAUSES else "-", label=label_of(shape))
     docs.mkdir(parents=True, exist_ok=True)
     if rows:
         ax.set_xlabel("time after the orifice opens (s)")
@@ -156,22 +190,22 @@ def fmt(v, spec):
 
 def table(path):
     doc = json.loads(Path(path).read_text())
-    lines = ["| shape | grains | t(0.9) (s) | t(0.5) (s) | rate 0.9→0.5 (grains/s) | rate (t/s) | left at the end | "
+    lines = ["| shape | grains | t(0.9) (s) | t(0.5) (s) | rate 0.9→0.5 (grains/s) | rate (t/s) | left at 4 s | left at the end | "
              "end (s) | angle of repose (°, mean of the flanks with a slope) | range (°; flanks with a slope, of 4) | "
              "wall time (h, one thread) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for case in doc["of"]:
         r = doc["shapes"].get(case)
-        name = shape_of(case).replace("_", " ") + (f" (up to {duration_of(case):g} s)" if case in LONG else "")
+        name = label_of(case)
         if r is None or "in_progress" in r:
             state = "not run yet" if r is None else f"running: {r['in_progress']:.2f} s of {duration_of(case):g}"
-            lines.append(f"| {name} | {state} | | | | | | | | | |")
+            lines.append(f"| {name} | {state} | | | | | | | | | | |")
             continue
         rng = r["repose_range_deg"]
         lines.append(f"| {name} | {r['grains']} | {fmt(r['t_0.9'], '.2f')} | {fmt(r['t_0.5'], '.2f')} | "
                      f"{fmt(r['rate_grains_per_s'], '.0f')} | "
                      f"{fmt(None if r['rate_kg_per_s'] is None else r['rate_kg_per_s'] / 1000, '.0f')} | "
-                     f"{r['left_at_end']:.3f} | {r.get('end_s', DURATION):.1f} | {fmt(r['repose_mean_deg'], '.1f')} | "
+                     f"{fmt(r.get('left_at_4s'), '.3f')} | {r['left_at_end']:.3f} | {r.get('end_s', DURATION):.1f} | {fmt(r['repose_mean_deg'], '.1f')} | "
                      f"{'—' if rng is None else f'{rng[0]:.1f}–{rng[1]:.1f}'} ({r.get('repose_flanks', '?')} of 4) | "
                      f"{r['wall_seconds'] / 3600:.2f} |")
     print("\n".join(lines))
