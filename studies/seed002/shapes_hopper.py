@@ -124,6 +124,17 @@ def fraction_at(t, f, when):
     return None
 
 
+def bed_top_at_opening(folder):
+    """The highest grain centre (m above the bottom) in the run's first frame, when the orifice opens: the
+    bed's depth less half a grain. None without that frame (archives keep no frames)."""
+    from grainflow.outputs import read_csv, rows_of
+
+    first = folder / "frames" / "frame_000000.csv"
+    if not first.is_file():
+        return None
+    return max(float(r["y"]) for r in rows_of(read_csv(first)) if r["motion"] == "moving")
+
+
 def measure(folder, case):
     r = resumable()
     s = r.load_series(folder)
@@ -143,7 +154,8 @@ def measure(folder, case):
     rate = 0.4 * grains / (t5 - t9) if t9 is not None and t5 is not None else None
     return {"grains": grains, "end_s": t[-1], "t_0.9": t9, "t_0.5": t5, "rate_grains_per_s": rate,
             "rate_kg_per_s": rate * mass if rate is not None and mass else None, "grain_mass": mass,
-            "left_at_end": f[-1], "left_at_4s": fraction_at(t, f, 4.0), "repose": summary.get("repose", {}),
+            "left_at_end": f[-1], "left_at_4s": fraction_at(t, f, 4.0), "bed_top_at_opening_m": bed_top_at_opening(folder),
+            "repose": summary.get("repose", {}),
             "repose_mean_deg": sum(angles) / len(angles) if angles else None,
             "repose_range_deg": [min(angles), max(angles)] if angles else None,
             "repose_flanks": len(angles),  # of 4: a flank without a slope to fit (a flat bed) has none
@@ -158,6 +170,7 @@ def report(out, docs):
 
     r = resumable()
     rows = {}
+    committed = json.loads((docs / "shapes.json").read_text())["shapes"] if (docs / "shapes.json").is_file() else {}
     fig, ax = plt.subplots(figsize=(6.5, 4))
     for shape in CASES:
         folder = out / shape
@@ -166,10 +179,13 @@ def report(out, docs):
         s = r.load_series(folder)
         if m is None:
             if s is not None:  # running: how far it got, drawn dashed
-                rows[shape] = {"in_progress": float(s[-1]["time"])}
+                top = bed_top_at_opening(folder) or committed.get(shape, {}).get("bed_top_at_opening_m")
+                rows[shape] = {"in_progress": float(s[-1]["time"]), "bed_top_at_opening_m": top}
                 ax.plot(s["time"], s["remaining_fraction"], "--",
                         label=f"{label_of(shape)} (running, to {float(s[-1]['time']):.2f} s)")
             continue
+        if m["bed_top_at_opening_m"] is None:  # no frames here: the committed reading
+            m["bed_top_at_opening_m"] = committed.get(shape, {}).get("bed_top_at_opening_m")
         rows[shape] = m
         ax.plot(s["time"], s["remaining_fraction"], ":" if shape in CAUSES else "-", label=label_of(shape))
     docs.mkdir(parents=True, exist_ok=True)

@@ -146,9 +146,12 @@ def _arch_cause(cases):
     base, f02, f0 = at4("twisted_i"), at4("twisted_i_friction_0.2"), at4("twisted_i_friction_0")
     if None in (base, f02, f0):
         return "cause not yet measured (half the grains, assumed concrete, two shapes taken from the armour-unit family)"
+    top = cases["twisted_i_friction_0.2"].get("bed_top_at_opening_m")
+    deep = cases.get("twisted_i_4000", {}).get("bed_top_at_opening_m")
     return (f"interlocking more than friction: at 4 s the twisted I blocks leave {base:.3f} at friction 0.5, "
-            f"{f02:.3f} at 0.2 and {f0:.3f} without friction; the bed is two to three grains deep over the 8 m orifice "
-            f"(2000 grains, half the paper's; pictures); 4000 grains not yet run to the end")
+            f"{f02:.3f} at 0.2 and {f0:.3f} without friction; their highest centre is {top:.2f} m above the 8 m "
+            f"orifice when it opens (2000 grains, half the paper's)"
+            + (f", {deep:.2f} m with the paper's 4000, not yet run to the end" if deep else ""))
 
 
 def shapes_rows(paper):
