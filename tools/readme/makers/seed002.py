@@ -147,11 +147,15 @@ def _arch_cause(cases):
     if None in (base, f02, f0):
         return "cause not yet measured (half the grains, assumed concrete, two shapes taken from the armour-unit family)"
     top = cases["twisted_i_friction_0.2"].get("bed_top_at_opening_m")
-    deep = cases.get("twisted_i_4000", {}).get("bed_top_at_opening_m")
-    return (f"interlocking more than friction: at 4 s the twisted I blocks leave {base:.3f} at friction 0.5, "
-            f"{f02:.3f} at 0.2 and {f0:.3f} without friction; their highest centre is {top:.2f} m above the 8 m "
-            f"orifice when it opens (2000 grains, half the paper's)"
-            + (f", {deep:.2f} m with the paper's 4000, not yet run to the end" if deep else ""))
+    deep = cases.get("twisted_i_4000", {})
+    deep_text = ""
+    if deep.get("bed_top_at_opening_m"):
+        deep_text = (f", {deep['bed_top_at_opening_m']:.2f} m with the paper's 4000, which stop alike "
+                     f"({at4('twisted_i_4000'):.3f} left at 4 s)" if at4("twisted_i_4000") is not None else
+                     f", {deep['bed_top_at_opening_m']:.2f} m with the paper's 4000, not yet run to the end")
+    return (f"interlocking more than friction or the bed's depth: at 4 s the twisted I blocks leave {base:.3f} at "
+            f"friction 0.5, {f02:.3f} at 0.2 and {f0:.3f} without friction; their highest centre is {top:.2f} m "
+            f"above the 8 m orifice when it opens (2000 grains, half the paper's){deep_text}")
 
 
 def shapes_rows(paper):
