@@ -2,7 +2,7 @@
 """Design 1 of the seed-004 mixer with the representative-volume law, run from empty for 300 s with one
 thing changed at a time, and Vc(L) of each: the median of layers.csv's pooled rows (20 s each) after
 the hold-up is steady (from 150 s, as studies/seed004/mixer_report.py finds it), with the spread a
-random mixture of the cells' visits gives (vc_sampling.py) beside it. Four experiments:
+random mixture of the cells' visits gives (vc_sampling.py) beside it. Five experiments:
 
   segregation  is the high Vc segregation by size or density, or the way the mixture travels? The feed's
                key volume fraction 0.33 kept:
@@ -40,6 +40,17 @@ random mixture of the cells' visits gives (vc_sampling.py) beside it. Four exper
                  rings_30mm    30 mm high (inner radius 0.07 m)
                  none          no partitions: blades, the inlet wall and the end ring only
 
+  feed         does the way the feed enters set Vc near the inlet? The seed feeds through a nozzle in the
+               left end wall and gives neither its size nor where it points; the scene places batches in a
+               box above the bed:
+                 seed          the scene's: 25 g every 0.5 s at random in x 0.012 .. 0.045 m, y -0.01 .. 0.06 m,
+                               z -0.045 .. 0.045 m, at rest
+                 stream        the same box, 2.5 g every 0.05 s: about one model particle an event, a steady
+                               trickle in place of batches
+                 nozzle        2.5 g every 0.05 s into a 40 mm cube on the axis at the inlet wall (x 0.012 ..
+                               0.052 m), at rest: a nozzle's mouth on the axis
+                 nozzle_jet    the same mouth, the grains leaving it at 0.5 m/s along the axis
+
   vc_variants.py run EXPERIMENT [--only VARIANT ...] [--threads 1] [--binary build/grainflow] [--runs runs/seed004_EXPERIMENT]
   vc_variants.py report EXPERIMENT [--runs runs/seed004_EXPERIMENT] [--out studies/seed004/results/vc_EXPERIMENT.json]
 """
@@ -57,6 +68,7 @@ SCENE = ROOT / "scenes" / "mixer_seed004_design1.toml"
 QUIET = ["--set", "output.frame_interval=0", "--set", "output.checkpoint_interval=0",
          "--set", "output.picture_interval=0", "--quiet", "--overwrite"]
 EQUAL_DENSITY_FEED = ["--set", "feed.0.fractions={ key = 0.33, carrier = 0.67 }"]  # by mass = by volume
+NOZZLE = ["--set", 'feed.0.region={ shape = "box", lo = [0.012, -0.02, -0.02], hi = [0.052, 0.02, 0.02] }']
 EXPERIMENTS = {
     "segregation": {
         "seed": [],
@@ -83,6 +95,12 @@ EXPERIMENTS = {
         "rings_10mm": [],
         "rings_30mm": [],
         "none": [],
+    },
+    "feed": {
+        "seed": [],
+        "stream": ["--set", "feed.0.interval=0.05"],
+        "nozzle": ["--set", "feed.0.interval=0.05"] + NOZZLE,
+        "nozzle_jet": ["--set", "feed.0.interval=0.05", "--set", "feed.0.velocity=[0.5, 0.0, 0.0]"] + NOZZLE,
     },
 }
 # Variants whose scene is another geometry, written by the generator into the run's folder.

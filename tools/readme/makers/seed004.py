@@ -41,6 +41,8 @@ def seed004_side_by_side():
     seg = _load("studies/seed004/results/vc_segregation.json")["vc"]
     geo = _load("studies/seed004/results/vc_geometry.json")["vc"]
     part = _load("studies/seed004/results/vc_partitions.json")["vc"]
+    feed = _load("studies/seed004/results/vc_feed.json")["vc"]
+    feed_inlet = [100 * _at(feed[k], 0.025)["vc_median"] for k in ("stream", "nozzle", "nozzle_jet")]
 
     def seg_pct(variant, distance):
         return f"{100 * _at(seg[variant], distance)['vc_median']:.1f} %"
@@ -55,7 +57,10 @@ def seed004_side_by_side():
         why = "—" if ok else (f"segregation by size and density where the feed lands (measured in design 1: with the "
                               f"key the carrier's size and density, {seg_pct('identical', 0.025)}; equal size only "
                               f"{seg_pct('same_size', 0.025)}, equal density only {seg_pct('same_density', 0.025)}; "
-                              f"the seed's {seg_pct('seed', 0.025)}, vc_segregation.json); the random-mixture spread "
+                              f"the seed's {seg_pct('seed', 0.025)}, vc_segregation.json); not the way the feed "
+                              f"enters: as a trickle or through a nozzle's mouth on the axis {min(feed_inlet):.1f}–"
+                              f"{max(feed_inlet):.1f} % against the batches' "
+                              f"{100 * _at(feed['seed'], 0.025)['vc_median']:.1f} % (vc_feed.json); the random-mixture spread "
                               f"of cells of about {v['grains_per_cell']:.0f} model particles explains "
                               f"{100 * (v['vc_mean'] - v['vc_corrected_mean']):.1f} points of it")
         lengths = "/".join(f"{1000 * x:.0f}" for x in d["blade_lengths_m"])
@@ -248,6 +253,18 @@ def seed004_vc_partitions():
     return _housing_table("partitions", PARTITION_LABELS, PARTITION_AT, "partitions", key=True)
 
 
+FEED_LABELS = (("seed", "the scene's: 25 g every 0.5 s into a box above the bed"),
+               ("stream", "the same box, 2.5 g every 0.05 s"),
+               ("nozzle", "2.5 g every 0.05 s into a 40 mm mouth on the axis, at rest"),
+               ("nozzle_jet", "the same mouth, leaving at 0.5 m/s along the axis"))
+FEED_AT = (0.025, 0.05, 0.075, 0.1, 0.15, 0.2, 0.3, 0.4)
+
+
+def seed004_vc_feed():
+    """Design 1 fed in batches, as a trickle, or through a nozzle's mouth on the axis (vc_variants.py feed)."""
+    return _housing_table("feed", FEED_LABELS, FEED_AT, "feed", key=True)
+
+
 def seed004_vc_segregation():
     return _vc_variants("segregation", SEGREGATION_LABELS)
 
@@ -258,4 +275,5 @@ def seed004_vc_reading():
 
 TABLES = {"seed004_side_by_side": seed004_side_by_side, "seed004_vc_sampling": seed004_vc_sampling,
           "seed004_vc_segregation": seed004_vc_segregation, "seed004_vc_reading": seed004_vc_reading,
-          "seed004_vc_geometry": seed004_vc_geometry, "seed004_vc_partitions": seed004_vc_partitions}
+          "seed004_vc_geometry": seed004_vc_geometry, "seed004_vc_partitions": seed004_vc_partitions,
+          "seed004_vc_feed": seed004_vc_feed}
