@@ -130,7 +130,27 @@ def side_by_side():
     return "\n".join(rows) + "\n"
 
 
-TABLES = {"seed000_side_by_side": side_by_side}
+def petal_period():
+    """The surface angle's pulse period as a count of petals, two pulses each, beside the arms counted inside the
+    bed (studies/seed000/petal_period.py)."""
+    d = load("studies/seed000/results/petal_period.json")
+    paper = {p["case"]: p for p in load("docs/results/data/seed000_paper.json")["patterns_at_30_rad"]}
+    rows = ["| case | the paper at 30 rad | arms inside the bed at 30 rad | surface-angle period, 20–30 rad: s (rad of "
+            "rotation; prominence) | π / period (rad): petals at two pulses each | the same over 5-rad windows from "
+            "5 to 30 rad |", "|---|---|---|---|---|---|"]
+    for case, c in d["cases"].items():
+        p = paper[case]
+        w = c["windows"][0]
+        shown = f"{p['petals']} petals" if "petals" in p else p["shown"]
+        rest = " / ".join(f"{x['petals_two_pulses_each']:.1f}" for x in c["windows"][1:])
+        rows.append(f"| {p['fill']} fill, {p['omega']:.2f} rad/s | {shown} | {c['arms_inside_the_bed']} (at "
+                    f"{'/'.join(f'{r:.1f}' for r in c['arms_at_r_over_R'])} R) | {w['period_s']:.2f} s "
+                    f"({w['period_rad']:.2f} rad; {w['prominence']:.0f}) | {w['petals_two_pulses_each']:.1f} | {rest} |")
+    return "\n".join(rows) + ("\n\nProminence: the spectral peak's power over the median within an octave of it "
+                              "(about 1: no period stands out).\n")
+
+
+TABLES = {"seed000_side_by_side": side_by_side, "seed000_petal_period": petal_period}
 
 if __name__ == "__main__":
     print(side_by_side(), end="")
