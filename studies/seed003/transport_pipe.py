@@ -338,11 +338,14 @@ def axial_correlation(run_dir, t_from):
     from t_from on: per frame the grains counted in AXIAL_BINS bins along x, the fluctuations' periodic
     autocorrelation C(lag) = sum_k d_k d_(k+lag) / sum_k d_k^2. A pipe long enough for its grains has C near
     the uncorrelated value -1/(bins - 1) well before half the period. Returns the lags (m), C, the frames used
-    and the shortest lag where C falls below 1/e (None if it never does)."""
-    sums, used = [0.0] * AXIAL_BINS, 0
+    and the shortest lag where C falls below 1/e (None if it never does). A run that went on in another
+    checkout has lost the frames of its earlier pieces: only the frames still on disk count, and the
+    result says from when."""
+    sums, used, first = [0.0] * AXIAL_BINS, 0, None
     for t, path in frames(run_dir, "grains"):
-        if t < t_from - 1e-9:
+        if t < t_from - 1e-9 or not os.path.exists(path):
             continue
+        first = t if first is None else first
         counts = [0] * AXIAL_BINS
         for x, _, _ in read_vtp(path)["Points"]:
             counts[min(AXIAL_BINS - 1, max(0, int(x % LENGTH / LENGTH * AXIAL_BINS)))] += 1
@@ -359,7 +362,7 @@ def axial_correlation(run_dir, t_from):
     c = [v / used for v in sums[:AXIAL_BINS // 2 + 1]]
     lags = [k * LENGTH / AXIAL_BINS for k in range(len(c))]
     below = next((lag for lag, v in zip(lags, c) if v < math.exp(-1.0)), None)
-    return {"lags_m": lags, "correlation": c, "frames": used, "decorrelated_by_m": below,
+    return {"lags_m": lags, "correlation": c, "frames": used, "frames_from_s": first, "decorrelated_by_m": below,
             "uncorrelated": -1.0 / (AXIAL_BINS - 1)}
 
 
@@ -460,8 +463,13 @@ def collect(a):
     long_ = [(n, d) for n, d in pictured if n.endswith("_long")]
     if short:
         pictures(short, os.path.join(ROOT, DOCS.replace(".json", "_views.png")))
-    if long_:
+    # The long cases' last frames side by side when all are on disk; else each one's apart, so that a
+    # checkout holding one long run does not draw over the picture of the others.
+    if long_ and len(long_) == sum(1 for n in result["runs"] if n.endswith("_long")):
         pictures(long_, os.path.join(ROOT, DOCS.replace(".json", "_long_views.png")))
+    else:
+        for name, folder in long_:
+            pictures([(name, folder)], os.path.join(ROOT, DOCS.replace(".json", f"_{name}_views.png")))
     print(f"wrote {DOCS} ({len(result['runs'])} cases; pictures of {len(pictured)})")
 
 
