@@ -145,8 +145,17 @@ def run_letter(binary, runs, letter, max_duration, log):
             os.makedirs(run_dir, exist_ok=True)
             log("%s: pouring %d grains" % (letter, count))
         start = time.time()
-        with open(os.path.join(run_dir, "run.log"), "a") as f:
+        # grainflow refuses a fresh run into a folder that holds files: a fresh pour logs beside its folder,
+        # and the log joins the folder afterwards.
+        fresh = "--resume" not in cmd
+        log_path = run_dir.rstrip(os.sep) + ".run.log" if fresh else os.path.join(run_dir, "run.log")
+        if fresh and os.path.isdir(run_dir) and not os.listdir(run_dir):
+            os.rmdir(run_dir)
+        with open(log_path, "a") as f:
             rc = subprocess.run(cmd, stdout=f, stderr=f).returncode
+        if fresh:
+            os.makedirs(run_dir, exist_ok=True)
+            shutil.move(log_path, os.path.join(run_dir, "run.log"))
         ledger = load_json(ledger_path) or []
         ledger.append({"command": " ".join(cmd[1:]), "wall_seconds": time.time() - start, "exit": rc})
         with open(ledger_path, "w") as f:

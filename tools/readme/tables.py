@@ -222,6 +222,8 @@ def variant_label(sets):
         return "friction " + sets["contact.friction"]
     if set(sets) == {"shape.0.stroke"}:
         return f"stroke {sets['shape.0.stroke']} m"
+    if set(sets) == {"bodies.0.seed"}:
+        return f"another pour (orientation seed {sets['bodies.0.seed']})"
     return ", ".join(f"{k.replace('contact.', '')} {x}" for k, x in sets.items()) or "the scene's"
 
 
@@ -430,6 +432,8 @@ TABLES = {
                                                 "studies/seed003/results/solve_rounds_float.csv", "--per", "solve"),
     "packing": packing_table,
     "packing_friction": packing_friction_table,
+    "packing_pours": lambda: packing_friction_table(variant="studies/seed002/results/packing/pour2/packing.json",
+                                                    base_label="the scene's pour", short_label="the scene's"),
     "packing_stroke": packing_stroke_table,
     "averaged_liquid": averaged_liquid_table,
     "amg_probe": amg_probe_table,
