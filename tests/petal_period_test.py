@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """studies/seed000/petal_period.py's window() on synthetic series: a surface angle that pulses k times
 in half a turn reads k petals (pi / T with T the pulse period as an angle of rotation), and noise alone
-reads a prominence near 1. Sampled as the drum runs write series.csv (every 0.005 s at 0.5 rad/s)."""
+reads a prominence far below a pulse's. Sampled every 0.005 s (the drum runs' series.csv rows are 0.01 s
+apart; the pulses lie far below either sampling limit)."""
 import math
 import sys
 from pathlib import Path
@@ -25,7 +26,7 @@ def main():
     rng = np.random.default_rng(7)
     for omega, k in ((0.5, 5), (0.25, 7), (1.0, 3)):
         w = petal_period.window(series(omega, k, 0.01, rng), 20.0, 30.0)
-        # 10 rad holds 10 k / pi pulses (16 to 22 here): the spectrum's bins are 1/16 to 1/22 of the pulse
+        # 10 rad holds 10 k / pi pulses (10 to 22 here): the spectrum's bins are 1/10 to 1/22 of the pulse
         # frequency apart, and the parabola through the peak's bins places it to a few per cent of a bin.
         assert abs(w["petals_two_pulses_each"] - k) < 0.02 * k, (omega, k, w)
         assert w["prominence"] > 100, (omega, k, w)
