@@ -147,7 +147,7 @@ def petal_period():
                     f"{'/'.join(f'{r:.1f}' for r in c['arms_at_r_over_R'])} R) | {w['period_s']:.2f} s "
                     f"({w['period_rad']:.2f} rad; {w['prominence']:.0f}) | {w['petals_two_pulses_each']:.1f} | {rest} |")
     return "\n".join(rows) + ("\n\nProminence: the spectral peak's power over the median within an octave of it "
-                              "(about 1: no period stands out).\n")
+                              "(white noise of the same length reads about 11, and 17 at most over 200 draws: tests/petal_period_test.py).\n")
 
 
 TABLES = {"seed000_side_by_side": side_by_side, "seed000_petal_period": petal_period}
